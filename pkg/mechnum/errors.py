@@ -1,0 +1,43 @@
+"""Errors raised by :mod:`mechnum`.
+
+Every failure to produce the one answer a function promises raises a subclass of
+:class:`MechnumError` whose message names the cause and the numbers involved. Non-finite or
+ill-shaped input raises the built-in :class:`ValueError` at the entry point instead.
+"""
+
+
+class MechnumError(Exception):
+    """Base class of every error that :mod:`mechnum` raises on purpose."""
+
+
+class ConvergenceError(MechnumError):
+    """An iteration stopped without meeting its tolerance.
+
+    Parameters
+    ----------
+    message : str
+        What happened, with the iteration count and the norms.
+    result : object, optional
+        The partial result (for example a :class:`mechnum.newton.NewtonResult`), kept so that the
+        caller can inspect the history.
+    """
+
+    def __init__(self, message, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+class DivergenceError(ConvergenceError):
+    """An iteration was detected to diverge (growing residual or overflow)."""
+
+
+class SingularJacobianError(MechnumError):
+    """A Jacobian (or a system matrix) is singular, or numerically so, where it must be inverted."""
+
+
+class UnreachablePoseError(MechnumError):
+    """A mechanism cannot be assembled in the requested pose."""
+
+
+class GeometryError(MechnumError):
+    """A mechanism's geometry is degenerate (zero or negative lengths, coincident pivots, ...)."""

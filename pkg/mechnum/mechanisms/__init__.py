@@ -1,0 +1,1 @@
+"""The mechanisms of the book's source studies, one module each."""

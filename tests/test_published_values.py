@@ -1,0 +1,84 @@
+"""The published-values registry, ``book/published_values.csv``, against the package.
+
+Each chapter's mechanism module has ``reproduce() -> dict[str, float]``, keyed by the
+``quantity`` column of that chapter's rows. This test recomputes every row: the ``computed``
+column must be what the package computes today (to the digits the column prints), and every
+``reproduced`` row must agree with ``published`` to the digits the study printed.
+"""
+
+import csv
+import importlib
+import math
+import re
+from decimal import Decimal
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+REGISTRY = Path(__file__).resolve().parents[1] / "book" / "published_values.csv"
+COLUMNS = ["seed", "location", "quantity", "published", "unit", "computed", "verdict",
+           "chapter", "note"]
+VERDICTS = {"reproduced", "reproduced-after-correction", "not-reproduced", "seed-error",
+            "claim-refuted"}
+MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
+    "01_newton_hacksaw": "mechnum.mechanisms.hacksaw",
+    "02_linear_systems_finger": "mechnum.mechanisms.finger",
+    "03_elastica": "mechnum.mechanisms.elastica",
+    "04_rigid_3prr": "mechnum.mechanisms.prr3",
+    "05_flexible_2rfr": "mechnum.mechanisms.rfr2",
+    "06_flexible_3pfr": "mechnum.mechanisms.pfr3",
+    "07_actuator_force": "mechnum.mechanisms.actuator",
+}
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+
+def rows():
+    with REGISTRY.open(newline="", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
+def half_unit(printed):
+    """Half a unit in the last digit of a printed number: the rounding it may hide.
+
+    >>> half_unit("1.234"), half_unit("12"), half_unit("2.5e-3")
+    (0.0005, 0.5, 5e-05)
+    """
+    exponent = Decimal(printed.strip()).as_tuple().exponent
+    return 0.5 * 10.0 ** exponent
+
+
+@cache
+def reproduced(chapter):
+    return importlib.import_module(MODULES[chapter]).reproduce()
+
+
+def test_registry_is_well_formed():
+    with REGISTRY.open(newline="", encoding="utf-8") as f:
+        assert next(csv.reader(f)) == COLUMNS
+    keys = [(r["chapter"], r["quantity"]) for r in rows()]
+    assert len(keys) == len(set(keys)), "quantity must be unique within a chapter"
+    for r in rows():
+        assert r["verdict"] in VERDICTS, r
+        assert r["chapter"] in MODULES, r
+        assert (Path(REGISTRY.parent) / f"{r['chapter']}.ipynb").exists(), r
+        assert r["note"].strip() or r["verdict"] == "reproduced", f"a verdict needs a note: {r}"
+        assert not r["computed"] or NUMBER.match(r["computed"]), r
+
+
+@pytest.mark.parametrize("row", rows(), ids=lambda r: f"{r['chapter']}:{r['quantity']}")
+def test_row_is_what_the_package_computes(row):
+    values = reproduced(row["chapter"])
+    if not row["computed"]:  # a claim with no single number (a timing, a ranking): see its note
+        assert row["quantity"] not in values, "computed is blank but reproduce() has a value"
+        assert row["verdict"] != "reproduced"
+        return
+    value = values[row["quantity"]]
+    assert math.isfinite(value)
+    assert abs(value - float(row["computed"])) <= half_unit(row["computed"]) * (1 + 1e-9), (
+        f"the registry says {row['computed']}, the package computes {value!r}")
+    if row["verdict"] == "reproduced":
+        assert NUMBER.match(row["published"]), row
+        tol = half_unit(row["published"]) * (1 + 1e-9)
+        assert abs(value - float(row["published"])) <= tol, (
+            f"published {row['published']} vs computed {value!r} (tolerance {tol:g})")
