@@ -28,6 +28,8 @@ import numpy as np
 from mechnum.errors import ConvergenceError, SingularJacobianError
 
 _SQRT_EPS = np.sqrt(np.finfo(float).eps)
+_MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
+_TINY = np.finfo(float).tiny
 _CRITERIA = ("step", "residual")
 
 
@@ -145,31 +147,33 @@ def _evaluate(fun, x, what):
     return fx
 
 
-def _newton_step(jac, fx, iteration, norm):
+def _newton_step(jac, fx, iteration):
     """Solve ``J dx = -f`` for one system or a stack, refusing a (numerically) singular ``J``.
 
     Besides an exactly singular ``J`` (LAPACK's zero pivot), the step is refused when
-    ``||J|| ||dx|| / ||f||``, a lower bound of the condition number of ``J``, exceeds
-    ``1/eps``: then no digit of ``dx`` can be trusted.
+    ``||J||_1 ||dx||_1 / ||f||_1``, a lower bound of the condition number of ``J``, exceeds
+    ``1/eps``: then no digit of ``dx`` can be trusted. A system with ``f = 0`` takes no step.
     """
+    singular = np.zeros(fx.shape[:-1], dtype=bool)
     try:
         dx = np.linalg.solve(jac, -fx[..., None])[..., 0]
-    except np.linalg.LinAlgError:  # an exactly singular J: mark its step (or each one's) infinite
-        dx = np.full_like(fx, np.inf)
+    except np.linalg.LinAlgError:  # some J is exactly singular: find which
+        dx = np.zeros_like(fx)
         for i in np.ndindex(fx.shape[:-1]):
             try:
                 dx[i] = np.linalg.solve(jac[i], -fx[i])
             except np.linalg.LinAlgError:
-                pass
-    bound = (np.linalg.norm(jac, ord=1, axis=(-2, -1)) * np.linalg.norm(dx, 1, axis=-1)
-             / np.maximum(np.linalg.norm(fx, 1, axis=-1), np.finfo(float).tiny))
-    bad = ~np.isfinite(bound) | (bound > 1.0 / np.finfo(float).eps)
-    if np.any(bad & (np.linalg.norm(fx, norm, axis=-1) > 0)):
+                singular[i] = True
+    fsize = np.abs(fx).sum(axis=-1)
+    growth = np.abs(jac).sum(axis=-2).max(axis=-1) * np.abs(dx).sum(axis=-1)
+    bad = (singular | ~(growth <= _MAX_COND * fsize)) & (fsize > 0)
+    if bad.any():
         where = "" if fx.ndim == 1 else f" of system(s) {np.flatnonzero(bad)[:10].tolist()}"
+        cond = "inf" if singular.any() else f"{np.max(growth / np.maximum(fsize, _TINY)):.3g}"
         raise SingularJacobianError(
-            f"singular Jacobian{where} at iteration {iteration}: condition number >= "
-            f"{np.max(bound):.3g}, residual norm {np.max(np.linalg.norm(fx, norm, axis=-1)):.3g}")
-    return np.where(bad[..., None], 0.0, dx)
+            f"singular Jacobian{where} at iteration {iteration}: condition number >= {cond}, "
+            f"residual 1-norm {np.max(fsize):.3g}")
+    return dx
 
 
 def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2):
@@ -231,7 +235,7 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
         J = np.asarray(jac(x), dtype=float)
         if J.shape != x.shape * 2:
             raise ValueError(f"jac returned shape {J.shape}, expected {x.shape * 2}")
-        dx = _newton_step(J, fx, len(steps), norm)
+        dx = _newton_step(J, fx, len(steps))
         x = x + dx
         history.append(x)
         steps.append(np.linalg.norm(dx, norm))
@@ -306,7 +310,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         if J.shape != (batch, n, n):
             raise ValueError(f"jac returned shape {J.shape}, expected {(batch, n, n)}")
         dx = np.zeros_like(x)
-        dx[active] = _newton_step(J[active], fx[active], k, norm)
+        dx[active] = _newton_step(J[active], fx[active], k)
         x = x + dx
         iterations += active
         steps.append(np.where(active, np.linalg.norm(dx, norm, axis=-1), np.nan))
