@@ -4,8 +4,9 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
-export MPLBACKEND := Agg
+# Notebooks must keep Jupyter's inline backend (Agg would drop every figure): unset it for them.
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
+NB_ENV := env -u MPLBACKEND
 
 .PHONY: book test unit notebooks html-check bench clean
 
@@ -16,13 +17,13 @@ $(STAMP): environment.txt pkg/pyproject.toml
 	touch $(STAMP)
 
 book: $(STAMP)
-	$(BIN)/jupyter-book build . -W -n --keep-going
+	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
 
 unit: $(STAMP)
-	$(BIN)/pytest --doctest-modules pkg/mechnum tests
+	MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
 
 notebooks: $(STAMP)
-	$(BIN)/pytest --nbval -p no:randomly --nbval-sanitize-with book/nbval_sanitize.cfg book
+	$(NB_ENV) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg book
 
 html-check: $(STAMP)
 	MECHNUM_BUILT_HTML=_build/html $(BIN)/pytest tests/test_built_html.py
@@ -30,7 +31,8 @@ html-check: $(STAMP)
 test: unit notebooks book html-check
 
 bench: $(STAMP)
-	$(BIN)/pytest bench --benchmark-only --benchmark-columns=min,median,max,rounds
+	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
+		--benchmark-columns=min,median,max,rounds
 
 clean:
 	rm -rf _build .pytest_cache .hypothesis .benchmarks

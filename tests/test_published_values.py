@@ -6,21 +6,18 @@ column must be what the package computes today (to the digits the column prints)
 ``reproduced`` row must agree with ``published`` to the digits the study printed.
 """
 
-import csv
 import importlib
 import math
 import re
-from decimal import Decimal
 from functools import cache
 from pathlib import Path
 
 import pytest
 
-REGISTRY = Path(__file__).resolve().parents[1] / "book" / "published_values.csv"
-COLUMNS = ["seed", "location", "quantity", "published", "unit", "computed", "verdict",
-           "chapter", "note"]
-VERDICTS = {"reproduced", "reproduced-after-correction", "not-reproduced", "seed-error",
-            "claim-refuted"}
+from mechnum.published import VERDICTS, agrees, half_unit, read_registry
+
+BOOK = Path(__file__).resolve().parents[1] / "book"
+REGISTRY = BOOK / "published_values.csv"
 MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
     "01_newton_hacksaw": "mechnum.mechanisms.hacksaw",
     "02_linear_systems_finger": "mechnum.mechanisms.finger",
@@ -31,21 +28,7 @@ MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
     "07_actuator_force": "mechnum.mechanisms.actuator",
 }
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
-
-
-def rows():
-    with REGISTRY.open(newline="", encoding="utf-8") as f:
-        return list(csv.DictReader(f))
-
-
-def half_unit(printed):
-    """Half a unit in the last digit of a printed number: the rounding it may hide.
-
-    >>> half_unit("1.234"), half_unit("12"), half_unit("2.5e-3")
-    (0.0005, 0.5, 5e-05)
-    """
-    exponent = Decimal(printed.strip()).as_tuple().exponent
-    return 0.5 * 10.0 ** exponent
+ROWS = read_registry(REGISTRY)
 
 
 @cache
@@ -54,19 +37,17 @@ def reproduced(chapter):
 
 
 def test_registry_is_well_formed():
-    with REGISTRY.open(newline="", encoding="utf-8") as f:
-        assert next(csv.reader(f)) == COLUMNS
-    keys = [(r["chapter"], r["quantity"]) for r in rows()]
+    keys = [(r["chapter"], r["quantity"]) for r in ROWS]
     assert len(keys) == len(set(keys)), "quantity must be unique within a chapter"
-    for r in rows():
+    for r in ROWS:
         assert r["verdict"] in VERDICTS, r
         assert r["chapter"] in MODULES, r
-        assert (Path(REGISTRY.parent) / f"{r['chapter']}.ipynb").exists(), r
+        assert (BOOK / f"{r['chapter']}.ipynb").exists(), r
         assert r["note"].strip() or r["verdict"] == "reproduced", f"a verdict needs a note: {r}"
         assert not r["computed"] or NUMBER.match(r["computed"]), r
 
 
-@pytest.mark.parametrize("row", rows(), ids=lambda r: f"{r['chapter']}:{r['quantity']}")
+@pytest.mark.parametrize("row", ROWS, ids=lambda r: f"{r['chapter']}:{r['quantity']}")
 def test_row_is_what_the_package_computes(row):
     values = reproduced(row["chapter"])
     if not row["computed"]:  # a claim with no single number (a timing, a ranking): see its note
@@ -78,7 +59,4 @@ def test_row_is_what_the_package_computes(row):
     assert abs(value - float(row["computed"])) <= half_unit(row["computed"]) * (1 + 1e-9), (
         f"the registry says {row['computed']}, the package computes {value!r}")
     if row["verdict"] == "reproduced":
-        assert NUMBER.match(row["published"]), row
-        tol = half_unit(row["published"]) * (1 + 1e-9)
-        assert abs(value - float(row["published"])) <= tol, (
-            f"published {row['published']} vs computed {value!r} (tolerance {tol:g})")
+        assert agrees(row["published"], value), f"published {row['published']}, computed {value!r}"

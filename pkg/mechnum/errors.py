@@ -7,24 +7,24 @@ ill-shaped input raises the built-in :class:`ValueError` at the entry point inst
 
 
 class MechnumError(Exception):
-    """Base class of every error that :mod:`mechnum` raises on purpose."""
-
-
-class ConvergenceError(MechnumError):
-    """An iteration stopped without meeting its tolerance.
+    """Base class of every error that :mod:`mechnum` raises on purpose.
 
     Parameters
     ----------
     message : str
-        What happened, with the iteration count and the norms.
+        What happened, with the numbers involved (iteration count, norms, offending input).
     result : object, optional
-        The partial result (for example a :class:`mechnum.newton.NewtonResult`), kept so that the
-        caller can inspect the history.
+        The partial result where there is one (for example a :class:`mechnum.newton.NewtonResult`),
+        kept so that the caller can inspect the history.
     """
 
     def __init__(self, message, result=None):
         super().__init__(message)
         self.result = result
+
+
+class ConvergenceError(MechnumError):
+    """An iteration stopped without meeting its tolerance."""
 
 
 class DivergenceError(ConvergenceError):
@@ -41,3 +41,7 @@ class UnreachablePoseError(MechnumError):
 
 class GeometryError(MechnumError):
     """A mechanism's geometry is degenerate (zero or negative lengths, coincident pivots, ...)."""
+
+
+class RelaxationFactorError(MechnumError, ValueError):
+    """An SOR relaxation factor lies outside (0, 2), where SOR cannot converge (Kahan)."""

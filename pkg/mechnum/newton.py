@@ -73,6 +73,8 @@ class BatchNewtonResult:
         Newton steps taken by each system.
     converged : ndarray of bool, shape (batch,)
         Whether each system met the stopping criterion.
+    singular : ndarray of bool, shape (batch,)
+        Which systems stopped on a singular Jacobian (frozen there, the others went on).
     step_norms : ndarray, shape (max(iterations), batch)
         ``||dx||`` of every step of every system, NaN after a system stopped.
     residual_norms : ndarray, shape (batch,)
@@ -82,6 +84,7 @@ class BatchNewtonResult:
     x: np.ndarray
     iterations: np.ndarray
     converged: np.ndarray
+    singular: np.ndarray
     step_norms: np.ndarray
     residual_norms: np.ndarray
 
@@ -147,14 +150,23 @@ def _evaluate(fun, x, what):
     return fx
 
 
-def _newton_step(jac, fx, iteration):
-    """Solve ``J dx = -f`` for one system or a stack, refusing a (numerically) singular ``J``.
+def _newton_step(jac, fx):
+    """Solve ``J dx = -f`` for one system or a stack; flag the (numerically) singular ``J``.
 
-    Besides an exactly singular ``J`` (LAPACK's zero pivot), the step is refused when
+    Besides an exactly singular ``J`` (LAPACK's zero pivot), a step is flagged when
     ``||J||_1 ||dx||_1 / ||f||_1``, a lower bound of the condition number of ``J``, exceeds
-    ``1/eps``: then no digit of ``dx`` can be trusted. A system with ``f = 0`` takes no step.
+    ``1/eps``: then no digit of ``dx`` can be trusted. A system with ``f = 0`` is never flagged.
+
+    Returns
+    -------
+    dx : ndarray
+        The steps (zero where flagged).
+    singular : ndarray of bool
+        The flags, one per system.
+    cond : ndarray
+        The lower bounds of the condition numbers (``inf`` where ``J`` is exactly singular).
     """
-    singular = np.zeros(fx.shape[:-1], dtype=bool)
+    exact = np.zeros(fx.shape[:-1], dtype=bool)
     try:
         dx = np.linalg.solve(jac, -fx[..., None])[..., 0]
     except np.linalg.LinAlgError:  # some J is exactly singular: find which
@@ -163,17 +175,15 @@ def _newton_step(jac, fx, iteration):
             try:
                 dx[i] = np.linalg.solve(jac[i], -fx[i])
             except np.linalg.LinAlgError:
-                singular[i] = True
+                exact[i] = True
     fsize = np.abs(fx).sum(axis=-1)
     growth = np.abs(jac).sum(axis=-2).max(axis=-1) * np.abs(dx).sum(axis=-1)
-    bad = (singular | ~(growth <= _MAX_COND * fsize)) & (fsize > 0)
-    if bad.any():
-        where = "" if fx.ndim == 1 else f" of system(s) {np.flatnonzero(bad)[:10].tolist()}"
-        cond = "inf" if singular.any() else f"{np.max(growth / np.maximum(fsize, _TINY)):.3g}"
-        raise SingularJacobianError(
-            f"singular Jacobian{where} at iteration {iteration}: condition number >= {cond}, "
-            f"residual 1-norm {np.max(fsize):.3g}")
-    return dx
+    trusted = (growth <= _MAX_COND * fsize) & ~exact  # False where growth is inf or NaN
+    if trusted.all():
+        return dx, ~trusted, None
+    singular = (exact | ~trusted) & (fsize > 0)
+    cond = np.where(exact, np.inf, growth / np.maximum(fsize, _TINY))
+    return np.where(singular[..., None], 0.0, dx), singular, cond
 
 
 def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2):
@@ -205,7 +215,7 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
     ValueError
         If ``x0`` is not a finite vector, or ``fun``/``jac`` return the wrong shape.
     SingularJacobianError
-        If the Jacobian is singular at an iterate.
+        If the Jacobian is singular at an iterate; ``result`` holds the partial result.
     ConvergenceError
         If ``maxiter`` steps do not meet the criterion or an iterate stops being finite; its
         ``result`` attribute holds the partial :class:`NewtonResult`.
@@ -235,7 +245,13 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
         J = np.asarray(jac(x), dtype=float)
         if J.shape != x.shape * 2:
             raise ValueError(f"jac returned shape {J.shape}, expected {x.shape * 2}")
-        dx = _newton_step(J, fx, len(steps))
+        dx, singular, cond = _newton_step(J, fx)
+        if singular:
+            raise SingularJacobianError(
+                f"singular Jacobian at iteration {len(steps)}: condition number >= {cond:.3g}, "
+                f"residual norm {residuals[-1]:.3g}",
+                NewtonResult(x, len(steps), False, np.array(history), np.array(residuals),
+                             np.array(steps)))
         x = x + dx
         history.append(x)
         steps.append(np.linalg.norm(dx, norm))
@@ -274,8 +290,12 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
 
     Raises
     ------
-    ValueError, SingularJacobianError
-        As in :func:`solve`; the message names the offending systems.
+    ValueError
+        As in :func:`solve`.
+    SingularJacobianError
+        If the Jacobian of any system is singular at one of its iterates; that system is frozen
+        there, the others go on, and ``result`` holds the :class:`BatchNewtonResult` whose
+        ``singular`` tells which.
     ConvergenceError
         If any system fails to converge in ``maxiter`` steps; ``result`` holds the partial
         :class:`BatchNewtonResult`, whose ``converged`` tells which.
@@ -294,6 +314,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     batch, n = x.shape
     iterations = np.zeros(batch, dtype=int)
     active = np.ones(batch, dtype=bool)
+    singular = np.zeros(batch, dtype=bool)
     steps = []
     fx = _evaluate(fun, x, "fun")
     for k in range(maxiter + 1):
@@ -310,15 +331,21 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         if J.shape != (batch, n, n):
             raise ValueError(f"jac returned shape {J.shape}, expected {(batch, n, n)}")
         dx = np.zeros_like(x)
-        dx[active] = _newton_step(J[active], fx[active], k)
+        dx[active], stuck, _ = _newton_step(J[active], fx[active])
+        singular[np.flatnonzero(active)[stuck]] = True
+        active &= ~singular
         x = x + dx
         iterations += active
         steps.append(np.where(active, np.linalg.norm(dx, norm, axis=-1), np.nan))
         fx = _evaluate(fun, x, "fun")
     rnorm = np.linalg.norm(fx, norm, axis=-1)
-    converged = ~active & np.isfinite(rnorm)
-    result = BatchNewtonResult(x, iterations, converged, np.array(steps).reshape(-1, batch),
-                               rnorm)
+    converged = ~active & ~singular & np.isfinite(rnorm)
+    result = BatchNewtonResult(x, iterations, converged, singular,
+                               np.array(steps).reshape(-1, batch), rnorm)
+    if singular.any():
+        raise SingularJacobianError(
+            f"singular Jacobian in {singular.sum()} of {batch} systems "
+            f"(first: {np.flatnonzero(singular)[:10].tolist()}); the others went on", result)
     if not converged.all():
         bad = np.flatnonzero(~converged)
         raise ConvergenceError(

@@ -128,10 +128,8 @@ def _pack(*columns):
 
 def _matrix(n, entries):
     """An ``(..., n, n)`` array of zeros with the ``{(row, col): value}`` entries filled in."""
-    values = _pack(*entries.values())
-    out = np.zeros(values.shape[:-1] + (n * n,))
-    out[..., [i * n + j for i, j in entries]] = values
-    return out.reshape(values.shape[:-1] + (n, n))
+    values = _pack(*(entries.get((i, j), 0.0) for i in range(n) for j in range(n)))
+    return values.reshape(values.shape[:-1] + (n, n))
 
 
 def position_residual(q, theta2, geometry=STUDY, form="loop"):
@@ -445,3 +443,54 @@ def sweep(t, method, geometry=STUDY, *, seed=TRAJECTORY_SEED, tol=TOL, alpha_max
             x = solve_simultaneous(state, x, geometry, tol=tol).x
         out[i] = x
     return out
+
+
+def reproduce():
+    """Recompute every number of the study that the registry holds (``book/published_values.csv``).
+
+    Returns
+    -------
+    dict
+        ``{quantity: value}`` keyed by the registry's ``quantity`` column for chapter 1.
+
+    Examples
+    --------
+    >>> values = reproduce()
+    >>> values["iterations, simultaneous 9x9 at rest"]
+    5
+    """
+    T = first_revolution_time()
+    speed = motor(T)[1]
+    rest = (0.0, 0.0, 0.0)
+    pos, vel, acc = solve_consecutive(rest, STUDY_SEED)
+    simultaneous = solve_simultaneous(rest, STUDY_SEED)
+    t = np.linspace(0.0, 2 * T, 1000)
+    exact = closed_form(t)
+    by_stage = {m: sweep(t, m) for m in ("consecutive", "simultaneous")}
+    error = np.abs(by_stage["simultaneous"] - exact).max(axis=0)
+    rpm = float(speed) * 60 / (2 * np.pi)
+    values = {
+        "first revolution time T (report)": T,
+        "first revolution time T (slides)": T,
+        "final motor speed": float(speed),
+        "final motor speed in rpm (report)": rpm,
+        "final motor speed in rpm (slides)": rpm,
+        "two revolutions 2T (rounded)": 2 * T,
+        "two revolutions 2T": 2 * T,
+        "iterations, position stage at rest": pos.iterations,
+        "iterations, velocity stage at rest": vel.iterations,
+        "iterations, acceleration stage at rest": acc.iterations,
+        "iterations, simultaneous 9x9 at rest": simultaneous.iterations,
+        "largest |velocity| at rest (consecutive)": float(np.abs(vel.x).max()),
+        "largest |acceleration| at rest (consecutive)": float(np.abs(acc.x).max()),
+        "largest |rate| at rest (simultaneous)": float(np.abs(simultaneous.x[3:]).max()),
+        "largest |simultaneous - consecutive| over the trajectory": float(
+            np.linalg.norm(by_stage["simultaneous"] - by_stage["consecutive"], axis=1).max()),
+        "largest error of positions and velocities (simultaneous)": float(error[:6].max()),
+        "largest error of accelerations (simultaneous)": float(error[6:].max()),
+        "largest error of all nine unknowns (simultaneous)": float(error.max()),
+    }
+    for label, x in (("consecutive", pos.x), ("simultaneous", simultaneous.x), ("slides", pos.x)):
+        for name, value in zip(NAMES[:3], x):
+            values[f"{name} at rest ({label})"] = float(value)
+    return values
