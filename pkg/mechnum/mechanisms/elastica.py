@@ -1,0 +1,145 @@
+"""One flexible rod of the flexible-mechanisms thesis (seed 001): its data and its example.
+
+The thesis's first program (its Annex II, 1.1 and 1.2) solves a rod clamped at the origin
+along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) of length
+1 m and circular section of diameter 2 mm, 61 RK4 nodes, initial guesses
+``m0 = 0.1`` N m and ``n0 = (0.1, 0.1)`` N, tolerance ``1e-7``. Its Newton loop is not the
+plain one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences with
+a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
+largest residual or its change falls below the tolerance. :func:`study_shooting` is that
+loop, on the package's RK4 rod (:func:`mechnum.rods.shooting.integrate`).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechnum import rods
+from mechnum.errors import ConvergenceError
+
+LENGTH = 1.0                                  # m
+YOUNG = 210e9                                 # Pa
+DIAMETER = 2e-3                               # m
+EI = YOUNG * 0.25 * np.pi * (0.5 * DIAMETER) ** 4   # N m^2 (I = pi r^4 / 4)
+NODES = 61
+TARGET = np.array([0.8, 0.1])                 # m, the pinned tip
+GUESS = np.array([0.1, 0.1, 0.1])             # (m0 [N m], n_x [N], n_y [N]), the study's
+TOL = 1e-7
+FD_STEP = 1e-10
+
+
+@dataclass(frozen=True)
+class StudyShooting:
+    """The outcome of :func:`study_shooting`.
+
+    Attributes
+    ----------
+    rod : Rod
+        The rod at the last iterate.
+    history : ndarray, shape (iterations + 1, 3)
+        ``(m0, n_x, n_y)`` after every accepted step, the guess first.
+    halvings : int
+        Step halvings done in all.
+    max_residual : float
+        Largest residual component at the last iterate (m or N m).
+    """
+
+    rod: rods.Rod
+    history: np.ndarray
+    halvings: int
+    max_residual: float
+
+    @property
+    def iterations(self):
+        """Newton steps taken."""
+        return len(self.history) - 1
+
+
+def _residual(p, target, ei, length, nodes):
+    """Tip residuals ``(x - x_t, y - y_t, m(L))`` of a batch of unknowns ``p`` (batch, 3)."""
+    rod = rods.integrate(ei, length, p[:, 0], p[:, 1:], nodes=nodes)
+    return np.column_stack((rod.tip - target, rod.m[:, -1])), rod
+
+
+def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NODES, tol=TOL,
+                   maxiter=200):
+    """The thesis's shooting loop (Annex II, 1.2: ``IK_NewRaph``), step by step.
+
+    Parameters
+    ----------
+    guess : array_like, shape (3,)
+        Initial ``(m0, n_x, n_y)``.
+    target : array_like, shape (2,)
+        The pinned tip (m).
+    ei, length, nodes, tol
+        The rod and the loop's settings; the study's by default.
+    maxiter : int, optional
+        Most outer iterations (the study has no limit).
+
+    Returns
+    -------
+    StudyShooting
+
+    Raises
+    ------
+    ConvergenceError
+        If the loop stops with a residual above ``tol`` (the study's ``OUT.solution = 0``).
+
+    Examples
+    --------
+    >>> res = study_shooting()
+    >>> res.iterations, round(float(res.rod.clamp_moment), 4), np.round(res.rod.force, 3).tolist()
+    (6, -0.6076, [-3.231, -1.163])
+    """
+    p = np.array(guess, dtype=float)
+    if p.shape != (3,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"guess must be 3 finite numbers (m0, n_x, n_y), got {guess!r}")
+    target = np.asarray(target, dtype=float)
+    resid = _residual(p[None], target, ei, length, nodes)[0][0]
+    resid0 = np.zeros(3)
+    history, halvings = [p.copy()], 0
+    while (np.max(np.abs(resid)) > tol and np.max(np.abs(resid - resid0)) > tol
+           and len(history) <= maxiter):
+        resid0 = resid
+        perturbed = p + np.vstack((np.zeros(3), FD_STEP * np.eye(3)))
+        values = _residual(perturbed, target, ei, length, nodes)[0]
+        jac = (values[1:] - values[0]).T / FD_STEP
+        delta = -np.linalg.solve(jac, resid0)
+        p = p + delta
+        resid = _residual(p[None], target, ei, length, nodes)[0][0]
+        while np.max(np.abs(resid)) > np.max(np.abs(resid0)) and np.max(np.abs(delta)) > tol * 1e-3:
+            delta = 0.5 * delta
+            p = p - delta
+            resid = _residual(p[None], target, ei, length, nodes)[0][0]
+            halvings += 1
+        history.append(p.copy())
+    rod = rods.integrate(ei, length, p[0], p[1:], nodes=nodes)
+    result = StudyShooting(rod, np.array(history), halvings, float(np.max(np.abs(resid))))
+    if not result.max_residual <= tol:
+        raise ConvergenceError(
+            f"the study's shooting loop stopped after {result.iterations} iterations with "
+            f"residual {result.max_residual:.3g} > {tol:g}", result)
+    return result
+
+
+def _q(rod):
+    """The study's ``q`` (``phi2 = q pi / 2``) of a rod found by shooting, unrounded."""
+    return 2.0 / np.pi * rods.elliptic_parameters(EI, LENGTH, rod.clamp_moment, rod.force)[3]
+
+
+def reproduce():
+    """The chapter's registry values, computed (see ``book/published_values.csv``).
+
+    ``q`` of the study's (43) is recovered from rods found by RK4 shooting (61 nodes, as in
+    the study): the study's own example (mode 2), a cantilever (mode 1) and the mode-3
+    equilibrium through the same pinned point.
+    """
+    example = study_shooting().rod
+    cantilever = rods.shoot_cantilever(EI, LENGTH, [0.0, EI / LENGTH ** 2], nodes=NODES).rod
+    psi, k_rel, mode = rods.pinned_equilibria(EI, LENGTH, TARGET, modes=(3,))[0]
+    guess = rods.clamped_pinned(EI, LENGTH, psi, k_rel, mode)
+    mode3 = rods.shoot_pinned(EI, LENGTH, TARGET, [guess.clamp_moment, *guess.force],
+                              nodes=NODES).rod
+    return {"q of mode 1 (cantilever, P L^2/EI = 1)": float(_q(cantilever)),
+            "q of mode 2 (the Annex II 1.1 example)": float(_q(example)),
+            "q of mode 3 (same pinned point)": float(_q(mode3))}

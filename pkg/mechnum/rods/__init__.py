@@ -1,0 +1,116 @@
+"""Planar Kirchhoff rods: RK4 shooting and the elliptic-integral closed form.
+
+Conventions (used by every function here and by the flexible mechanisms built on them)
+
+* A rod of length ``L`` (m) and bending stiffness ``EI`` (N m^2) is inextensible, unshearable
+  and straight when unloaded. The arc length ``s`` runs from ``s = 0`` at the **clamped** end
+  to ``s = L`` at the other end, the **tip** (free, or pinned to a platform).
+* The state at ``s`` is ``(x, y, theta, m)``: the centreline position (m), the angle of the
+  tangent from the x axis (rad, anticlockwise) and the bending moment ``m = EI dtheta/ds``
+  (N m, positive anticlockwise).
+* ``n = (n_x, n_y)`` (N) is the internal force, constant along a rod with no distributed
+  load: the force that the part beyond ``s`` exerts on the part before ``s``. So ``n`` is
+  the external force applied **on the rod at its tip** (the load of a cantilever, or the force
+  that the platform exerts on the rod); the clamp exerts ``-n`` and the moment ``-m(0)``.
+* The equations (the study's (78)) are::
+
+      x' = cos(theta),  y' = sin(theta),  theta' = m / EI,  m' = n_x sin(theta) - n_y cos(theta)
+
+  and a free or pinned tip carries no moment, ``m(L) = 0``.
+* Arrays: ``EI``, ``L``, ``m0``, ``theta0`` broadcast over a leading batch shape; forces and
+  points have a last axis of length 2. Many rods are integrated in one RK4 sweep.
+
+The closed form (:func:`clamped_pinned`) works in the rod's **local frame**: clamp at the
+origin, clamped tangent along +x (``theta(0) = 0``), tip force ``n = R (cos psi, sin psi)``
+with ``R > 0``. It is valid for ``0 < psi < 2 pi`` (``psi = 0`` is pure tension: a straight
+rod with no ``k``), ``0 < |k_rel| < 1`` and buckling ``mode = 1, 2, ...``, the number of
+inflection points of ``theta`` (zeros of ``m``) on ``0 < s <= L``, the tip's included.
+With ``k_min = |cos(psi/2)|`` (the study's code; its text calls it a function of ``k``),
+``k = sign(k_rel) k_min + (1 - k_min) k_rel``, ``phi1 = arcsin(cos(psi/2) / k)`` and
+``phi2 = (mode - 1/2) pi``; ``sign(k) = sign(m(0))``. scipy's elliptic integrals take the
+parameter ``m = k**2``. To place a closed-form rod clamped at ``(x0, y0)`` at angle
+``theta0``, rotate its tip and its force by ``theta0`` and add ``(x0, y0)``: ``psi`` is the
+force direction relative to the clamped tangent.
+
+Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_jacobian`,
+the shooting solvers) and :mod:`mechnum.rods.elliptic` (the closed form, its inverse maps and
+:func:`pinned_equilibria`); everything is importable from :mod:`mechnum.rods`. In a Newton
+loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of all rods:
+one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little more than
+one rod (the cost of a sweep is per numpy call, not per rod).
+"""
+
+import numpy as np
+
+from mechnum.rods.elliptic import (
+    TWO_PI,
+    EllipticRod,
+    NoEquilibriumError,
+    clamped_pinned,
+    elliptic_k,
+    elliptic_parameters,
+    k_rel_for_force,
+    pinned_equilibria,
+)
+from mechnum.rods.shooting import (
+    Rod,
+    Shooting,
+    _finite,
+    _positive,
+    integrate,
+    shoot_cantilever,
+    shoot_pinned,
+    tip_jacobian,
+)
+
+__all__ = ["EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
+           "clamped_pinned", "elliptic_k", "elliptic_parameters", "integrate",
+           "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
+           "tip_jacobian"]
+
+
+def cantilever(EI, L, force, method="elliptic", *, nodes=41):
+    """A cantilever (clamped at the origin along +x) under a tip force, by either method.
+
+    The equilibrium returned is the one that grows continuously from the unloaded rod (mode 1,
+    bending towards the force). A purely axial force (``n_y = 0``) gives the straight rod,
+    the only equilibrium below the Euler load (``pi**2 EI / (4 L**2)`` in compression);
+    buckled ones are :func:`clamped_pinned` with ``psi = pi``.
+
+    Parameters
+    ----------
+    EI, L : float
+        Bending stiffness (N m^2) and length (m).
+    force : array_like, shape (2,)
+        Tip force ``(n_x, n_y)`` (N).
+    method : {"elliptic", "shooting"}
+        Closed form (:func:`k_rel_for_force` then :func:`clamped_pinned`) or RK4 shooting
+        (:func:`shoot_cantilever`).
+    nodes : int, optional
+        Nodes of the returned shape (and RK4 nodes for shooting).
+
+    Returns
+    -------
+    Rod
+        Its ``tip`` and ``tip_angle`` are the tip position and angle.
+
+    Examples
+    --------
+    >>> a = cantilever(2.0, 1.5, [-0.3, 1.0], "elliptic")
+    >>> b = cantilever(2.0, 1.5, [-0.3, 1.0], "shooting", nodes=801)
+    >>> bool(np.abs(a.tip - b.tip).max() < 1e-11), round(float(a.tip_angle), 6)
+    (True, 0.57334)
+    """
+    force = _finite("force", force, 2)
+    EI, L = float(_positive("EI", EI)), float(_positive("L", L))
+    if force.shape != (2,):
+        raise ValueError(f"force must have shape (2,), got {force.shape}")
+    if method not in ("elliptic", "shooting"):
+        raise ValueError(f"method must be 'elliptic' or 'shooting', got {method!r}")
+    if force[1] == 0:
+        return integrate(EI, L, 0.0, force, nodes=nodes)
+    if method == "shooting":
+        return shoot_cantilever(EI, L, force, nodes=nodes).rod
+    psi = np.mod(np.arctan2(force[1], force[0]), TWO_PI)
+    k_rel = k_rel_for_force(EI, L, psi, np.hypot(*force))
+    return clamped_pinned(EI, L, psi, k_rel, nodes=nodes).rod
