@@ -188,7 +188,15 @@ def position_jacobian(q, geometry=STUDY, form="loop"):
 
 
 def velocity_residual(v, q, theta2, omega2, geometry=STUDY):
-    """Velocity constraints ``(x', y', c')`` at ``v = (Vr, omega1, omega3)``, given ``q``."""
+    """Velocity constraints ``(x', y', c')`` at ``v = (Vr, omega1, omega3)``, given ``q``.
+
+    Examples
+    --------
+    >>> x = closed_form(0.5)
+    >>> th2, w2, _ = motor(0.5)
+    >>> bool(np.abs(velocity_residual(x[3:6], x[:3], th2, w2)).max() < 1e-15)
+    True
+    """
     g = geometry
     s1, c1, s3, c3 = _trig(q)
     r1 = _parts(q)[0]
@@ -200,7 +208,14 @@ def velocity_residual(v, q, theta2, omega2, geometry=STUDY):
 
 
 def acceleration_residual(a, v, q, theta2, omega2, alpha2, geometry=STUDY):
-    """Acceleration constraints ``(c'', x'', y'')`` at ``a = (Ar, alpha1, alpha3)``."""
+    """Acceleration constraints ``(c'', x'', y'')`` at ``a = (Ar, alpha1, alpha3)``.
+
+    Examples
+    --------
+    >>> x = closed_form(0.5)
+    >>> bool(np.abs(acceleration_residual(x[6:], x[3:6], x[:3], *motor(0.5))).max() < 1e-13)
+    True
+    """
     g = geometry
     s1, c1, s3, c3 = _trig(q)
     s2, c2 = np.sin(theta2), np.cos(theta2)
@@ -219,6 +234,12 @@ def rate_jacobian(q, geometry=STUDY):
 
     The acceleration constraints ``(c'', x'', y'')`` have the same matrix in
     ``(Ar, alpha1, alpha3)`` with its rows in their order: :func:`position_jacobian`.
+
+    Examples
+    --------
+    >>> q = closed_form(0.0)[:3]
+    >>> bool(np.allclose(rate_jacobian(q)[2], position_jacobian(q)[0]))
+    True
     """
     return position_jacobian(q, geometry)[..., [1, 2, 0], :]
 
