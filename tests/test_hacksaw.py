@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.errors import UnreachablePoseError
+from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.mechanisms import hacksaw as hs
 from mechnum.newton import fd_jacobian
 
@@ -130,3 +130,23 @@ def test_reproduce_covers_the_study():
     values = hs.reproduce()
     assert values["r1 at rest (consecutive)"] == pytest.approx(hs.closed_form(0.0)[0], abs=1e-9)
     assert all(np.isfinite(v) for v in values.values())
+
+
+@pytest.mark.parametrize("kwargs", [{"r1y": 0.0}, {"r2": -0.075}, {"r3": np.nan}, {"r3": np.inf}])
+def test_degenerate_geometry_is_named(kwargs):
+    with pytest.raises(GeometryError, match=f"{next(iter(kwargs))} must be a finite positive"):
+        hs.Geometry(**kwargs)
+
+
+@pytest.mark.parametrize("kwargs, match", [({}, "either t or motor_state"),
+                                           ({"t": 1.0, "motor_state": (0, 0, 0)}, "either"),
+                                           ({"motor_state": (np.nan, 0.0, 0.0)}, "finite"),
+                                           ({"t": [0.0, np.nan]}, "t must")])
+def test_closed_form_rejects_bad_input(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        hs.closed_form(**kwargs)
+
+
+def test_non_finite_seed_is_a_value_error():
+    with pytest.raises(ValueError, match="x0 must be finite"):
+        hs.solve_simultaneous((0.0, 0.0, 0.0), np.full(9, np.nan))

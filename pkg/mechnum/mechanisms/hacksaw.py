@@ -29,17 +29,34 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechnum.errors import UnreachablePoseError
+from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.newton import solve, solve_batch
 
 
 @dataclass(frozen=True)
 class Geometry:
-    """Link lengths of the saw, in metres (defaults: the study's)."""
+    """Link lengths of the saw, in metres (defaults: the study's).
+
+    Raises
+    ------
+    GeometryError
+        If a length is not finite and positive.
+
+    Examples
+    --------
+    >>> Geometry(r3=0.2).r3
+    0.2
+    """
 
     r1y: float = 0.045
     r2: float = 0.075
     r3: float = 0.170
+
+    def __post_init__(self):
+        for name in ("r1y", "r2", "r3"):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value > 0):
+                raise GeometryError(f"{name} must be a finite positive length, got {value!r}")
 
 
 STUDY = Geometry()
@@ -319,6 +336,8 @@ def closed_form(t=None, geometry=STUDY, *, motor_state=None, alpha_max=ALPHA_MAX
 
     Raises
     ------
+    ValueError
+        If neither or both of ``t`` and ``motor_state`` are given, or either is not finite.
     UnreachablePoseError
         If ``|r1y - r2 sin(theta2)| > r3``: the coupler cannot reach the guide.
 
@@ -328,7 +347,14 @@ def closed_form(t=None, geometry=STUDY, *, motor_state=None, alpha_max=ALPHA_MAX
     array([-0.099672, -0.468422,  2.873694])
     """
     g = geometry
-    th2, w2, a2 = motor(t, alpha_max) if motor_state is None else map(np.asarray, motor_state)
+    if (t is None) == (motor_state is None):
+        raise ValueError("give either t or motor_state")
+    if motor_state is None:
+        th2, w2, a2 = motor(t, alpha_max)
+    else:
+        th2, w2, a2 = (np.asarray(v, dtype=float) for v in motor_state)
+        if not all(np.all(np.isfinite(v)) for v in (th2, w2, a2)):
+            raise ValueError(f"motor_state must be finite, got {motor_state!r}")
     s2, c2 = np.sin(th2), np.cos(th2)
     ratio = (g.r1y - g.r2 * s2) / g.r3
     if np.any(np.abs(ratio) > 1):
