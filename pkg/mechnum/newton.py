@@ -154,8 +154,10 @@ def _newton_step(jac, fx):
     """Solve ``J dx = -f`` for one system or a stack; flag the (numerically) singular ``J``.
 
     Besides an exactly singular ``J`` (LAPACK's zero pivot), a step is flagged when
-    ``||J||_1 ||dx||_1 / ||f||_1``, a lower bound of the condition number of ``J``, exceeds
-    ``1/eps``: then no digit of ``dx`` can be trusted. A system with ``f = 0`` is never flagged.
+    ``max|J_ij| ||dx||_1 / ||f||_1``, a lower bound of the condition number ``||J||_1
+    ||J^-1||_1`` (since ``||J||_1 >= max|J_ij|`` and ``||J^-1||_1 >= ||dx||_1 / ||f||_1``),
+    exceeds ``1/eps``: then no digit of ``dx`` can be trusted. A system with ``f = 0`` is never
+    flagged.
 
     Returns
     -------
@@ -163,12 +165,14 @@ def _newton_step(jac, fx):
         The steps (zero where flagged).
     singular : ndarray of bool
         The flags, one per system.
-    cond : ndarray
-        The lower bounds of the condition numbers (``inf`` where ``J`` is exactly singular).
+    cond : ndarray or None
+        The lower bounds of the condition numbers (``inf`` where ``J`` is exactly singular),
+        or None when nothing is flagged.
     """
     exact = np.zeros(fx.shape[:-1], dtype=bool)
-    try:
-        dx = np.linalg.solve(jac, -fx[..., None])[..., 0]
+    try:  # a 1-D right-hand side for one system, a stack of columns for a batch
+        dx = (np.linalg.solve(jac, -fx) if fx.ndim == 1
+              else np.linalg.solve(jac, -fx[..., None])[..., 0])
     except np.linalg.LinAlgError:  # some J is exactly singular: find which
         dx = np.zeros_like(fx)
         for i in np.ndindex(fx.shape[:-1]):
@@ -177,10 +181,10 @@ def _newton_step(jac, fx):
             except np.linalg.LinAlgError:
                 exact[i] = True
     fsize = np.abs(fx).sum(axis=-1)
-    growth = np.abs(jac).sum(axis=-2).max(axis=-1) * np.abs(dx).sum(axis=-1)
-    trusted = (growth <= _MAX_COND * fsize) & ~exact  # False where growth is inf or NaN
-    if trusted.all():
-        return dx, ~trusted, None
+    growth = np.abs(jac).max(axis=(-2, -1)) * np.abs(dx).sum(axis=-1)
+    trusted = growth <= _MAX_COND * fsize  # False where growth is inf or NaN
+    if trusted.all() and not exact.any():
+        return dx, exact, None
     singular = (exact | ~trusted) & (fsize > 0)
     cond = np.where(exact, np.inf, growth / np.maximum(fsize, _TINY))
     return np.where(singular[..., None], 0.0, dx), singular, cond
