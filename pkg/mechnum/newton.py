@@ -234,7 +234,7 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
     x = _check_inputs(x0, tol, maxiter, criterion, ndim=1)
     jac = jac if jac is not None else (lambda z: fd_jacobian(fun, z))
     history, residuals, steps = [x], [], []
-    converged = False
+    converged = singular = False
     while True:
         fx = _evaluate(fun, x, "fun")
         residuals.append(np.linalg.norm(fx, norm))
@@ -251,16 +251,16 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
             raise ValueError(f"jac returned shape {J.shape}, expected {x.shape * 2}")
         dx, singular, cond = _newton_step(J, fx)
         if singular:
-            raise SingularJacobianError(
-                f"singular Jacobian at iteration {len(steps)}: condition number >= {cond:.3g}, "
-                f"residual norm {residuals[-1]:.3g}",
-                NewtonResult(x, len(steps), False, np.array(history), np.array(residuals),
-                             np.array(steps)))
+            break
         x = x + dx
         history.append(x)
         steps.append(np.linalg.norm(dx, norm))
     result = NewtonResult(x, len(steps), converged, np.array(history), np.array(residuals),
                           np.array(steps))
+    if singular:
+        raise SingularJacobianError(
+            f"singular Jacobian at iteration {len(steps)}: condition number >= {cond:.3g}, "
+            f"residual norm {residuals[-1]:.3g}", result)
     if not converged:
         raise ConvergenceError(
             f"Newton did not converge in {len(steps)} iterations: last step norm "

@@ -67,6 +67,7 @@ STUDY_SEED = np.array([-0.1, -0.5, 3.0, -0.5, 0.0, 0.5, -0.5, 0.0, 0.5])
 #: The seed of the first trajectory point in the study's code: the rounded solution at rest.
 TRAJECTORY_SEED = np.array([-0.0997, -0.4684, 2.8737, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
 TOL = 1e-6  # the study's tolerance on the Euclidean norm of the Newton step
+_RATE_ROWS = [1, 2, 0]  # velocity rows (x', y', c') as position rows (c, x, y)
 
 
 def first_revolution_time(alpha_max=ALPHA_MAX):
@@ -258,7 +259,7 @@ def rate_jacobian(q, geometry=STUDY):
     >>> bool(np.allclose(rate_jacobian(q)[2], position_jacobian(q)[0]))
     True
     """
-    return position_jacobian(q, geometry)[..., [1, 2, 0], :]
+    return position_jacobian(q, geometry)[..., _RATE_ROWS, :]
 
 
 def residual(x, theta2, omega2, alpha2, geometry=STUDY):
@@ -415,10 +416,10 @@ def solve_consecutive(motor_state, seed, geometry=STUDY, *, tol=TOL, form="loop"
     pos = newton(lambda q: position_residual(q, th2, geometry, form), seed[..., 0:3],
                  lambda q: position_jacobian(q, geometry, form), tol=tol)
     q = pos.x
-    jv = rate_jacobian(q, geometry)
+    ja = position_jacobian(q, geometry)  # of the acceleration rows; the velocity rows permute it
+    jv = ja[..., _RATE_ROWS, :]
     vel = newton(lambda v: velocity_residual(v, q, th2, w2, geometry), seed[..., 3:6],
                  lambda v: jv, tol=tol)
-    ja = position_jacobian(q, geometry)
     acc = newton(lambda a: acceleration_residual(a, vel.x, q, th2, w2, a2, geometry),
                  seed[..., 6:9], lambda a: ja, tol=tol)
     return pos, vel, acc
