@@ -1,7 +1,9 @@
-"""The built book works offline: no page loads a script or a stylesheet from the network.
+"""The built book works offline (no page loads a script or a stylesheet from the network), and
+its mathematics is rendered (no TeX is left in the text outside MathJax's math elements).
 
 Runs on the HTML that ``make book`` writes (``make html-check`` points ``MECHNUM_BUILT_HTML`` at
-it); skipped when that variable is unset, as in the unit-test run that precedes the build.
+it); the tests of built pages are skipped when that variable is unset, as in the unit-test run
+that precedes the build.
 """
 
 import os
@@ -12,7 +14,7 @@ from pathlib import Path
 import pytest
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
-pytestmark = pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set")
+needs_build = pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set")
 REMOTE = re.compile(r"^\s*(https?:)?//", re.IGNORECASE)
 
 
@@ -37,15 +39,48 @@ class Resources(HTMLParser):
             self.loaded += re.findall(r"""@import\s+['"]([^'"]+)""", data)
 
 
+class VisibleText(HTMLParser):
+    """The text a reader sees as prose: outside scripts, styles, code and MathJax's math elements."""
+
+    HIDDEN = {"script", "style", "pre", "code", "textarea", "kbd", "samp"}
+    VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source",
+            "track", "wbr"}
+
+    def __init__(self):
+        super().__init__()
+        self.text, self._stack = [], []
+
+    def handle_starttag(self, tag, attrs):
+        if tag in self.VOID:
+            return
+        classes = (dict(attrs).get("class") or "").split()
+        self._stack.append(tag in self.HIDDEN or "math" in classes)
+
+    def handle_endtag(self, tag):
+        if tag not in self.VOID and self._stack:
+            self._stack.pop()
+
+    def handle_data(self, data):
+        if not any(self._stack):
+            self.text.append(data)
+
+
+# TeX that escaped MathJax: a control word (\theta, \frac), a math delimiter, or a sub/superscript
+# in braces. Prose never contains these; code and math elements are skipped.
+LEFT_TEX = re.compile(r"\\[A-Za-z]{2,}|\\[()\[\]]|\$[^$\s]|[_^]\{")
+
+
 def pages():
     return sorted(Path(BUILT).rglob("*.html")) if BUILT else []
 
 
+@needs_build
 def test_the_book_was_built():
     names = {p.name for p in pages()}
     assert {"index.html", "01_newton_hacksaw.html", "published_values.html", "api.html"} <= names
 
 
+@needs_build
 @pytest.mark.parametrize("page", pages(), ids=lambda p: str(p.relative_to(BUILT)))
 def test_page_loads_nothing_remote(page):
     parser = Resources()
@@ -54,6 +89,7 @@ def test_page_loads_nothing_remote(page):
     assert not remote, f"{page.name} loads {remote}"
 
 
+@needs_build
 def test_mathjax_is_served_by_the_book():
     parser = Resources()
     parser.feed((Path(BUILT) / "book" / "01_newton_hacksaw.html").read_text(encoding="utf-8"))
@@ -61,3 +97,21 @@ def test_mathjax_is_served_by_the_book():
     assert mathjax, "the chapter loads no MathJax"
     for url in mathjax:
         assert (Path(BUILT) / "book" / url.split("?")[0]).resolve().exists(), url
+
+
+@needs_build
+@pytest.mark.parametrize("page", pages(), ids=lambda p: str(p.relative_to(BUILT)))
+def test_no_tex_is_left_outside_mathjax(page):
+    parser = VisibleText()
+    parser.feed(page.read_text(encoding="utf-8"))
+    text = " ".join(parser.text)
+    left = [text[max(0, m.start() - 40):m.end() + 40] for m in LEFT_TEX.finditer(text)]
+    assert not left, f"{page.name}: TeX outside the math elements: {left[:5]}"
+
+
+def test_the_tex_detector_finds_a_broken_passage():
+    # a Markdown list item made of the tail of an inline formula, beside math and code that are fine
+    parser = VisibleText()
+    parser.feed('<p>The angle <span class="math">\\(\\theta_1\\)</span> is fine, <code>a_{1}</code>'
+                ' too.<br></p><ul><li><p>+ A_r\\sin\\theta_1 + 2$. The annex</p></li></ul>')
+    assert LEFT_TEX.findall(" ".join(parser.text)) == ["\\sin", "\\theta", "$."]

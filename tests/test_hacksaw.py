@@ -81,7 +81,8 @@ def test_jacobian_is_vectorised_and_block_triangular():
     x = hs.closed_form(np.linspace(0, 2 * T, 7))
     J = hs.jacobian(x)
     assert J.shape == (7, 9, 9)
-    np.testing.assert_array_equal(J[3], hs.jacobian(x[3]))
+    # a batch and a single state may take different SIMD paths of sin/cos: equal to round-off
+    np.testing.assert_allclose(J[3], hs.jacobian(x[3]), rtol=1e-14, atol=1e-15)
     assert not J[:, 0:3, 3:].any() and not J[:, 3:6, 6:].any()
     np.testing.assert_allclose(np.linalg.det(hs.position_jacobian(x[:, :3])),
                                -x[:, 0] * hs.STUDY.r3 * np.cos(x[:, 2]), rtol=1e-12)

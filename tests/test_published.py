@@ -1,8 +1,9 @@
 """Tests of mechnum.published: the printed-digits rule and the registry reader."""
 
+import numpy as np
 import pytest
 
-from mechnum.published import COLUMNS, agrees, half_unit, read_registry
+from mechnum.published import COLUMNS, agrees, below, half_unit, read_registry
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -32,3 +33,11 @@ def test_read_registry_checks_the_columns(tmp_path):
     path.write_text(",".join(COLUMNS) + "\n000,a,q1,1,s,1,reproduced,01,\n000,a,q2,1,s,1,"
                     "reproduced,02,\n")
     assert [r["quantity"] for r in read_registry(path, chapter="02")] == ["q2"]
+
+
+def test_below_prints_the_bound_it_checks():
+    assert below(-3e-16, 1e-13) == "< 1e-13"
+    assert below([np.zeros(2), [1e-30, -2e-30, 0.0]], 1e-25) == "< 1e-25"
+    for value in (1e-13, [0.0, -2e-13], float("nan")):
+        with pytest.raises(AssertionError, match="is not below"):
+            below(value, 1e-13)

@@ -5,10 +5,18 @@ last printed digit. These helpers apply that rule (and its two variants for clai
 bound ``"<1e-13"`` and an order of magnitude ``"~1e-12"``), and read the registry
 ``book/published_values.csv``, whose columns are ``seed, location, quantity, published, unit,
 computed, verdict, chapter, note``.
+
+The book prints its own numbers by the converse rule: only digits that the mathematics
+determines. A quantity at round-off level (an error against a closed form, a residual that
+is zero in exact arithmetic) changes with the BLAS kernel and the SIMD path of the machine, so
+it is printed as a bound that is checked (:func:`below`), never as its noisy digits; the
+registry stores such a ``computed`` value as ``"<1e-13"`` too.
 """
 
 import csv
 from decimal import Decimal, InvalidOperation
+
+import numpy as np
 
 COLUMNS = ("seed", "location", "quantity", "published", "unit", "computed", "verdict",
            "chapter", "note")
@@ -47,6 +55,35 @@ def agrees(published, value):
     if published.startswith("~"):
         return 0.1 <= abs(value) / float(published[1:]) <= 10
     return abs(value - float(published)) <= half_unit(published) * (1 + 1e-9)
+
+
+def below(value, bound):
+    """Check that a round-off-level quantity is below ``bound``, and return ``"< bound"``.
+
+    The text to print in place of the quantity's own digits, which differ from machine to
+    machine. ``value`` may be an array, or a list of arrays of different shapes: its largest
+    magnitude is checked.
+
+    Raises
+    ------
+    AssertionError
+        If some ``|value|`` is not below ``bound`` (or is NaN): the claim to print is false.
+
+    Examples
+    --------
+    >>> below(3.1e-16, 1e-13)
+    '< 1e-13'
+    >>> below([2e-15, -4e-15], 1e-14)
+    '< 1e-14'
+    >>> below([np.zeros(3), np.full(6, 1e-30)], 1e-25), below(0.04, 0.5), below(2e-6, 1e-5)
+    ('< 1e-25', '< 0.5', '< 1e-5')
+    """
+    parts = value if isinstance(value, (list, tuple)) else [value]
+    largest = max(np.max(np.abs(np.asarray(p, dtype=float)), initial=0.0) for p in parts)
+    if not largest < bound:
+        raise AssertionError(f"{largest!r} is not below {bound!r}")
+    mantissa, _, exponent = f"{bound:g}".partition("e")
+    return f"< {mantissa}" + (f"e{int(exponent)}" if exponent else "")
 
 
 def read_registry(path, chapter=None):

@@ -123,8 +123,9 @@ def linkage_from_coefficients(k, r4):
 
     Examples
     --------
-    >>> linkage_from_coefficients([-0.25, -0.5, -0.75], 1.0)
-    Linkage(r1=2.0, r2=3.0, r3=4.0, r4=1.0)
+    >>> L = linkage_from_coefficients([-0.25, -0.5, -0.75], 1.0)
+    >>> np.round([L.r1, L.r2, L.r3, L.r4], 12).tolist()
+    [2.0, 3.0, 4.0, 1.0]
     """
     k = np.asarray(k, dtype=float)
     if k.shape != (3,) or not np.all(np.isfinite(k)):
@@ -162,7 +163,7 @@ def design_matrix(theta_in, theta_out):
     Examples
     --------
     >>> A, b = design_matrix([0.0], [np.pi])
-    >>> A.tolist(), b.tolist()
+    >>> np.round(A, 12).tolist(), np.round(b, 12).tolist()
     ([[-1.0, 1.0, 1.0]], [-1.0])
     """
     theta_in, theta_out = _angles(theta_in, "theta_in"), _angles(theta_out, "theta_out")

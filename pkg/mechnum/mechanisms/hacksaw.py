@@ -159,7 +159,7 @@ def position_residual(q, theta2, geometry=STUDY, form="loop"):
     Examples
     --------
     >>> q = closed_form(0.0)[:3]
-    >>> bool(np.allclose(position_residual(q, 0.0), 0, atol=1e-15))
+    >>> bool(np.allclose(position_residual(q, 0.0), 0, atol=1e-14))
     True
     """
     g = geometry

@@ -510,6 +510,12 @@ def _residual_norms(poses, lambdas, geometry):
     return residuals.max(axis=-1, initial=0) / geometry.L ** 2
 
 
+# A candidate pose whose loop residual (relative to L**2) lies between these is polished by
+# Newton: above _EXACT (a few units of round-off) it may lie residual / sigma_min(J) from the
+# root, 1e-9 near a direct singularity; above _CANDIDATE it is no root at all.
+_EXACT, _CANDIDATE = 16 * np.finfo(float).eps, 1e-2
+
+
 def _polish(poses, lambdas, geometry):
     """A few Newton steps on the loop equations from each pose; a pose that moves by more than
     ``1e-2`` (relative), or meets a numerically singular Jacobian, is returned unchanged."""
@@ -553,7 +559,7 @@ def solve_direct(lambdas, geometry, *, imag_tol=1e-4, residual_tol=1e-6):
        intersections of the pair of the legs' circles whose centres are farthest apart.
     4. The candidates that satisfy the three loop equations to ``residual_tol * L**2`` are the
        solutions; poses closer than ``1e-4`` (relative to ``L`` and in radians) count as one
-       (a double root finds the same pose twice). Candidates that miss by ``1e-12`` to ``1e-2``
+       (a double root finds the same pose twice). Candidates that miss by ``4e-15`` to ``1e-2``
        get a few Newton steps first (a multiple root, as ``D = 0`` creates, is blurred by
        round-off to about ``eps**(1/m)``); Newton cannot sharpen a pose at a direct singularity
        (two assembly modes meeting), accurate to about ``1e-8`` only.
@@ -614,7 +620,7 @@ def _direct(lam, geometry, imag_tol=1e-4, residual_tol=1e-6):
     poses = poses[finite]
     from_reversed = np.repeat(from_reversed, 3)[finite]
     residuals = _residual_norms(poses, lam, geometry)
-    near = (residuals > 1e-12) & (residuals < 1e-2)
+    near = (residuals > _EXACT) & (residuals < _CANDIDATE)
     if near.any():  # roots blurred by a multiple root: polish them on the loop equations
         poses[near] = _polish(poses[near], lam, geometry)
         poses[:, 2] = _wrap(poses[:, 2])
@@ -656,7 +662,7 @@ def direct_by_newton(lambdas, geometry, starts, *, tol=1e-12):
 
     Each start is iterated on the loop equations (:func:`loop_residuals`, with the analytic
     :func:`direct_jacobian`) by :func:`mechnum.newton.solve_batch`; the starts that do not
-    converge in 50 steps are ignored. It finds only the solutions whose basins the starts hit:
+    converge in 50 steps, or meet a singular Jacobian, are ignored. It finds only the solutions whose basins the starts hit:
     a check on :func:`direct`, not a replacement.
 
     Parameters
@@ -677,8 +683,6 @@ def direct_by_newton(lambdas, geometry, starts, *, tol=1e-12):
     ------
     ValueError
         If ``lambdas`` or ``starts`` are ill-shaped or not finite.
-    SingularJacobianError
-        If an iterate lands exactly on a direct singularity.
 
     Examples
     --------
@@ -694,7 +698,7 @@ def direct_by_newton(lambdas, geometry, starts, *, tol=1e-12):
     try:
         result = solve_batch(lambda p: loop_residuals(p, lam, geometry), starts,
                              lambda p: direct_jacobian(p, lam, geometry), tol=tol)
-    except ConvergenceError as error:
+    except (ConvergenceError, SingularJacobianError) as error:  # keep the starts that converged
         result = error.result
     poses = result.x[result.converged]
     poses[:, 2] = _wrap(poses[:, 2])

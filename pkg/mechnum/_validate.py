@@ -1,0 +1,184 @@
+"""The input checks that every public entry point of :mod:`mechnum` shares.
+
+Each check returns the value it checked, converted (a float array, a float, an int), or raises
+:class:`ValueError` with a message that names the argument and shows the offending value. A
+numerical method is only as trustworthy as its input: NaN, infinity, a complex number where the
+method is real, a wrong shape or a tolerance of ``-1`` must fail loudly at the door, not turn into
+a silent wrong answer deep inside an iteration.
+
+Examples
+--------
+>>> array([[1, 2]], "x0", ndim=2).dtype
+dtype('float64')
+>>> tolerance(1e-10), maxiter(50), choice("qr", ("qr", "normal"), "method")
+(1e-10, 50, 'qr')
+>>> array([1.0, float("nan")], "x0")
+Traceback (most recent call last):
+...
+ValueError: x0 must be finite, got [ 1. nan]
+"""
+
+import operator
+
+import numpy as np
+
+
+def _shown(value):
+    """A short text of ``value`` for an error message."""
+    if isinstance(value, np.ndarray):
+        return np.array2string(value, threshold=8, edgeitems=2, precision=6)
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def array(value, name, *, ndim=None, shape=None, finite=True):
+    """``value`` as a real float array, checked.
+
+    Parameters
+    ----------
+    value : array_like
+        The input.
+    name : str
+        Its name, for the error message.
+    ndim : int or tuple of int, optional
+        The allowed numbers of dimensions.
+    shape : tuple, optional
+        The required shape; ``None`` in it stands for any length of that axis (so
+        ``(None, 3)`` is a batch of 3-vectors, possibly empty).
+    finite : bool, optional
+        Whether NaN and infinities are refused.
+
+    Returns
+    -------
+    ndarray of float
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not numeric, is complex, has the wrong shape, or is not finite.
+
+    Examples
+    --------
+    >>> array([[0.0, 1.0, 2.0]], "poses", shape=(None, 3)).shape
+    (1, 3)
+    >>> array(np.empty((0, 3)), "poses", shape=(None, 3)).shape   # an empty batch is valid
+    (0, 3)
+    >>> array([1j], "x0")
+    Traceback (most recent call last):
+    ...
+    ValueError: x0 must be real, got [0.+1.j]
+    """
+    try:
+        raw = np.asarray(value)
+    except (TypeError, ValueError) as error:  # ragged nested lists, for example
+        raise ValueError(f"{name} must be a numeric array, got {_shown(value)}: {error}") from None
+    if np.iscomplexobj(raw):
+        raise ValueError(f"{name} must be real, got {_shown(raw)}")
+    if raw.dtype.kind not in "biuf":
+        raise ValueError(f"{name} must be numeric, got {_shown(value)} (dtype {raw.dtype})")
+    out = raw.astype(float)
+    if ndim is not None and out.ndim not in np.atleast_1d(ndim):
+        raise ValueError(f"{name} must have {ndim} dimension(s), got shape {out.shape}")
+    if shape is not None and (out.ndim != len(shape) or any(
+            want is not None and got != want for got, want in zip(out.shape, shape))):
+        wanted = "(" + ", ".join("n" if s is None else str(s) for s in shape) + \
+                 ("," if len(shape) == 1 else "") + ")"
+        raise ValueError(f"{name} must have shape {wanted}, got shape {out.shape}")
+    if finite and not np.all(np.isfinite(out)):
+        raise ValueError(f"{name} must be finite, got {_shown(out)}")
+    return out
+
+
+def scalar(value, name, *, positive=False, nonnegative=False):
+    """``value`` as a finite real float, checked (optionally ``> 0`` or ``>= 0``).
+
+    Examples
+    --------
+    >>> scalar(2, "EI", positive=True)
+    2.0
+    >>> scalar(-1.0, "L", positive=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: L must be positive, got -1.0
+    """
+    out = array(value, name, ndim=0)
+    out = float(out)
+    if positive and not out > 0:
+        raise ValueError(f"{name} must be positive, got {out!r}")
+    if nonnegative and not out >= 0:
+        raise ValueError(f"{name} must be non-negative, got {out!r}")
+    return out
+
+
+def positive(value, name):
+    """``value`` as a float array whose every entry is finite and positive.
+
+    Examples
+    --------
+    >>> positive([1.0, 2.0], "lengths").tolist()
+    [1.0, 2.0]
+    """
+    out = array(value, name)
+    if not np.all(out > 0):
+        raise ValueError(f"{name} must be positive, got {_shown(out)}")
+    return out
+
+
+def tolerance(value, name="tol"):
+    """A tolerance: a finite positive float.
+
+    Examples
+    --------
+    >>> tolerance(-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol must be positive, got -1.0
+    """
+    return scalar(value, name, positive=True)
+
+
+def maxiter(value, name="maxiter", minimum=1):
+    """An iteration (or node, or start) count: an integer ``>= minimum``.
+
+    Floats with an integer value are accepted; ``inf``, NaN, fractions, booleans are not.
+
+    Examples
+    --------
+    >>> maxiter(10.0)
+    10
+    >>> maxiter(float("inf"))
+    Traceback (most recent call last):
+    ...
+    ValueError: maxiter must be an integer >= 1, got inf
+    """
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    try:
+        out = operator.index(value)
+    except TypeError:
+        as_float = float(value) if isinstance(value, (float, np.floating)) else None
+        if as_float is None or not np.isfinite(as_float) or as_float != int(as_float):
+            raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}") from None
+        out = int(as_float)
+    if out < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return out
+
+
+def choice(value, options, name):
+    """``value`` if it is one of ``options``.
+
+    Examples
+    --------
+    >>> choice("lu", ("qr", "normal"), "method")
+    Traceback (most recent call last):
+    ...
+    ValueError: method must be one of ('qr', 'normal'), got 'lu'
+    """
+    try:
+        known = value in options
+    except (TypeError, ValueError):  # an array or an unhashable value
+        known = False
+    if not known:
+        raise ValueError(f"{name} must be one of {tuple(options)}, got {value!r}")
+    return value
