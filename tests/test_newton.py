@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import fd_jacobian, solve, solve_batch
+from mechnum.newton import STATUSES, fd_jacobian, solve, solve_all, solve_batch
 
 
 def circle_line(x):
@@ -175,3 +175,126 @@ def test_cube_root_from_anywhere_near(a, start):
     x0 = start * np.cbrt(a)
     res = solve(lambda x: x ** 3 - a, [x0], lambda x: np.diag(3 * x ** 2), tol=1e-13)
     assert abs(res.x[0] - np.cbrt(a)) <= 1e-12 * np.cbrt(a)
+
+
+# --- damping, status, domain, empty batches -------------------------------------------------
+
+def test_damping_rescues_a_start_that_plain_newton_loses():
+    with pytest.raises((ConvergenceError, SingularJacobianError)), np.errstate(over="ignore"):
+        solve(atan_system, [1.5], atan_jac)  # the iterates grow until J underflows
+    res = solve(atan_system, [1.5], atan_jac, damping=True, tol=1e-14)
+    assert res.converged and abs(res.x[0]) < 1e-14
+    assert np.all(np.diff(res.residual_norms) <= 0)  # the line search makes |f| decrease
+
+
+def test_damping_reports_a_stagnated_start():
+    with pytest.raises(ConvergenceError, match="line search stagnated"):
+        solve(lambda x: x ** 2 + 1.0, [0.3], lambda x: np.diag(2 * x), damping=True)
+
+
+def test_complex_residual_or_jacobian_is_refused():
+    with pytest.raises(ValueError, match="complex"):
+        solve(lambda x: x ** 2 - 2 + 1j, [1.0])
+    with pytest.raises(ValueError, match="complex"):
+        solve(lambda x: x ** 2 - 2, [1.0], lambda x: np.diag(2j * x))
+    with pytest.raises(ValueError, match="x0 must be real"):
+        solve(lambda x: x ** 2 - 2, [1.0 + 0j])
+
+
+@pytest.mark.parametrize("maxiter", [np.inf, np.nan, -3, True])
+def test_bad_maxiter_is_a_value_error(maxiter):
+    with pytest.raises(ValueError, match="maxiter"):
+        solve(circle_line, [1.0, 0.5], circle_line_jac, maxiter=maxiter)
+
+
+def test_batch_status_names_every_outcome():
+    c = np.array([4.0, -1.0, 9.0, 1.0, 2.0])
+
+    def fun(x):  # x**2 = c, and a NaN for the fourth system once it moves
+        f = x ** 2 - c[:, None]
+        f[3] = np.where(x[3] > 1.0, np.nan, f[3])
+        return f
+
+    x0 = np.array([[1.0], [0.0], [1.0], [0.5], [1.0]])
+    res = solve_batch(fun, x0, lambda x: 2 * x[:, :, None], maxiter=40,
+                      domain=lambda x: x[:, 0] < 3.5, raise_on_failure=False)
+    assert res.status.tolist() == ["converged", "singular", "left-domain", "non-finite",
+                                   "converged"]
+    assert set(res.status) <= set(STATUSES)
+    np.testing.assert_allclose(res.x[[0, 4], 0], [2.0, np.sqrt(2)], rtol=1e-14)
+    assert res.njev >= 1 and res.nfev == res.njev + 1  # one fun per step, plus the start
+    with pytest.raises(SingularJacobianError):
+        solve_batch(fun, x0, lambda x: 2 * x[:, :, None], domain=lambda x: x[:, 0] < 3.5)
+
+
+def test_batch_maxiter_status_and_its_error():
+    res = solve_batch(atan_system, [[2.0]], lambda x: atan_jac(x[0])[None], maxiter=3,
+                      raise_on_failure=False)
+    assert res.status.tolist() == ["maxiter"] and res.iterations.tolist() == [3]
+
+
+def test_damped_batch_stays_in_the_domain_by_backtracking():
+    # sqrt(1 - x) = 0.5 has its root at x = 0.75; a start at -3 overshoots past x = 1
+    # (where the residual is undefined) unless the step is shortened to stay in the domain.
+    fun = lambda x: np.sqrt(np.maximum(1 - x, 0)) - 0.5  # noqa: E731
+    jac = lambda x: (-0.5 / np.sqrt(np.maximum(1 - x, 1e-300)))[:, :, None]  # noqa: E731
+    res = solve_batch(fun, [[-30.0]], jac, damping=True, domain=lambda x: x[:, 0] < 1,
+                      raise_on_failure=False, tol=1e-13)
+    assert res.status.tolist() == ["converged"]
+    np.testing.assert_allclose(res.x[0, 0], 0.75, rtol=1e-13)
+
+
+def test_empty_batch_is_valid():
+    res = solve_batch(lambda x: x ** 2 - 2.0, np.empty((0, 1)), lambda x: 2 * x[:, :, None])
+    assert res.x.shape == (0, 1) and res.status.shape == (0,) and res.iterations.shape == (0,)
+    assert res.converged.all()
+
+
+# --- all solutions ----------------------------------------------------------------------------
+
+def cubic_pair(z):
+    """x**3 = x and y**2 = 1: six roots, (-1, 0, 1) x (-1, 1)."""
+    return np.stack([z[:, 0] ** 3 - z[:, 0], z[:, 1] ** 2 - 1.0], axis=-1)
+
+
+def cubic_pair_jac(z):
+    zero = np.zeros(len(z))
+    return np.stack([np.stack([3 * z[:, 0] ** 2 - 1, zero], -1),
+                     np.stack([zero, 2 * z[:, 1]], -1)], axis=1)
+
+
+def test_solve_all_finds_every_root_of_a_polynomial_system():
+    found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
+                      n_starts=300, rng=1)
+    expected = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 1)], dtype=float)
+    np.testing.assert_allclose(found.roots, expected, atol=1e-12)
+    assert found.complete and found.new_in_check == 0 and found.n_check == 3000
+    assert found.hits.sum() == found.status_counts["converged"] and found.hits.min() > 10
+    assert np.all(found.residual_norms < 1e-12)
+
+
+def test_completeness_check_counts_what_the_search_missed():
+    # the search's starts reach only the root (1, 1); the check's (ten times more) reach all six
+    sample = lambda rng, m: (rng.uniform(0.6, 2, (m, 2)) if m < 100  # noqa: E731
+                             else rng.uniform(-2, 2, (m, 2)))
+    found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=50, rng=2)
+    assert len(found.roots) == 6 and found.new_in_check == 5 and not found.complete
+
+
+def test_solve_all_extra_starts_and_domain():
+    sample = lambda rng, m: rng.uniform(0.6, 2, (m, 2))  # noqa: E731
+    found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
+                      starts=[[-1.1, -1.1]], domain=lambda z: z[:, 0] > -0.5)
+    assert found.roots.tolist() == [[1.0, 1.0]]  # the extra start leaves the domain
+    assert found.status_counts["left-domain"] >= 1 and found.n_check == 0
+    found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
+                      starts=[[-1.1, -1.1]])
+    np.testing.assert_allclose(found.roots, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12)
+    assert found.hits.tolist() == [1, 20]
+
+
+def test_solve_all_with_no_root_returns_an_empty_set():
+    found = solve_all(lambda z: z ** 2 + 1.0, lambda rng, m: rng.uniform(-2, 2, (m, 1)),
+                      lambda z: 2 * z[:, :, None], n_starts=10, check=1, rng=4)
+    assert found.roots.shape == (0, 1) and found.hits.shape == (0,) and found.complete
+    assert found.status_counts["stagnated"] + found.status_counts["singular"] == 20

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from mechnum.published import COLUMNS, agrees, below, half_unit, read_registry
+from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, read_registry,
+                              reproduction_table)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -19,8 +20,11 @@ def test_half_unit_rejects_text():
 
 @pytest.mark.parametrize("published, value, ok", [
     ("1.942", 1.94163, True), ("1.942", 1.94149, False), ("-0.099672", -0.0996725, True),
-    ("<1e-13", 9.9e-14, True), ("<1e-13", 1.1e-13, False),
-    ("~1e-12", 9e-12, True), ("~1e-12", 2e-11, False), ("~1e-12", 1e-14, False)])
+    ("<1e-13", 9.9e-14, True), ("<1e-13", 1.1e-13, False), ("<1e-13", -2e-13, False),
+    ("~1e-12", 9e-12, True), ("~1e-12", 1e-12, True), ("~1e-12", -3e-12, True),
+    ("~1e-12", 2e-11, False), ("~1e-12", 9e-13, False), ("~1e-12", 1e-14, False),
+    ("0", 3e-17, True), ("0", -9e-13, True), ("0", 0.3, False), ("0", 2e-12, False),
+    ("0.000", 4e-4, True), ("0.000", 6e-4, False)])
 def test_agrees(published, value, ok):
     assert agrees(published, value) is ok
 
@@ -30,8 +34,8 @@ def test_read_registry_checks_the_columns(tmp_path):
     path.write_text("seed,quantity\n000,T\n")
     with pytest.raises(ValueError, match="columns"):
         read_registry(path)
-    path.write_text(",".join(COLUMNS) + "\n000,a,q1,1,s,1,reproduced,01,\n000,a,q2,1,s,1,"
-                    "reproduced,02,\n")
+    path.write_text(",".join(COLUMNS) + "\n000,a,q1,1,s,1,reproduced,01,,\n000,a,q2,1,s,1,"
+                    "reproduced,02,,\n")
     assert [r["quantity"] for r in read_registry(path, chapter="02")] == ["q2"]
 
 
@@ -41,3 +45,50 @@ def test_below_prints_the_bound_it_checks():
     for value in (1e-13, [0.0, -2e-13], float("nan")):
         with pytest.raises(AssertionError, match="is not below"):
             below(value, 1e-13)
+
+
+ROW = {"quantity": "T", "published": "1.942", "computed": "1.941626", "verdict": "reproduced"}
+
+
+@pytest.mark.parametrize("row, value", [
+    (ROW, 1.9416259),
+    (dict(ROW, verdict="within-input-rounding"), 1.9416259),
+    (dict(ROW, published="1.883", verdict="source-error"), 1.9416259),
+    (dict(ROW, published="0", computed="<1e-25"), 3e-32),
+    (dict(ROW, published="12", computed="", verdict="not-reproduced"), None),
+    (dict(ROW, published="n_y cos(theta)", computed="", verdict="source-error"), None),
+])
+def test_check_row_accepts_a_true_row(row, value):
+    check_row(row, value)
+
+
+@pytest.mark.parametrize("row, value, match", [
+    (ROW, 1.9417, "the registry says 1.941626"),                    # computed column is stale
+    (ROW, None, "the package gives None"),
+    (ROW, float("nan"), "the package gives nan"),
+    (dict(ROW, computed="<1e-13"), 2e-13, "bounds it by <1e-13"),
+    (dict(ROW, computed=""), 1.9, "computed is blank"),
+    (dict(ROW, published="1.943", computed="1.9430"), 1.943, None),  # agrees: fine
+    (dict(ROW, published="1.950", computed="1.9416"), 1.9416, "disagree, yet the verdict"),
+    (dict(ROW, verdict="not-reproduced"), 1.9416259, "agrees with"),
+])
+def test_check_row_refuses_a_false_row(row, value, match):
+    if match is None:
+        check_row(row, value)
+        return
+    with pytest.raises(AssertionError, match=match):
+        check_row(row, value)
+
+
+def test_reproduction_table_renders_and_checks(tmp_path):
+    path = tmp_path / "registry.csv"
+    path.write_text(",".join(COLUMNS) + "\n000,Sec. 4,T,1.942,s,1.941626,reproduced,ch1,,\n"
+                    "000,\"Tab. 1, |x|\",q,0,,<1e-25,reproduced,ch1,,\n")
+    table = reproduction_table("ch1", {"T": 1.9416259, "q": 1e-30}, path)
+    assert table._repr_markdown_().splitlines()[2:] == [
+        "| Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |",
+        "| Tab. 1, \\|x\\| | q | 0 | <1e-25 | reproduced |  |"]
+    with pytest.raises(AssertionError, match="bounds it"):
+        reproduction_table("ch1", {"T": 1.9416259, "q": 1e-3}, path)
+    with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
+        reproduction_table("ch9", {}, path)

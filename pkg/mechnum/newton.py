@@ -1,14 +1,27 @@
-"""Newton-Raphson for systems of nonlinear equations.
+"""Newton-Raphson for systems of nonlinear equations, one, many, and all solutions.
 
-Two forms share one step rule:
+Three forms share one step rule:
 
 * :func:`solve` solves one system ``f(x) = 0`` of ``n`` equations in ``n`` unknowns and keeps
   its whole history;
 * :func:`solve_batch` solves ``batch`` independent systems of the same size at once, with
-  arrays of shape ``(batch, n)``; each system stops when it converges, the others go on.
+  arrays of shape ``(batch, n)``; each system stops when it converges, the others go on, and
+  each reports a ``status``;
+* :func:`solve_all` looks for every root of one system: :func:`solve_batch` from many starts,
+  the roots deduplicated and counted, and a completeness check (ten times more starts that find
+  no new root).
 
-The Newton step solves ``J(x_k) dx = -f(x_k)`` and sets ``x_{k+1} = x_k + dx``. The stopping
-criterion is explicit because iteration counts depend on it:
+The Newton step solves ``J(x_k) dx = -f(x_k)`` and sets ``x_{k+1} = x_k + dx``. With
+``damping=True`` the step is shortened, ``x_{k+1} = x_k + alpha dx`` with ``alpha = 1, 1/2,
+1/4, ...``, until the residual norm decreases enough (Armijo's rule,
+``||f(x_k + alpha dx)|| <= (1 - 1e-4 alpha) ||f(x_k)||``): a backtracking line search, which
+keeps a bad start from being thrown far away. A start whose line search finds no such
+``alpha`` has *stagnated* (it sits near a local minimum of ``||f||`` that is no root) and is
+dropped instead of being iterated to ``maxiter``. An optional ``domain`` (a test of the iterates)
+keeps the iterates where the equations make sense; a step that leaves it is shortened too (with
+damping) or the system is dropped.
+
+The stopping criterion is explicit because iteration counts depend on it:
 
 * ``criterion="step"`` stops after the first step with ``||dx|| < tol`` (the rule of most course
   codes, the hacksaw study's included; the accepted ``x`` is the one after that step);
@@ -19,18 +32,30 @@ criterion is explicit because iteration counts depend on it:
 Without an analytic Jacobian, a forward-difference one is used (:func:`fd_jacobian`): column
 ``j`` is ``(f(x + h_j e_j) - f(x)) / h_j`` with ``h_j = sqrt(eps) * max(1, |x_j|)``, accurate to
 about half the digits of ``f``, which still gives Newton a fast (no longer quadratic) rate.
+The methods here are real: a residual or a Jacobian with complex values is refused.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
+from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
 
-_SQRT_EPS = np.sqrt(np.finfo(float).eps)
+_SQRT_EPS = np.sqrt(np.finfo(float).eps)  # the forward-difference step that balances errors
 _MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 _TINY = np.finfo(float).tiny
 _CRITERIA = ("step", "residual")
+_NORMS = (1, 2, np.inf)
+# Armijo's sufficient decrease: accept alpha when ||f|| falls by at least 1e-4 alpha of itself
+# (the customary constant: any decrease counts, but not a vanishing one).
+_ARMIJO = 1e-4
+# Backtracking gives up after this many halvings (alpha < 1e-6): the start has stagnated.
+_MAX_HALVINGS = 20
+STATUSES = ("converged", "maxiter", "singular", "non-finite", "stagnated", "left-domain")
+"""What :attr:`BatchNewtonResult.status` may say of a system: it met the criterion; it ran out
+of iterations; its Jacobian was singular; its residual stopped being finite; its line search
+found no decrease (damping); its iterate left the ``domain``."""
 
 
 @dataclass(frozen=True)
@@ -63,7 +88,7 @@ class NewtonResult:
 
 @dataclass(frozen=True)
 class BatchNewtonResult:
-    """The outcome of :func:`solve_batch`.
+    """The outcome of :func:`solve_batch`, like scipy's result objects.
 
     Attributes
     ----------
@@ -71,22 +96,72 @@ class BatchNewtonResult:
         The last iterate of every system.
     iterations : ndarray of int, shape (batch,)
         Newton steps taken by each system.
-    converged : ndarray of bool, shape (batch,)
-        Whether each system met the stopping criterion.
-    singular : ndarray of bool, shape (batch,)
-        Which systems stopped on a singular Jacobian (frozen there, the others went on).
+    status : ndarray of str, shape (batch,)
+        What happened to each system, one of :data:`STATUSES`.
     step_norms : ndarray, shape (max(iterations), batch)
-        ``||dx||`` of every step of every system, NaN after a system stopped.
+        ``||x_{k+1} - x_k||`` of every step of every system, NaN after a system stopped.
     residual_norms : ndarray, shape (batch,)
         ``||f(x)||`` at the returned ``x``.
+    nfev, njev : int
+        Calls of ``fun`` and of ``jac`` (each on the whole batch).
     """
 
     x: np.ndarray
     iterations: np.ndarray
-    converged: np.ndarray
-    singular: np.ndarray
+    status: np.ndarray
     step_norms: np.ndarray
     residual_norms: np.ndarray
+    nfev: int
+    njev: int
+
+    @property
+    def converged(self):
+        """ndarray of bool: which systems met the stopping criterion."""
+        return self.status == "converged"
+
+    @property
+    def singular(self):
+        """ndarray of bool: which systems stopped on a singular Jacobian."""
+        return self.status == "singular"
+
+
+@dataclass(frozen=True)
+class RootSet:
+    """The outcome of :func:`solve_all`: the distinct roots found, and how hard they were looked for.
+
+    Attributes
+    ----------
+    roots : ndarray, shape (r, n)
+        The distinct roots, ``r >= 0``, in the order of their first component.
+    hits : ndarray of int, shape (r,)
+        How many starts (of both runs) converged to each root: a root with few hits has a small
+        basin of attraction, a warning that others like it may have been missed.
+    residual_norms : ndarray, shape (r,)
+        ``||f||`` at each root.
+    n_starts : int
+        Starts of the search.
+    n_check : int
+        Starts of the completeness check (new ones, ``check`` times as many).
+    new_in_check : int
+        Roots that only the check found (they are in ``roots``). Zero is the evidence of
+        completeness: ten times more starts found nothing new. It is evidence, not proof: a
+        root whose basin no start hits stays unseen.
+    status_counts : dict
+        How many starts of both runs ended in each status of :data:`STATUSES`.
+    """
+
+    roots: np.ndarray
+    hits: np.ndarray
+    residual_norms: np.ndarray
+    n_starts: int
+    n_check: int
+    new_in_check: int
+    status_counts: dict
+
+    @property
+    def complete(self):
+        """bool: whether the completeness check found no new root."""
+        return self.new_in_check == 0
 
 
 def fd_jacobian(fun, x, fx=None):
@@ -114,40 +189,46 @@ def fd_jacobian(fun, x, fx=None):
     array([[2., 0.],
            [2., 1.]])
     """
-    x = np.asarray(x, dtype=float)
-    fx = fun(x) if fx is None else fx
+    x = _validate.array(x, "x", ndim=(1, 2))
+    fx = _evaluate(fun, x, "fun") if fx is None else fx
     n = x.shape[-1]
     h = _SQRT_EPS * np.maximum(1.0, np.abs(x))
     jac = np.empty(x.shape[:-1] + (n, n))
     for j in range(n):
         xj = x.copy()
         xj[..., j] += h[..., j]
-        jac[..., :, j] = (fun(xj) - fx) / h[..., j, None]
+        jac[..., :, j] = (_evaluate(fun, xj, "fun") - fx) / h[..., j, None]
     return jac
 
 
-def _check_inputs(x0, tol, maxiter, criterion, ndim):
-    x = np.array(x0, dtype=float)
-    if x.ndim != ndim or x.shape[-1] == 0:
-        shape = "(n,)" if ndim == 1 else "(batch, n)"
-        raise ValueError(f"x0 must have shape {shape}, got shape {x.shape}")
-    if not np.all(np.isfinite(x)):
-        raise ValueError(f"x0 must be finite, got {x0!r}")
-    if criterion not in _CRITERIA:
-        raise ValueError(f"criterion must be one of {_CRITERIA}, got {criterion!r}")
-    if not tol > 0:
-        raise ValueError(f"tol must be positive, got {tol!r}")
-    if int(maxiter) != maxiter or maxiter < 1:
-        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
-    return x
+def _controls(tol, maxiter, criterion, norm):
+    return (_validate.tolerance(tol), _validate.maxiter(maxiter),
+            _validate.choice(criterion, _CRITERIA, "criterion"), _validate.choice(norm, _NORMS, "norm"))
 
 
 def _evaluate(fun, x, what):
-    """Call ``fun(x)`` and check that it returns a finite array of ``x``'s shape."""
-    fx = np.asarray(fun(x), dtype=float)
+    """Call ``fun(x)`` and check that it returns a real array of ``x``'s shape."""
+    fx = np.asarray(fun(x))
+    if np.iscomplexobj(fx):
+        raise ValueError(f"{what} returned complex values: this Newton solver is real "
+                         f"(split a complex system into real and imaginary parts)")
+    fx = fx.astype(float, copy=False)
     if fx.shape != x.shape:
         raise ValueError(f"{what} returned shape {fx.shape}, expected {x.shape}")
     return fx
+
+
+def _jacobian(jac, fun, x):
+    """``jac(x)`` (or forward differences), checked: real, of shape ``x.shape + (n,)``."""
+    if jac is None:
+        return fd_jacobian(fun, x)
+    J = np.asarray(jac(x))
+    if np.iscomplexobj(J):
+        raise ValueError("jac returned complex values: this Newton solver is real")
+    J = J.astype(float, copy=False)
+    if J.shape != x.shape + x.shape[-1:]:
+        raise ValueError(f"jac returned shape {J.shape}, expected {x.shape + x.shape[-1:]}")
+    return J
 
 
 def _newton_step(jac, fx):
@@ -190,25 +271,54 @@ def _newton_step(jac, fx):
     return np.where(singular[..., None], 0.0, dx), singular, cond
 
 
-def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2):
+def _line_search(fun, x, fx, dx, moving, rnorm, tol, norm, domain):
+    """Backtracking for the systems ``moving`` of a batch: halve ``alpha`` from 1 until the
+    trial point lies in the domain and ``||f||`` decreases by Armijo's rule (or the step is
+    already below ``tol``). Returns the new ``x``, ``f(x)``, the status of the systems that found
+    no such ``alpha`` ("stagnated" or "left-domain", "" elsewhere) and the calls of ``fun``."""
+    alpha = np.ones(len(x))
+    size = np.linalg.norm(dx, norm, axis=-1)
+    x_new, fx_new = x.copy(), fx.copy()
+    pending, outside = moving.copy(), np.zeros(len(x), dtype=bool)
+    for calls in range(1, _MAX_HALVINGS + 2):
+        trial = np.where(pending[:, None], x + alpha[:, None] * dx, x_new)
+        f_trial = _evaluate(fun, trial, "fun")
+        inside = np.ones(len(x), dtype=bool) if domain is None else np.asarray(domain(trial), bool)
+        t_norm = np.linalg.norm(f_trial, norm, axis=-1)
+        ok = pending & inside & np.isfinite(t_norm) & (
+            (t_norm <= (1 - _ARMIJO * alpha) * rnorm) | (alpha * size < tol))
+        x_new[ok], fx_new[ok] = trial[ok], f_trial[ok]
+        pending &= ~ok
+        outside = pending & ~inside
+        if not pending.any():
+            break
+        alpha[pending] /= 2
+    failed = np.where(outside, "left-domain", "stagnated")
+    return x_new, fx_new, np.where(pending, failed, ""), calls
+
+
+def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False):
     """Solve ``fun(x) = 0`` by Newton-Raphson.
 
     Parameters
     ----------
     fun : callable
-        ``fun(x) -> ndarray (n,)``, the residual.
+        ``fun(x) -> ndarray (n,)``, the residual (real).
     x0 : array_like, shape (n,)
-        Initial guess; must be finite.
+        Initial guess; must be finite and real.
     jac : callable, optional
         ``jac(x) -> ndarray (n, n)``, the Jacobian. Default: :func:`fd_jacobian`.
     tol : float, optional
-        Tolerance of the stopping criterion.
+        Tolerance of the stopping criterion (positive).
     maxiter : int, optional
         Most Newton steps.
     criterion : {"step", "residual"}, optional
         Stop on ``||dx|| < tol`` (after that step) or on ``||f(x)|| < tol``.
     norm : {2, 1, inf}, optional
         Vector norm of the criterion.
+    damping : bool, optional
+        Backtrack along each step until ``||f||`` decreases (see the module's description);
+        raise :class:`~mechnum.errors.ConvergenceError` if no step length decreases it.
 
     Returns
     -------
@@ -217,12 +327,14 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
     Raises
     ------
     ValueError
-        If ``x0`` is not a finite vector, or ``fun``/``jac`` return the wrong shape.
+        If ``x0`` is not a finite real vector, an option is invalid, or ``fun``/``jac`` return
+        the wrong shape or complex values.
     SingularJacobianError
         If the Jacobian is singular at an iterate; ``result`` holds the partial result.
     ConvergenceError
-        If ``maxiter`` steps do not meet the criterion or an iterate stops being finite; its
-        ``result`` attribute holds the partial :class:`NewtonResult`.
+        If ``maxiter`` steps do not meet the criterion, an iterate stops being finite, or (with
+        damping) the line search stagnates; its ``result`` attribute holds the partial
+        :class:`NewtonResult`.
 
     Examples
     --------
@@ -230,13 +342,22 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
     >>> res = solve(lambda x: np.array([x[0] ** 2 - 2.0]), [1.0], lambda x: np.array([[2 * x[0]]]))
     >>> res.converged, res.iterations, round(float(res.x[0]), 12)
     (True, 5, 1.414213562373)
+
+    Plain Newton on ``arctan(x) = 0`` from ``x0 = 1.5`` overshoots further at every step and
+    diverges; damped, it converges:
+
+    >>> res = solve(lambda x: np.arctan(x), [1.5], lambda x: np.diag(1 / (1 + x**2)), damping=True)
+    >>> res.converged, abs(float(res.x[0])) < 1e-12
+    (True, True)
     """
-    x = _check_inputs(x0, tol, maxiter, criterion, ndim=1)
-    jac = jac if jac is not None else (lambda z: fd_jacobian(fun, z))
+    x = _validate.array(x0, "x0", ndim=1)
+    if x.size == 0:
+        raise ValueError("x0 must have shape (n,) with n >= 1, got shape (0,)")
+    tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
     history, residuals, steps = [x], [], []
-    converged = singular = False
+    converged = singular = stagnated = False
+    fx = _evaluate(fun, x, "fun")
     while True:
-        fx = _evaluate(fun, x, "fun")
         residuals.append(np.linalg.norm(fx, norm))
         if not np.isfinite(residuals[-1]) or (criterion == "step" and steps and steps[-1] < tol):
             converged = bool(np.isfinite(residuals[-1]))
@@ -246,21 +367,33 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
             break
         if len(steps) == maxiter:
             break
-        J = np.asarray(jac(x), dtype=float)
-        if J.shape != x.shape * 2:
-            raise ValueError(f"jac returned shape {J.shape}, expected {x.shape * 2}")
-        dx, singular, cond = _newton_step(J, fx)
+        dx, singular, cond = _newton_step(_jacobian(jac, fun, x), fx)
         if singular:
             break
-        x = x + dx
+        if damping:
+            new, f_new, failed, _ = _line_search(fun, x[None], fx[None], dx[None], np.ones(1, bool),
+                                                 residuals[-1:], tol, norm, None)
+            if failed[0]:
+                stagnated = True
+                break
+            x_new, fx = new[0], f_new[0]
+        else:
+            x_new = x + dx
+            fx = _evaluate(fun, x_new, "fun")
+        steps.append(np.linalg.norm(x_new - x, norm))
+        x = x_new
         history.append(x)
-        steps.append(np.linalg.norm(dx, norm))
     result = NewtonResult(x, len(steps), converged, np.array(history), np.array(residuals),
                           np.array(steps))
     if singular:
         raise SingularJacobianError(
             f"singular Jacobian at iteration {len(steps)}: condition number >= {cond:.3g}, "
             f"residual norm {residuals[-1]:.3g}", result)
+    if stagnated:
+        raise ConvergenceError(
+            f"the line search stagnated at iteration {len(steps)}: no step shorter than "
+            f"2**-{_MAX_HALVINGS} of Newton's decreases the residual norm {residuals[-1]:.3g} "
+            f"(a local minimum of ||f|| that is no root?)", result)
     if not converged:
         raise ConvergenceError(
             f"Newton did not converge in {len(steps)} iterations: last step norm "
@@ -269,24 +402,33 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2)
     return result
 
 
-def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2):
+def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
+                damping=False, domain=None, raise_on_failure=True):
     """Solve ``batch`` independent systems ``fun(x)[b] = 0`` at once by Newton-Raphson.
 
-    Every system takes the step of :func:`solve`; a system that meets the criterion is frozen
-    while the others go on, so each has its own iteration count. ``fun`` (and ``jac``) are
-    always evaluated on the whole batch, so they may depend on a per-system parameter (a time,
-    a pose) by position in the batch.
+    Every system takes the step of :func:`solve`; a system that meets the criterion (or fails)
+    is frozen while the others go on, so each has its own iteration count and ``status``.
+    ``fun`` (and ``jac``) are always evaluated on the whole batch, so they may depend on a
+    per-system parameter (a time, a pose) by position in the batch.
 
     Parameters
     ----------
     fun : callable
         ``fun(x) -> ndarray (batch, n)`` for ``x`` of shape ``(batch, n)``.
     x0 : array_like, shape (batch, n)
-        Initial guesses; must be finite.
+        Initial guesses; must be finite and real. An empty batch is valid.
     jac : callable, optional
         ``jac(x) -> ndarray (batch, n, n)``. Default: :func:`fd_jacobian`.
-    tol, maxiter, criterion, norm
-        As in :func:`solve`, applied to each system.
+    tol, maxiter, criterion, norm, damping
+        As in :func:`solve`, applied to each system; with damping, a system whose line search
+        stagnates gets the status "stagnated".
+    domain : callable, optional
+        ``domain(x) -> ndarray of bool (batch,)``, whether each iterate lies where the equations
+        are meant to be solved. A step that leaves it is shortened (with damping) or ends its
+        system with the status "left-domain".
+    raise_on_failure : bool, optional
+        Raise (as below) if some system does not converge; with False, return the result and
+        let the caller read ``status``.
 
     Returns
     -------
@@ -297,12 +439,11 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     ValueError
         As in :func:`solve`.
     SingularJacobianError
-        If the Jacobian of any system is singular at one of its iterates; that system is frozen
-        there, the others go on, and ``result`` holds the :class:`BatchNewtonResult` whose
-        ``singular`` tells which.
+        If the Jacobian of some system is singular at one of its iterates (and
+        ``raise_on_failure``); ``result`` holds the :class:`BatchNewtonResult`.
     ConvergenceError
-        If any system fails to converge in ``maxiter`` steps; ``result`` holds the partial
-        :class:`BatchNewtonResult`, whose ``converged`` tells which.
+        If some other system fails to converge (and ``raise_on_failure``); ``result`` holds the
+        :class:`BatchNewtonResult`, whose ``status`` tells which and why.
 
     Examples
     --------
@@ -312,49 +453,156 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     ...                   lambda x: 2 * x[:, :, None])
     >>> res.x[:, 0].round(8).tolist(), res.iterations.tolist()
     ([1.41421356, 1.73205081, 2.0], [5, 6, 6])
+    >>> res = solve_batch(lambda x: x ** 2 + 1.0, [[0.3], [3.0]], lambda x: 2 * x[:, :, None],
+    ...                   damping=True, raise_on_failure=False)
+    >>> res.status.tolist()    # x**2 + 1 has no real root: a minimum of |f| at 0, no root
+    ['stagnated', 'stagnated']
     """
-    x = _check_inputs(x0, tol, maxiter, criterion, ndim=2)
-    jac = jac if jac is not None else (lambda z: fd_jacobian(fun, z))
-    batch, n = x.shape
+    x = _validate.array(x0, "x0", ndim=2)
+    if x.shape[1] == 0:
+        raise ValueError(f"x0 must have shape (batch, n) with n >= 1, got shape {x.shape}")
+    tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
+    batch = len(x)
     iterations = np.zeros(batch, dtype=int)
-    active = np.ones(batch, dtype=bool)
-    singular = np.zeros(batch, dtype=bool)
+    status = np.full(batch, "", dtype="<U11")  # "" while a system is running
     steps = []
-    fx = _evaluate(fun, x, "fun")
+    fx, nfev, njev = _evaluate(fun, x, "fun"), 1, 0
+    rnorm = np.linalg.norm(fx, norm, axis=-1)
     for k in range(maxiter + 1):
-        rnorm = np.linalg.norm(fx, norm, axis=-1)
-        done = ~np.isfinite(rnorm)
-        if criterion == "residual":
-            done |= rnorm < tol
-        elif steps:
-            done |= steps[-1] < tol
-        active &= ~done
+        status[(status == "") & ~np.isfinite(rnorm)] = "non-finite"
+        met = rnorm < tol if criterion == "residual" else (steps[-1] < tol if steps else False)
+        status[(status == "") & met] = "converged"
+        active = status == ""
         if not active.any() or k == maxiter:
             break
-        J = np.asarray(jac(x), dtype=float)
-        if J.shape != (batch, n, n):
-            raise ValueError(f"jac returned shape {J.shape}, expected {(batch, n, n)}")
+        J = _jacobian(jac, fun, x)
+        nfev, njev = (nfev + x.shape[1], njev) if jac is None else (nfev, njev + 1)
         dx = np.zeros_like(x)
         dx[active], stuck, _ = _newton_step(J[active], fx[active])
-        singular[np.flatnonzero(active)[stuck]] = True
-        active &= ~singular
-        x = x + dx
-        iterations += active
-        steps.append(np.where(active, np.linalg.norm(dx, norm, axis=-1), np.nan))
-        fx = _evaluate(fun, x, "fun")
-    rnorm = np.linalg.norm(fx, norm, axis=-1)
-    converged = ~active & ~singular & np.isfinite(rnorm)
-    result = BatchNewtonResult(x, iterations, converged, singular,
-                               np.array(steps).reshape(-1, batch), rnorm)
-    if singular.any():
-        raise SingularJacobianError(
-            f"singular Jacobian in {singular.sum()} of {batch} systems "
-            f"(first: {np.flatnonzero(singular)[:10].tolist()}); the others went on", result)
-    if not converged.all():
-        bad = np.flatnonzero(~converged)
-        raise ConvergenceError(
-            f"Newton did not converge for {bad.size} of {batch} systems in {maxiter} "
-            f"iterations (first: {bad[:10].tolist()}; largest residual norm "
-            f"{np.nanmax(np.where(converged, np.nan, rnorm)):.3g}, criterion {criterion!r}, "
-            f"tol {tol:g})", result)
+        status[np.flatnonzero(active)[stuck]] = "singular"
+        moving = status == ""
+        if damping:
+            x_new, fx_new, failed, calls = _line_search(fun, x, fx, dx, moving, rnorm, tol, norm,
+                                                        domain)
+            status[failed != ""] = failed[failed != ""]
+            nfev += calls
+        else:
+            x_new = np.where(moving[:, None], x + dx, x)
+            fx_new, nfev = _evaluate(fun, x_new, "fun"), nfev + 1
+            if domain is not None:
+                status[moving & ~np.asarray(domain(x_new), bool)] = "left-domain"
+        moving = status == ""
+        iterations += moving
+        steps.append(np.where(moving, np.linalg.norm(x_new - x, norm, axis=-1), np.nan))
+        x = np.where(moving[:, None], x_new, x)
+        fx = np.where(moving[:, None], fx_new, fx)
+        rnorm = np.linalg.norm(fx, norm, axis=-1)
+    status[status == ""] = "maxiter"
+    result = BatchNewtonResult(x, iterations, status, np.array(steps).reshape(len(steps), batch), rnorm,
+                               nfev, njev)
+    if raise_on_failure:
+        _raise_for(result, criterion, tol, maxiter)
     return result
+
+
+def _raise_for(result, criterion, tol, maxiter):
+    """Raise the error that the worst status of a batch calls for, if any system failed."""
+    singular = np.flatnonzero(result.singular)
+    if singular.size:
+        raise SingularJacobianError(
+            f"singular Jacobian in {singular.size} of {len(result.x)} systems "
+            f"(first: {singular[:10].tolist()}); the others went on", result)
+    bad = np.flatnonzero(~result.converged)
+    if bad.size:
+        kinds = {s: int(np.sum(result.status == s)) for s in STATUSES[1:]
+                 if np.any(result.status == s)}
+        raise ConvergenceError(
+            f"Newton did not converge for {bad.size} of {len(result.x)} systems in {maxiter} "
+            f"iterations (first: {bad[:10].tolist()}; {kinds}; largest residual norm "
+            f"{np.nanmax(np.where(result.converged, np.nan, result.residual_norms)):.3g}, "
+            f"criterion {criterion!r}, tol {tol:g})", result)
+
+
+def _distinct(points, same):
+    """Group the rows of ``points`` that lie within ``same`` (inf-norm) of a group's first row.
+
+    Returns the representatives and, for every row, the index of its group."""
+    reps, label = [], np.empty(len(points), dtype=int)
+    for i, p in enumerate(points):
+        near = [j for j, r in enumerate(reps) if np.max(np.abs(p - r)) <= same]
+        label[i] = near[0] if near else len(reps)
+        if not near:
+            reps.append(p)
+    return np.array(reps).reshape(-1, points.shape[1]), label
+
+
+def solve_all(fun, sample, jac=None, *, n_starts=1000, check=10, rng=None, starts=None,
+              tol=1e-12, maxiter=50, domain=None, same=1e-8):
+    """Every root that damped Newton finds from many starts, deduplicated, with evidence.
+
+    The search runs :func:`solve_batch` (damped, with the status of each start) from
+    ``n_starts`` starts drawn by ``sample`` (plus any given ``starts``); starts that stagnate,
+    leave the ``domain`` or hit a singular Jacobian are dropped. The converged ends are grouped
+    into distinct roots (those within ``same`` of each other) and counted. Then a completeness
+    check runs ``check * n_starts`` new starts: the number of roots that only it finds,
+    ``new_in_check``, is zero when the search looks complete.
+
+    Parameters
+    ----------
+    fun : callable
+        The batched residual, ``fun(x) -> (batch, n)`` for ``x`` of shape ``(batch, n)``.
+    sample : callable
+        ``sample(rng, m) -> ndarray (m, n)``: ``m`` random starts.
+    jac : callable, optional
+        The batched Jacobian, ``(batch, n, n)``; default :func:`fd_jacobian`.
+    n_starts : int, optional
+        Random starts of the search (``>= 1``).
+    check : int, optional
+        The completeness check uses ``check * n_starts`` starts; 0 skips it.
+    rng : numpy.random.Generator or int, optional
+        The random generator (or its seed): no hidden randomness.
+    starts : array_like, shape (m, n), optional
+        Starts added to the search (continuation seeds, starts aimed at small basins).
+    tol, maxiter, domain
+        As in :func:`solve_batch` (``criterion="step"``).
+    same : float, optional
+        Two converged points closer than this (largest component) are one root.
+
+    Returns
+    -------
+    RootSet
+
+    Examples
+    --------
+    The circle ``x**2 + y**2 = 4`` meets the hyperbola ``x y = 1`` in four points:
+
+    >>> import numpy as np
+    >>> fun = lambda z: np.stack([z[:, 0]**2 + z[:, 1]**2 - 4, z[:, 0] * z[:, 1] - 1], axis=-1)
+    >>> jac = lambda z: np.stack([np.stack([2 * z[:, 0], 2 * z[:, 1]], -1),
+    ...                           np.stack([z[:, 1], z[:, 0]], -1)], axis=1)
+    >>> found = solve_all(fun, lambda rng, m: rng.uniform(-3, 3, (m, 2)), jac, n_starts=200, rng=0)
+    >>> found.roots.round(6).tolist(), found.complete
+    ([[-1.931852, -0.517638], [-0.517638, -1.931852], [0.517638, 1.931852], [1.931852, 0.517638]], True)
+    """
+    rng = np.random.default_rng(rng)
+    n_starts = _validate.maxiter(n_starts, "n_starts")
+    check = _validate.maxiter(check, "check", minimum=0)
+    same = _validate.tolerance(same, "same")
+    runs = []
+    for m, extra in ((n_starts, starts), (check * n_starts, None)):
+        x0 = np.asarray(sample(rng, m), dtype=float) if m else np.empty((0, 0))
+        if extra is not None:
+            x0 = np.concatenate([_validate.array(extra, "starts", ndim=2), x0])
+        if len(x0):
+            runs.append(solve_batch(fun, x0, jac, tol=tol, maxiter=maxiter, damping=True,
+                                    domain=domain, raise_on_failure=False))
+    ends = [r.x[r.converged] for r in runs]
+    width = runs[0].x.shape[1]
+    roots, label = _distinct(np.concatenate(ends).reshape(-1, width), same)
+    first = len(np.unique(label[:len(ends[0])]))
+    order = np.lexsort(roots.T[::-1]) if len(roots) else np.arange(0)
+    hits = np.bincount(label, minlength=len(roots))
+    statuses = np.concatenate([r.status for r in runs])
+    return RootSet(roots[order], hits[order], np.linalg.norm(fun(roots[order]), axis=-1)
+                   if len(roots) else np.empty(0), n_starts, check * n_starts,
+                   len(roots) - first, {s: int(np.sum(statuses == s)) for s in STATUSES})

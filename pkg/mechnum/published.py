@@ -1,10 +1,20 @@
-"""Published numbers against computed ones: the rules of the book's registry.
+"""Published numbers against computed ones: the rules of the book's registry, and its one table.
 
 A study prints a number with some digits; the number it stands for lies within half a unit of the
-last printed digit. These helpers apply that rule (and its two variants for claims: an upper
-bound ``"<1e-13"`` and an order of magnitude ``"~1e-12"``), and read the registry
-``book/published_values.csv``, whose columns are ``seed, location, quantity, published, unit,
-computed, verdict, chapter, note``.
+last printed digit. :func:`agrees` applies that rule, and its variants for claims:
+
+* ``"1.942"``: within half a unit of the last printed digit, ``[1.9415, 1.9425]``;
+* ``"0"``: an exact zero, which a computation meets to round-off (``|value| < 1e-12``); a zero
+  printed with decimals (``"0.000"``) follows the half-unit rule;
+* ``"<1e-13"``: an upper bound, ``|value| < 1e-13``;
+* ``"~1e-12"``: an order of magnitude, "of the order of ``10^-12``": ``value`` written in
+  scientific notation has the exponent ``-12``, ``1e-12 <= |value| < 1e-11``.
+
+The registry ``book/published_values.csv`` has one row per number a study publishes, with the
+columns :data:`COLUMNS`: where the study prints it, the package's value (``computed``), a verdict
+(:data:`VERDICTS`), and the ``finding``, a short id shared by every row that one demonstration
+explains. :func:`check_row` asserts what a row claims; :func:`reproduction_table` checks and
+renders a chapter's rows, the one reproduction table of every chapter.
 
 The book prints its own numbers by the converse rule: only digits that the mathematics
 determines. A quantity at round-off level (an error against a closed form, a residual that
@@ -19,9 +29,23 @@ from decimal import Decimal, InvalidOperation
 import numpy as np
 
 COLUMNS = ("seed", "location", "quantity", "published", "unit", "computed", "verdict",
-           "chapter", "note")
-VERDICTS = ("reproduced", "reproduced-after-correction", "not-reproduced", "seed-error",
-            "claim-refuted")
+           "chapter", "finding", "note")
+VERDICTS = ("reproduced", "within-input-rounding", "reproduced-after-correction",
+            "not-reproduced", "source-error", "claim-refuted")
+"""The verdicts, from agreement to refutation:
+
+* ``reproduced``: the package's value agrees with the published one to its printed digits;
+* ``within-input-rounding``: it agrees once the study's inputs are taken unrounded, within the
+  rounding of their printed digits (the study computed from more digits than it printed);
+* ``reproduced-after-correction``: it agrees once an identified slip is corrected (a typo in an
+  input, a garbled symbol); the note names it;
+* ``not-reproduced``: the number does not follow from the study's own data and method;
+* ``source-error``: the study itself is wrong there (a wrong formula, a bug in its code, a slip
+  between two of its numbers);
+* ``claim-refuted``: a claim (a ranking, an optimum, a cause) that the computation contradicts.
+"""
+AGREEING = ("reproduced", "within-input-rounding")
+_EXACT_ZERO = 1e-12  # a printed "0" is met by round-off of unit-sized quantities
 
 
 def half_unit(printed):
@@ -34,26 +58,43 @@ def half_unit(printed):
     """
     try:
         exponent = Decimal(printed.strip()).as_tuple().exponent
-    except InvalidOperation:
+    except (InvalidOperation, AttributeError):
         raise ValueError(f"not a printed number: {printed!r}") from None
     return 0.5 * 10.0 ** exponent
 
 
-def agrees(published, value):
-    """Whether ``value`` bears out a published number or claim, to its printed digits.
-
-    ``"1.942"``: within half a unit of the last printed digit; ``"<1e-13"``: below it;
-    ``"~1e-12"`` (an order of magnitude): within a factor of ten of it.
+def is_claim(published):
+    """Whether a published text is a number or a numeric claim that :func:`agrees` can test.
 
     Examples
     --------
-    >>> agrees("1.942", 1.9416), agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("62", 61.4)
+    >>> is_claim("1.942"), is_claim("<1e-13"), is_claim("~1e-12"), is_claim("n_y cos(theta)")
     (True, True, True, False)
     """
+    try:
+        half_unit(published.lstrip("<~"))
+    except ValueError:
+        return False
+    return True
+
+
+def agrees(published, value):
+    """Whether ``value`` bears out a published number or claim, by the rules of the module.
+
+    Examples
+    --------
+    >>> agrees("1.942", 1.9416), agrees("62", 61.4), agrees("0", 3e-17), agrees("0", 0.3)
+    (True, False, True, False)
+    >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 2e-11)
+    (True, True, False)
+    """
     if published.startswith("<"):
-        return value < float(published[1:])
+        return abs(value) < float(published[1:])
     if published.startswith("~"):
-        return 0.1 <= abs(value) / float(published[1:]) <= 10
+        magnitude = float(published[1:])
+        return magnitude <= abs(value) < 10 * magnitude
+    if published.strip() in ("0", "-0", "+0"):
+        return abs(value) < _EXACT_ZERO
     return abs(value - float(published)) <= half_unit(published) * (1 + 1e-9)
 
 
@@ -93,7 +134,7 @@ def read_registry(path, chapter=None):
     --------
     >>> import pathlib, tempfile
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
-    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,\\n")
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
     >>> [row["published"] for row in read_registry(path, chapter="01")]
     ['1.942']
     """
@@ -102,3 +143,116 @@ def read_registry(path, chapter=None):
         if tuple(reader.fieldnames or ()) != COLUMNS:
             raise ValueError(f"{path}: columns {reader.fieldnames}, expected {list(COLUMNS)}")
         return [row for row in reader if chapter is None or row["chapter"] == chapter]
+
+
+def check_row(row, value):
+    """Assert what a registry row says of ``value``, the package's number for it (or None).
+
+    * The ``computed`` column is what the package computes: ``value`` lies within half a unit of
+      its last digit, or below the bound ``"<1e-13"`` that it stores for a round-off-level value;
+      a blank ``computed`` (a claim with no single number) means the package has no value.
+    * An agreeing verdict (:data:`AGREEING`) agrees with ``published``; any other verdict on a
+      numeric ``published`` does not: the verdict is checked in both directions.
+
+    Raises
+    ------
+    AssertionError
+        Naming the row and the numbers, if the row's claim is false.
+
+    Examples
+    --------
+    >>> row = dict(quantity="T", published="1.942", computed="1.941626", verdict="reproduced")
+    >>> check_row(row, 1.9416259)
+    >>> check_row(dict(row, verdict="not-reproduced"), 1.9416259)
+    Traceback (most recent call last):
+    ...
+    AssertionError: T: published 1.942 agrees with 1.9416259, yet the verdict is not-reproduced
+    """
+    name, computed, published = row["quantity"], row["computed"], row["published"]
+    if not computed:
+        if value is not None:
+            raise AssertionError(f"{name}: computed is blank, yet the package gives {value!r}")
+    elif value is None or not np.isfinite(value):
+        raise AssertionError(f"{name}: the registry says {computed}, the package gives {value!r}")
+    elif computed.startswith("<"):
+        if not abs(value) < float(computed[1:]):
+            raise AssertionError(f"{name}: the registry bounds it by {computed}, "
+                                 f"the package gives {value!r}")
+    elif abs(value - float(computed)) > half_unit(computed) * (1 + 1e-9):
+        raise AssertionError(f"{name}: the registry says {computed}, the package gives {value!r}")
+    if row["verdict"] in AGREEING:
+        if value is None or not agrees(published, value):
+            raise AssertionError(f"{name}: published {published} and computed {value!r} "
+                                 f"disagree, yet the verdict is {row['verdict']}")
+    elif value is not None and is_claim(published) and agrees(published, value):
+        raise AssertionError(f"{name}: published {published} agrees with {value!r}, "
+                             f"yet the verdict is {row['verdict']}")
+
+
+class Markdown:
+    """Markdown text that a notebook displays rendered, and a console prints as it is."""
+
+    def __init__(self, text):
+        self.text = text
+
+    def _repr_markdown_(self):
+        return self.text
+
+    def __repr__(self):
+        return self.text
+
+
+def _cell(text):
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def reproduction_table(chapter, values, path="published_values.csv"):
+    """Check a chapter's registry rows against the package, and render them as a table.
+
+    Every row of ``chapter`` is checked by :func:`check_row` with ``values[quantity]``; the
+    table shows, for each, where the study prints it, the quantity, the published and computed
+    numbers, the verdict and the finding.
+
+    Parameters
+    ----------
+    chapter : str
+        The chapter's notebook name, as in the registry's ``chapter`` column.
+    values : dict
+        The package's numbers, keyed by ``quantity`` (a mechanism module's ``reproduce()``).
+    path : str or path-like, optional
+        The registry (a chapter runs in ``book/``, beside it).
+
+    Returns
+    -------
+    Markdown
+
+    Raises
+    ------
+    ValueError
+        If the registry has no row for ``chapter``.
+    AssertionError
+        If a row's claim is false (see :func:`check_row`).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Sec. 4,T,1.942,s,1.941626,reproduced,"
+    ...                     "ch1,,\\n000,Sec. 4,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\\n")
+    >>> print(reproduction_table("ch1", {"T": 1.9416259, "T2": 1.9416259}, path))
+    | where | quantity | published | computed | verdict | finding |
+    |---|---|---|---|---|---|
+    | Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |
+    | Sec. 4 | T2 | 1.883 s | 1.941626 | source-error | T-2T |
+    """
+    rows = read_registry(path, chapter)
+    if not rows:
+        raise ValueError(f"the registry {path} has no row for the chapter {chapter!r}")
+    lines = ["| where | quantity | published | computed | verdict | finding |",
+             "|---|---|---|---|---|---|"]
+    for row in rows:
+        check_row(row, values.get(row["quantity"]))
+        published = f"{row['published']} {row['unit']}".strip()
+        lines.append(f"| {_cell(row['location'])} | {_cell(row['quantity'])} | {_cell(published)} "
+                     f"| {_cell(row['computed']) or '-'} | {row['verdict']} | {row['finding']} |")
+    return Markdown("\n".join(lines))

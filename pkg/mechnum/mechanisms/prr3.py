@@ -27,7 +27,7 @@ from itertools import product
 
 import numpy as np
 
-from mechnum.errors import ConvergenceError, GeometryError, SingularJacobianError
+from mechnum.errors import GeometryError
 from mechnum.newton import solve_batch
 
 _ROOT3 = np.sqrt(3.0)
@@ -519,17 +519,12 @@ _EXACT, _CANDIDATE = 16 * np.finfo(float).eps, 1e-2
 def _polish(poses, lambdas, geometry):
     """A few Newton steps on the loop equations from each pose; a pose that moves by more than
     ``1e-2`` (relative), or meets a numerically singular Jacobian, is returned unchanged."""
-    try:
-        result = solve_batch(lambda p: loop_residuals(p, lambdas, geometry), poses,
-                             lambda p: direct_jacobian(p, lambdas, geometry), tol=1e-14, maxiter=6)
-    except ConvergenceError as error:
-        result = error.result
-    except SingularJacobianError:  # one singular pose stops the batch: polish them one by one
-        if len(poses) == 1:
-            return poses
-        return np.concatenate([_polish(pose[None], lambdas, geometry) for pose in poses])
+    result = solve_batch(lambda p: loop_residuals(p, lambdas, geometry), poses,
+                         lambda p: direct_jacobian(p, lambdas, geometry), tol=1e-14, maxiter=6,
+                         raise_on_failure=False)
     moved = np.hypot(*(result.x - poses)[:, :2].T) / geometry.L + np.abs(result.x - poses)[:, 2]
-    return np.where((moved <= 1e-2)[:, None], result.x, poses)
+    keep = (moved <= 1e-2) & ~result.singular  # a singular pose is returned unchanged
+    return np.where(keep[:, None], result.x, poses)
 
 
 def _distinct(poses, order, L, tol=1e-4):
@@ -695,11 +690,9 @@ def direct_by_newton(lambdas, geometry, starts, *, tol=1e-12):
     lam, starts = _three(lambdas), _triples(starts, "starts")
     if starts.ndim != 2:
         raise ValueError(f"starts must have shape (m, 3), got {starts.shape}")
-    try:
-        result = solve_batch(lambda p: loop_residuals(p, lam, geometry), starts,
-                             lambda p: direct_jacobian(p, lam, geometry), tol=tol)
-    except (ConvergenceError, SingularJacobianError) as error:  # keep the starts that converged
-        result = error.result
+    result = solve_batch(lambda p: loop_residuals(p, lam, geometry), starts,
+                         lambda p: direct_jacobian(p, lam, geometry), tol=tol,
+                         raise_on_failure=False)
     poses = result.x[result.converged]
     poses[:, 2] = _wrap(poses[:, 2])
     return poses[_distinct(poses, np.arange(len(poses)), geometry.L)]
