@@ -45,6 +45,10 @@ VERDICTS = ("reproduced", "within-input-rounding", "reproduced-after-correction"
 * ``claim-refuted``: a claim (a ranking, an optimum, a cause) that the computation contradicts.
 """
 AGREEING = ("reproduced", "within-input-rounding")
+FINDING_COLUMNS = ("finding", "chapter", "seeds", "what", "where", "proof")
+"""The columns of ``book/findings.csv``: one line per finding, its id (the registry's
+``finding``), its chapter, the studies it concerns, what it is, where the study prints it, and
+how the chapter proves it (one sentence each)."""
 _EXACT_ZERO = 1e-12  # a printed "0" is met by round-off of unit-sized quantities
 
 
@@ -127,6 +131,28 @@ def below(value, bound):
     return f"< {mantissa}" + (f"e{int(exponent)}" if exponent else "")
 
 
+def _read(path, columns):
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        if tuple(reader.fieldnames or ()) != columns:
+            raise ValueError(f"{path}: columns {reader.fieldnames}, expected {list(columns)}")
+        return list(reader)
+
+
+def read_findings(path):
+    """The findings (dicts keyed by :data:`FINDING_COLUMNS`), in the file's order.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "findings.csv"
+    >>> _ = path.write_text(",".join(FINDING_COLUMNS) + "\\nch1-t,ch1,002,T is 2T,slide 3,sympy\\n")
+    >>> [f["what"] for f in read_findings(path)]
+    ['T is 2T']
+    """
+    return _read(path, FINDING_COLUMNS)
+
+
 def read_registry(path, chapter=None):
     """The registry's rows (dicts keyed by :data:`COLUMNS`), optionally of one chapter only.
 
@@ -138,11 +164,7 @@ def read_registry(path, chapter=None):
     >>> [row["published"] for row in read_registry(path, chapter="01")]
     ['1.942']
     """
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        if tuple(reader.fieldnames or ()) != COLUMNS:
-            raise ValueError(f"{path}: columns {reader.fieldnames}, expected {list(COLUMNS)}")
-        return [row for row in reader if chapter is None or row["chapter"] == chapter]
+    return [row for row in _read(path, COLUMNS) if chapter is None or row["chapter"] == chapter]
 
 
 def check_row(row, value):
