@@ -298,3 +298,61 @@ def test_solve_all_with_no_root_returns_an_empty_set():
                       lambda z: 2 * z[:, :, None], n_starts=10, check=1, rng=4)
     assert found.roots.shape == (0, 1) and found.hits.shape == (0,) and found.complete
     assert found.status_counts["stagnated"] + found.status_counts["singular"] == 20
+
+
+# --- the valid domain and just outside it (issue 13) -------------------------------------------
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(1e-6, 1e6), start=st.floats(-50.0, 50.0).filter(lambda s: abs(s) > 1e-3))
+def test_damped_newton_finds_the_cube_root_from_far_away(a, start):
+    # plain Newton on x**3 = a can leap far from a bad start; damped Newton converges to the
+    # one real root from any nonzero start, or says why it stopped
+    try:
+        res = solve(lambda x: x ** 3 - a, [start * np.cbrt(a)], lambda x: np.diag(3 * x ** 2),
+                    tol=1e-13, maxiter=200, damping=True)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result is not None and str(error)
+        return
+    np.testing.assert_allclose(res.x[0], np.cbrt(a), rtol=1e-12)
+    assert res.history.shape == (res.iterations + 1, 1)
+
+
+@settings(max_examples=200, deadline=None)
+@given(c=st.lists(st.floats(-1e3, 1e3), min_size=0, max_size=6),
+       damping=st.booleans())
+def test_batch_statuses_are_consistent_with_the_roots(c, damping):
+    c = np.array(c, dtype=float)
+    res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((len(c), 1)),
+                      lambda x: 2 * x[:, :, None], damping=damping, tol=1e-12,
+                      raise_on_failure=False)
+    assert res.x.shape == (len(c), 1) and res.status.shape == (len(c),)
+    assert set(res.status) <= set(STATUSES)
+    ok = res.converged
+    residual = np.abs(res.x[ok, 0] ** 2 - c[ok])
+    assert np.all(residual <= 1e-9 * np.maximum(1.0, np.abs(c[ok])))  # the defining property
+    assert not np.any(ok[c < -1e-6])  # no convergence where no real root is near
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"tol": -1.0}, "tol must be positive"), ({"tol": np.inf}, "tol must be finite"),
+    ({"maxiter": np.inf}, "maxiter"), ({"criterion": "size"}, "criterion"),
+    ({"norm": 3}, "norm"), ({"x0": np.ones((2, 2, 1))}, "x0 must have 2"),
+    ({"x0": [[1.0], [np.nan]]}, "x0 must be finite"), ({"x0": np.ones((2, 0))}, "n >= 1"),
+    ({"x0": [[1j]]}, "x0 must be real")])
+def test_batch_bad_inputs_name_the_argument(kwargs, match):
+    args = {"x0": np.ones((2, 1))} | kwargs
+    with pytest.raises(ValueError, match=match):
+        solve_batch(lambda x: x ** 2 - 2, args.pop("x0"), lambda x: 2 * x[:, :, None], **args)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"n_starts": 0}, "n_starts"), ({"check": -1}, "check"), ({"same": 0.0}, "same"),
+    ({"starts": [[np.nan, 0.0]]}, "starts must be finite"), ({"starts": [1.0, 2.0]}, "starts")])
+def test_solve_all_bad_inputs_name_the_argument(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac, **kwargs)
+
+
+def test_fd_jacobian_refuses_non_finite_points():
+    with pytest.raises(ValueError, match="x must be finite"):
+        fd_jacobian(circle_line, [np.nan, 1.0])

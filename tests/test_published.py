@@ -1,10 +1,14 @@
-"""Tests of mechnum.published: the printed-digits rule and the registry reader."""
+"""Tests of mechnum.published: the printed-digits rules, the registry and its one table."""
+
+from decimal import Decimal
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, read_registry,
-                              reproduction_table)
+from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
+                              read_findings, read_registry, reproduction_table)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -92,3 +96,43 @@ def test_reproduction_table_renders_and_checks(tmp_path):
         reproduction_table("ch1", {"T": 1.9416259, "q": 1e-3}, path)
     with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
         reproduction_table("ch9", {}, path)
+
+
+# --- the valid domain and just outside it (issue 13) -------------------------------------------
+
+@settings(max_examples=300, deadline=None)
+@given(value=st.floats(-1e6, 1e6, allow_nan=False), digits=st.integers(0, 8))
+def test_a_value_agrees_with_its_own_rounding_and_not_with_a_unit_off(value, digits):
+    printed = f"{value:.{digits}f}"
+    half = half_unit(printed)
+    assert half == 0.5 * 10.0 ** -digits
+    if abs(Decimal(printed)) > 0 or digits:  # a bare "0" is the exact-zero rule
+        assert agrees(printed, value)
+        assert not agrees(printed, float(Decimal(printed)) + 3 * half)
+
+
+@settings(max_examples=200, deadline=None)
+@given(value=st.floats(0, 1e3, allow_nan=False), exponent=st.integers(-30, 3))
+def test_below_prints_exactly_the_bounds_that_hold(value, exponent):
+    bound = 10.0 ** exponent
+    if value < bound:
+        assert below(value, bound).startswith("< ") and float(below(value, bound)[2:]) == bound
+    else:
+        with pytest.raises(AssertionError, match="is not below"):
+            below(value, bound)
+
+
+@pytest.mark.parametrize("text", ["", "abc", "inf", "nan", "1.2.3", "n_y cos(theta)", "<", "~x"])
+def test_texts_that_are_no_numbers_are_named(text):
+    assert not is_claim(text)
+    with pytest.raises(ValueError, match="not a printed number"):
+        agrees(text, 1.0)
+    with pytest.raises(ValueError, match="not a printed number"):
+        half_unit(text)
+
+
+def test_findings_file_with_the_wrong_columns_is_named(tmp_path):
+    path = tmp_path / "findings.csv"
+    path.write_text("finding,what\nx,y\n")
+    with pytest.raises(ValueError, match="columns"):
+        read_findings(path)

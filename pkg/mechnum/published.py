@@ -61,10 +61,12 @@ def half_unit(printed):
     (0.0005, 0.5, 5e-05)
     """
     try:
-        exponent = Decimal(printed.strip()).as_tuple().exponent
+        number = Decimal(printed.strip())
     except (InvalidOperation, AttributeError):
-        raise ValueError(f"not a printed number: {printed!r}") from None
-    return 0.5 * 10.0 ** exponent
+        number = None
+    if number is None or not number.is_finite():
+        raise ValueError(f"not a printed number: {printed!r}")
+    return 0.5 * 10.0 ** number.as_tuple().exponent
 
 
 def is_claim(published):
@@ -92,6 +94,8 @@ def agrees(published, value):
     >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 2e-11)
     (True, True, False)
     """
+    if not is_claim(published):
+        raise ValueError(f"not a printed number or numeric claim: {published!r}")
     if published.startswith("<"):
         return abs(value) < float(published[1:])
     if published.startswith("~"):
