@@ -325,6 +325,17 @@ def _relaxation_factor(omega):
     return omega
 
 
+def _relaxation_factors(omegas):
+    """``omegas`` as a 1-d float array of factors in (0, 2), or a RelaxationFactorError."""
+    try:
+        omegas = _validate.array(omegas, "omegas", ndim=1)
+    except ValueError as error:
+        raise RelaxationFactorError(f"SOR needs relaxation factors in (0, 2): {error}")
+    for omega in omegas:
+        _relaxation_factor(omega)
+    return omegas
+
+
 def _check_system(A, b):
     """Checked ``A`` (dense or sparse) and ``b``; a dense ``A`` singular to working precision
     raises (a sparse one is not tested: it would need a factorisation)."""
@@ -466,9 +477,7 @@ def sor_spectral_radii(A, omegas):
     """
     A = _dense(A, "sor_spectral_radii")
     splitting(A, "gauss_seidel")  # checks the diagonal
-    omegas = _validate.array(omegas, "omegas", ndim=1)
-    for omega in omegas:
-        _relaxation_factor(omega)
+    omegas = _relaxation_factors(omegas)
     radii = np.empty(omegas.size)
     block = max(1, BLOCK_ENTRIES // A.size)
     for start in range(0, omegas.size, block):
@@ -825,12 +834,12 @@ def sor_sweep(A, b, omegas, x0=None, *, tol=1e-10, maxiter=100_000, criterion="s
     """
     A, b = _check_system(A, b)
     rule = StoppingRule(tol, maxiter, criterion, norm, relative)
-    omegas = _validate.array(omegas, "omegas", ndim=1)
+    omegas = _relaxation_factors(omegas)
     x = np.zeros(b.size) if x0 is None else _validate.array(x0, "x0", shape=b.shape)
     split = splitting(A, "gauss_seidel")
     iterations, converged = np.zeros(omegas.size, int), np.zeros(omegas.size, bool)
     for i, omega in enumerate(omegas):
-        with_omega = dataclasses.replace(split, method="sor", omega=_relaxation_factor(omega))
+        with_omega = dataclasses.replace(split, method="sor", omega=float(omega))
         result, _ = _iterate(with_omega, b, x, rule, False)
         iterations[i], converged[i] = result.iterations, result.converged
     radii = None if sp.issparse(A) else sor_spectral_radii(A, omegas)

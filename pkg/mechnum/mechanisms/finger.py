@@ -169,6 +169,12 @@ def linkage_from_coefficients(k, r4):
     return Linkage(float(r1), float(np.sqrt(r2_squared)), float(r3), r4)
 
 
+def _wrap(theta):
+    """Angles in ``[0, 2 pi)``: ``x % (2 pi)`` of a tiny negative ``x`` rounds to ``2 pi``."""
+    theta = np.mod(theta, 2 * np.pi)
+    return np.where(theta < 2 * np.pi, theta, 0.0)
+
+
 def _unit(theta):
     return np.column_stack([np.cos(theta), np.sin(theta)])
 
@@ -337,11 +343,16 @@ def pose(theta_in, linkage, branch=CROSSED):
     H, D = _pivots(theta_in.size, L)
     I = H - L.r3 * _unit(theta_in)
     E = _intersect(D, L.r1, I, L.r2, branch, theta_in)
-    return Pose(theta_in, np.arctan2(E[:, 1], E[:, 0]) % (2 * np.pi), E, I, H, D)
+    return Pose(theta_in, _wrap(np.arctan2(E[:, 1], E[:, 0])), E, I, H, D)
 
 
 def pose_from_output(theta_out, linkage, branch=CROSSED):
     """Position analysis driven by the output rocker DE (arguments as :func:`pose`).
+
+    ``branch`` puts ``I`` on side ``-branch`` of the line ``H -> E``. On the study's linkage
+    over its range of motion this is the assembly that :func:`pose` calls ``branch``, so the
+    two analyses invert each other; for another linkage the two sides need not correspond
+    (one of the two branches inverts :func:`pose`).
 
     Examples
     --------
@@ -355,7 +366,7 @@ def pose_from_output(theta_out, linkage, branch=CROSSED):
     H, D = _pivots(theta_out.size, L)
     E = L.r1 * _unit(theta_out)
     I = _intersect(H, L.r3, E, L.r2, -branch, theta_out)  # seen from H, not D
-    theta_in = np.arctan2(H[:, 1] - I[:, 1], H[:, 0] - I[:, 0]) % (2 * np.pi)
+    theta_in = _wrap(np.arctan2(H[:, 1] - I[:, 1], H[:, 0] - I[:, 0]))
     return Pose(theta_in, theta_out, E, I, H, D)
 
 
@@ -395,8 +406,8 @@ def angles_from_points(E, I, r4):
     E = _validate.array(E, "E", shape=(None, 2))
     I = _validate.array(I, "I", shape=(E.shape[0], 2))
     r4 = _validate.scalar(r4, "r4", positive=True)
-    theta_out = np.arctan2(E[:, 1], E[:, 0]) % (2 * np.pi)
-    theta_in = np.arctan2(-I[:, 1], -r4 - I[:, 0]) % (2 * np.pi)
+    theta_out = _wrap(np.arctan2(E[:, 1], E[:, 0]))
+    theta_in = _wrap(np.arctan2(-I[:, 1], -r4 - I[:, 0]))
     return theta_in, theta_out
 
 
@@ -473,7 +484,7 @@ def ill_conditioned_example(delta, rhs_shift):
     solution : ndarray, shape (2,)
     cond_inf : float
         ``||A||_inf ||A^-1||_inf``, equal to ``(3 + delta)(4 + delta) / delta`` for
-        ``delta > 0``.
+        ``delta > 0`` (for the ``delta`` that the rounded ``2 + delta`` represents).
 
     Raises
     ------
