@@ -639,12 +639,17 @@ def _sweep(indptr, indices, data, diagonal, b, x, omega, jacobi, work):
 
 @numba.njit(cache=True)
 def _norm(v, p):
-    """The inf- (p = 0), 1- or 2-norm of a vector."""
-    if p == 0:
-        return np.max(np.abs(v)) if v.size else 0.0
-    if p == 1:
-        return np.sum(np.abs(v))
-    return np.sqrt(np.dot(v, v))
+    """The inf- (p = 0), 1- or 2-norm of a vector, in plain loops (a BLAS call would pay its
+    threads' overhead at every sweep)."""
+    total = 0.0
+    for value in v:
+        if p == 0:
+            total = max(total, abs(value))
+        elif p == 1:
+            total += abs(value)
+        else:
+            total += value * value
+    return np.sqrt(total) if p == 2 else total
 
 
 @numba.njit(cache=True)
@@ -678,6 +683,16 @@ def _run(csr, diagonal, b, x, omega, jacobi, rule, residuals, steps, history):
         if not residuals[k] <= blow_up:  # growth, overflow or NaN
             return k + 1, 2
     return steps.size, 0
+
+
+@numba.njit(cache=True)
+def _dot(u, v):
+    """``u @ v`` in one compiled loop: conjugate gradients take two per step, and a threaded
+    BLAS call costs more in synchronisation than in arithmetic at these sizes."""
+    total = 0.0
+    for i in range(u.size):
+        total += u[i] * v[i]
+    return total
 
 
 def _vector_norm(v, norm):
@@ -901,11 +916,11 @@ def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=N
     x = np.zeros(b.size) if x0 is None else _validate.array(x0, "x0", shape=b.shape).copy()
     keep = not sp.issparse(A) if keep_history is None else bool(keep_history)
     r = b - A @ x
-    p, rr, limit = r.copy(), r @ r, rule.tol * np.linalg.norm(b)
+    p, rr, limit = r.copy(), _dot(r, r), rule.tol * np.sqrt(_dot(b, b))
     history, residuals, steps = [x.copy()], [np.sqrt(rr)], []
     while residuals[-1] > limit and len(steps) < rule.maxiter:
         Ap = A @ p
-        curvature = p @ Ap
+        curvature = _dot(p, Ap)
         if not curvature > 0:
             raise SingularJacobianError(f"A is not positive definite: p^T A p = {curvature:.3g} "
                                         f"at step {len(steps) + 1}")
@@ -913,12 +928,12 @@ def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=N
         step = alpha * p
         x += step
         r -= alpha * Ap
-        rr, rr_old = r @ r, rr
+        rr, rr_old = _dot(r, r), rr
         p = r + (rr / rr_old) * p
         if keep:
             history.append(x.copy())
         residuals.append(np.sqrt(rr))
-        steps.append(np.linalg.norm(step))
+        steps.append(np.sqrt(_dot(step, step)))
     result = IterationResult(x, len(steps), bool(residuals[-1] <= limit),
                              np.array(history) if keep else None, np.array(residuals),
                              np.array(steps))
