@@ -55,7 +55,7 @@ METHODS = ("jacobi", "gauss_seidel", "sor")
 CRITERIA = ("step", "residual")
 NORMS = (np.inf, 1, 2)
 LEAST_SQUARES_METHODS = ("qr", "svd", "cholesky", "lu") + METHODS + ("cg",)
-#: A residual this many times larger than at the start (or than ||b||) means divergence: a
+#: A residual this many times larger than at the start (or than ``||b||``) means divergence: a
 #: convergent iteration can grow transiently, but not by eight orders of magnitude.
 DIVERGENCE_GROWTH = 1e8
 #: Sweeps run per call of the compiled loop: the Python overhead is paid once per chunk, and the
@@ -76,8 +76,8 @@ BLOCK_ENTRIES = 2 ** 21
 #: Iterative refinement gives up when a correction is not at least this much smaller than the
 #: one before: the low-precision factorisation no longer contracts the error.
 REFINEMENT_CONTRACTION = 0.5
-#: A matrix is symmetric for conjugate gradients when |A - A^T| <= this times max |A|: the
-#: round-off of forming a product such as A^T A, with a margin.
+#: A matrix is symmetric for conjugate gradients when ``max abs(A - A^T)`` is at most this
+#: times ``max abs(A)``: the round-off of forming a product such as ``A^T A``, with a margin.
 SYMMETRY_RTOL = 1e-12
 
 _NORM_CODES = {np.inf: 0, 1: 1, 2: 2}

@@ -46,7 +46,8 @@ TABLE2_THETA_IN_UNROUNDED = np.radians(225.5 + 11.0 * np.arange(13))
 STUDY_OMEGAS = (0.33, 0.28, 0.309, 0.2889, 0.3289)
 #: Sign of the circle-intersection branch of the study's (crossed) assembly.
 CROSSED, OPEN = 1, -1
-#: Machine epsilon: example 1.1's A is singular to working precision when cond_inf(A) * eps >= 1.
+#: Machine epsilon: example 1.1's ``A`` is singular to working precision when
+#: ``cond_inf(A) * eps >= 1``.
 _EPS = np.finfo(float).eps
 
 
