@@ -356,3 +356,12 @@ def test_solve_all_bad_inputs_name_the_argument(kwargs, match):
 def test_fd_jacobian_refuses_non_finite_points():
     with pytest.raises(ValueError, match="x must be finite"):
         fd_jacobian(circle_line, [np.nan, 1.0])
+
+
+def test_damping_calls_a_single_system_with_vectors_only():
+    def fun(x):
+        assert x.shape == (1,), f"fun was called with shape {x.shape}"
+        return np.arctan(x)
+
+    res = solve(fun, [1.5], lambda x: np.diag(1 / (1 + x ** 2)), damping=True, tol=1e-14)
+    assert res.converged and abs(res.x[0]) < 1e-14

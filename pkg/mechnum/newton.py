@@ -370,9 +370,10 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
         dx, singular, cond = _newton_step(_jacobian(jac, fun, x), fx)
         if singular:
             break
-        if damping:
-            new, f_new, failed, _ = _line_search(fun, x[None], fx[None], dx[None], np.ones(1, bool),
-                                                 residuals[-1:], tol, norm, None)
+        if damping:  # the batched line search, on a batch of this one system
+            new, f_new, failed, _ = _line_search(lambda z: fun(z[0])[None], x[None], fx[None],
+                                                 dx[None], np.ones(1, bool), residuals[-1:],
+                                                 tol, norm, None)
             if failed[0]:
                 stagnated = True
                 break
