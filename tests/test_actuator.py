@@ -21,10 +21,10 @@ from mechnum.errors import (
     SingularJacobianError,
     UnreachablePoseError,
 )
-from mechnum.mechanisms import actuator
 from mechnum.mechanisms.actuator import (
     ANNEX,
     Actuator,
+    centres_of_mass,
     draw,
     energy,
     forward_dynamics,
@@ -342,8 +342,9 @@ def test_exact_coefficients_are_derivatives_of_the_positions(mech, u):
 
 # --- partial velocities --------------------------------------------------------------------
 
-@pytest.mark.parametrize("function", [partial_velocities, kane_force, virtual_power_force,
-                                      lagrange_force, lagrange_terms, energy])
+@pytest.mark.parametrize("function", [partial_velocities, centres_of_mass, kane_force,
+                                      virtual_power_force, lagrange_force, lagrange_terms,
+                                      energy])
 def test_dynamics_reject_what_is_not_kinematics(function):
     with pytest.raises(ValueError, match="kin must be the Kinematics"):
         function(np.linspace(0.0, 1.0, 5))
@@ -352,13 +353,14 @@ def test_dynamics_reject_what_is_not_kinematics(function):
 @MANY
 @given(mechanisms(), st.floats(0.0, 1.0))
 def test_partial_velocities_are_derivatives_of_the_centres(mech, u):
-    """With the exact coefficients, J = dG/da and dJ/da are derivatives of the positions. (The
+    """(Of centres_of_mass and partial_velocities together.) With the exact coefficients,
+    J = dG/da and dJ/da are derivatives of the positions. (The
     annex's coefficients are not: its model turns e2 at the rate k2 of its own.)"""
     low, high = reach(mech)
     a, h = low + (high - low) * (0.2 + 0.6 * u), 1e-5
     pv = partial_velocities(stroke_kinematics(a, mech=mech))
     side = [stroke_kinematics(a + s, mech=mech) for s in (h, -h)]
-    centres = [actuator._centres(kin) for kin in side]
+    centres = [centres_of_mass(kin) for kin in side]
     assert_allclose(pv.v, (centres[0] - centres[1]) / (2 * h),
                     atol=1e-5 * (1 + np.abs(pv.v).max()))
     v = [partial_velocities(kin).v for kin in side]
