@@ -371,7 +371,7 @@ def test_partial_velocities_are_derivatives_of_the_centres(mech, u):
 
 # --- the three routes to the force ---------------------------------------------------------
 
-@pytest.mark.parametrize("route", ROUTES)
+@pytest.mark.parametrize("route", ROUTES + (lagrange_terms, energy))
 def test_routes_reject_bad_options(route):
     kin = kinematics(0.0)
     with pytest.raises(ValueError, match="g must be finite"):
@@ -523,28 +523,33 @@ def test_forward_dynamics_gives_the_prescribed_stroke_back(mech):
 
 # --- drawing -------------------------------------------------------------------------------
 
-FIGURE, AXES = plt.subplots()
+@pytest.fixture(scope="module")
+def axes():
+    """One figure for the module's drawings, closed after them."""
+    fig, ax = plt.subplots()
+    yield ax
+    plt.close(fig)
 
 
-def test_draw_rejects_bad_input():
+def test_draw_rejects_bad_input(axes):
     with pytest.raises(ValueError, match="a must be finite"):
-        draw(AXES, np.nan)
+        draw(axes, np.nan)
     with pytest.raises(UnreachablePoseError):
-        draw(AXES, 1.5)
+        draw(axes, 1.5)
     with pytest.raises(ValueError, match="artists must be the dict that draw returned"):
-        draw(AXES, 0.6, artists={"rod": None})
+        draw(axes, 0.6, artists={"rod": None})
 
 
 @MANY
-@given(mechanisms(), st.floats(0.0, 1.0))
-def test_drawing_closes_the_loop_and_moves(mech, u):
+@given(mech=mechanisms(), u=st.floats(0.0, 1.0))
+def test_drawing_closes_the_loop_and_moves(axes, mech, u):
     low, high = reach(mech)
-    for line in AXES.lines[:]:
+    for line in axes.lines[:]:
         line.remove()
-    parts = draw(AXES, low + (high - low) * (0.1 + 0.8 * u), mech)
+    parts = draw(axes, low + (high - low) * (0.1 + 0.8 * u), mech)
     a = low + (high - low) * (0.9 - 0.8 * u)
-    assert draw(AXES, a, mech, artists=parts) is parts
-    assert len(AXES.lines) == 5  # moved, not drawn again
+    assert draw(axes, a, mech, artists=parts) is parts
+    assert len(axes.lines) == 5  # moved, not drawn again
     pin = complex(*parts["rod"].get_xydata()[1])  # the rod's end A
     o4, end = (complex(*p) for p in parts["rocker"].get_xydata())
     assert_allclose(abs(pin), a + mech.l, rtol=1e-12)
