@@ -12,6 +12,7 @@ _BORE_RADIUS, _ROD_RADIUS = 0.016, 0.008
 # get a relative error: 29 N, its claimed floor of Q_di.
 _ANNEX_GRID = np.linspace(0.0, 1.0, 101)
 _ANNEX_FORCE_SCALE = 29.0
+_PRINTED_INSTANTS = (0.0, 0.01, 0.25, 0.75)  # where the annex prints Q_dd (s)
 
 
 def reproduce():
@@ -35,7 +36,7 @@ def reproduce():
     q_di = virtual_power_force(kin)
     q_dd = lagrange_force(kin)
     slip = float(np.max(np.abs(lagrange_force(kin, annex_slip=True) - q_di)))
-    at = {t: int(np.argmin(np.abs(_ANNEX_GRID - t))) for t in (0.0, 0.01, 0.25, 0.75)}
+    at = {t: int(np.argmin(np.abs(_ANNEX_GRID - t))) for t in _PRINTED_INSTANTS}
     return {
         "S (annulus area)": np.pi * (_BORE_RADIUS**2 - _ROD_RADIUS**2),
         "hs (upper clearance)": mech.hs,

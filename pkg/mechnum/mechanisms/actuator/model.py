@@ -160,7 +160,7 @@ class Actuator:
         return self.a0 + self.amplitude * s, self.amplitude * w * c, -self.amplitude * w**2 * s
 
 
-ANNEX = Actuator(Ig4=0.6**2 * 5.0 / 3)
+ANNEX = Actuator(Ig4=Actuator.g4**2 * Actuator.m2 / 3)  # the annex: m2 where m4 belongs
 """The mechanism as the annex prints it: ``I_G4 := g4**2 m2 / 3``, with the barrel's mass."""
 
 
