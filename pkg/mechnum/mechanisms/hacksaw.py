@@ -59,6 +59,7 @@ FORMS = ("loop", "eliminated")
 METHODS = ("consecutive", "simultaneous", "batched")
 PREDICTORS = ("previous", "velocity")
 _RATE_ROWS = [1, 2, 0]  # velocity rows (x', y', c') as position rows (c, x, y)
+DRAW_PAD = 0.25  # blank border around a drawing, in crank lengths: room for the joints' dots
 
 
 @dataclass(frozen=True)
@@ -941,9 +942,9 @@ def draw(ax, x, theta2, geometry=STUDY, *, legend=True):
              *ax.plot(*np.stack([A, B]).T, "o-", lw=3, label="coupler $r_3$"),
              *ax.plot(*np.stack([O, B]).T, "k--", lw=1, label=r"$\vec r_1 = \vec r_2 + \vec r_3$"),
              *ax.plot(*B, "ks", ms=12, label="slider $B$")]
-    reach = g.r2 + g.r3
-    ax.set_xlim(-1.05 * reach, 1.05 * g.r2 + 0.25 * g.r3)
-    ax.set_ylim(-1.2 * g.r2, max(g.r1y, g.r2) + 0.2 * g.r2)
+    pad = DRAW_PAD * g.r2
+    ax.set_xlim(-g.r2 - g.r3 - pad, g.r2 + pad)  # the slider's farthest left, the crank's right
+    ax.set_ylim(-g.r2 - pad, max(g.r1y, g.r2) + pad)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
