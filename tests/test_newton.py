@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import STATUSES, fd_jacobian, solve, solve_all, solve_batch
+from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
 
 
 def circle_line(x):
@@ -365,3 +365,66 @@ def test_damping_calls_a_single_system_with_vectors_only():
 
     res = solve(fun, [1.5], lambda x: np.diag(1 / (1 + x ** 2)), damping=True, tol=1e-14)
     assert res.converged and abs(res.x[0]) < 1e-14
+# --- Broyden's method -------------------------------------------------------------------------
+
+def test_broyden_converges_superlinearly_with_one_jacobian():
+    calls = {"jac": 0}
+
+    def jac(x):
+        calls["jac"] += 1
+        return circle_line_jac(x)
+
+    res = broyden(circle_line, [1.0, 0.5], jac, tol=1e-14)
+    newton = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
+    np.testing.assert_allclose(res.x, newton.x, rtol=0, atol=1e-15)
+    assert calls["jac"] == 1 and res.iterations > newton.iterations
+    e = np.linalg.norm(res.history[:-1] - res.x, axis=1)
+    ratios = e[1:] / e[:-1]
+    assert ratios[-3:].max() < 0.1 and ratios[-1] < ratios[1]  # faster than linear at the end
+
+
+def test_broyden_keeps_an_exact_jacobian_of_a_linear_system():
+    # y = A s for every step: the update vanishes, so Broyden is Newton (one step, one check)
+    A, b = np.array([[3.0, 1.0], [1.0, 2.0]]), np.array([1.0, 1.0])
+    res = broyden(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8)
+    assert res.iterations == 2
+    np.testing.assert_allclose(res.x, np.linalg.solve(A, b), atol=1e-14)
+
+
+def test_broyden_without_a_jacobian_uses_differences():
+    res = broyden(circle_line, [1.0, 0.5], tol=1e-13)
+    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12)
+
+
+@pytest.mark.parametrize("x0, kwargs, error, match", [
+    ([np.nan, 1.0], {}, ValueError, "x0 must be finite"),
+    ([1.0, 0.5], {"tol": -1.0}, ValueError, "tol must be positive"),
+    ([1.0, 0.5], {"maxiter": 0}, ValueError, "maxiter"),
+    ([1.0, 0.5], {"criterion": "size"}, ValueError, "criterion"),
+    ([0.0, 0.0], {}, SingularJacobianError, "singular Broyden matrix at iteration 0"),
+    ([1.0, 0.5], {"maxiter": 2}, ConvergenceError, "Broyden's method did not converge in 2"),
+])
+def test_broyden_rejects_bad_input_with_named_errors(x0, kwargs, error, match):
+    with pytest.raises(error, match=match):
+        broyden(circle_line, x0, circle_line_jac, **kwargs)
+
+
+def test_broyden_refuses_a_complex_residual():
+    with pytest.raises(ValueError, match="complex"):
+        broyden(lambda x: x ** 2 - 2 + 1j, [1.0])
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(1e-3, 1e3), b=st.floats(1e-3, 1e3), start=st.floats(0.8, 1.25))
+def test_broyden_finds_cube_roots_from_nearby(a, b, start):
+    roots = np.cbrt([a, b])
+    fun = lambda x: np.array([x[0] ** 3 - a, x[1] ** 3 + x[0] - b - roots[0]])  # noqa: E731
+    jac = lambda x: np.array([[3 * x[0] ** 2, 0.0], [1.0, 3 * x[1] ** 2]])  # noqa: E731
+    x0 = start * roots
+    try:
+        res = broyden(fun, x0, jac, tol=1e-12 * roots.max())
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result is not None  # a named failure carries the partial result
+        return
+    assert res.x.shape == (2,) and res.converged
+    np.testing.assert_allclose(res.x, roots, rtol=1e-9)
