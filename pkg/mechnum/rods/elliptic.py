@@ -214,14 +214,15 @@ def _branch(a, b, zeta):
     return v, 1.0 / math.cosh(zeta), math.sqrt(a * a + (b * v) ** 2)
 
 
-def _lambda_L(a, b, zeta, mode):
-    """``lambda L`` of the growing branch and its derivative in ``zeta``, for scalars."""
+def _lambda_L(a, b, zeta, mode, slope=True):
+    """``lambda L`` of the growing branch and (or 0) its derivative in ``zeta``, for scalars."""
     v, s, k = _branch(a, b, zeta)
     X, Z = max((s * a / k) ** 2, _TINY), s * s
     rf = float(elliprf(X, 1.0, Z))
     value = v / k * rf
-    slope = (Z * a * a / k ** 3 * rf + v * v * Z / (3.0 * k) *
-             (a * a * float(elliprd(1.0, Z, X)) / k ** 4 + float(elliprd(X, 1.0, Z))))
+    if slope:
+        slope = (Z * a * a / k ** 3 * rf + v * v * Z / (3.0 * k) *
+                 (a * a * float(elliprd(1.0, Z, X)) / k ** 4 + float(elliprd(X, 1.0, Z))))
     if mode > 1:   # the whole half-waves, 2 (mode - 1) K(k) with K = R_F(0, 1 - k**2, 1)
         kc2 = (b * s) ** 2
         value += 2.0 * (mode - 1) * float(elliprf(0.0, kc2, 1.0))
@@ -322,7 +323,7 @@ def _cantilever(EI, L, force, nodes, tol, maxiter):
     c, d = nx / R, ny / R               # cos(psi), sin(psi)
     Lam = L * math.sqrt(R / EI)
     v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, tol, maxiter))
-    G1 = b * b * v ** 3 * s * s / (3.0 * k ** 3) * float(elliprd((s * a / k) ** 2, 1.0, s * s))
+    G1 = _clamp_G(a, b, v, s, k)
     straight = c + 2.0 * (b * v) ** 2   # 2 k**2 - 1: the projection's rate along the force
 
     def state(sigma, eta, cos_t, G):    # (x, y, theta, m) where t has sin(t) = b eta / |k|
@@ -342,6 +343,26 @@ def _cantilever(EI, L, force, nodes, tol, maxiter):
         inner = np.column_stack(state(sigma, eta, cos_t, _arcs(b, s, k, eta, cos_t)[1]))
         ends = np.concatenate((ends[:1], inner, ends[1:]))
     return Rod(np.linspace(0.0, L, nodes), *ends.T, np.array([nx, ny]))
+
+
+def _clamp_G(a, b, v, s, k):
+    """``G(t1)``, the integral from the tip to the clamp (scalars)."""
+    return b * b * v ** 3 * s * s / (3.0 * k ** 3) * float(elliprd((s * a / k) ** 2, 1.0, s * s))
+
+
+def _growing_tip(psi, Lam):
+    """The growing branch at the force direction ``psi`` (any real) and ``lambda L = Lam``
+    (taken as ``|Lam|``, at most the closed form's range): ``(x(L) / L, y(L) / L, m(0) L / EI)``.
+    The chart of the default start of :func:`mechnum.rods.shoot_pinned`."""
+    half = 0.5 * math.remainder(psi, TWO_PI)          # psi / 2 in [-pi/2, pi/2]
+    sign = 1.0 if half >= 0 else -1.0
+    a, b = sign * math.cos(half), max(abs(math.sin(half)), _B_MIN)
+    Lam = min(max(abs(Lam), _TINY), _ZETA_MAX)
+    v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, 1e-14, 100))
+    c, d = math.cos(psi), math.sin(psi)
+    along = c + 2.0 * (b * v) ** 2 - 2.0 * k * k * _clamp_G(a, b, v, s, k) / Lam
+    across = -2.0 * sign * b * v / Lam
+    return along * c - across * d, along * d + across * c, 2.0 * Lam * sign * b * v
 
 
 def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):

@@ -490,41 +490,31 @@ def _pinned_start(EI, L, points, theta0):
     """The default start of :func:`shoot_pinned`: the closed-form cantilever through the point.
 
     A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
-    branch) under its tip force. Damped Newton drives the closed form's tip
-    (:func:`mechnum.rods.cantilever`) to the point in the variables ``(psi, lambda L)`` (the
-    force's direction in the clamp's frame and ``L sqrt(|n| / EI)``, in which the tip varies
-    smoothly from small to large loads), from linear beam theory: a transverse force
-    ``3 EI Y / L**3``, ``Y`` the point's offset from the clamp line. If Newton stops short (no
-    mode-1 rod reaches the point, or a nearly straight rod leaves its axial force
-    ill-determined), its best iterate is the start.
+    branch) under its tip force. Damped Newton drives the closed form's tip to the point in
+    the variables ``(psi, lambda L)`` (the force's direction in the clamp's frame and
+    ``L sqrt(|n| / EI)``, in which the tip varies smoothly from small to large loads), from
+    linear beam theory: a transverse force ``3 EI Y / L**3``, ``Y`` the
+    point's offset from the clamp line. If Newton stops short (no mode-1 rod reaches the point,
+    or a nearly straight rod leaves its axial force ill-determined), its best iterate is the
+    start.
     """
-    from mechnum.rods.elliptic import _cantilever   # the closed form builds on this module
+    from mechnum.rods.elliptic import _growing_tip   # the closed form builds on this module
 
     c, s = math.cos(theta0), math.sin(theta0)
     starts = np.empty((len(points), 3))
     for i, (px, py) in enumerate(points.tolist()):
-        X, Y = c * px + s * py, c * py - s * px               # the point in the clamp's frame
-
-        def rod(z):
-            force = z[1] ** 2 * EI / L ** 2 * np.array([math.cos(z[0]), math.sin(z[0])])
-            if force[1] == 0:
-                return integrate(EI, L, 0.0, force, nodes=2)
-            return _cantilever(EI, L, force, 2, 1e-14, 100)
+        X, Y = (c * px + s * py) / L, (c * py - s * px) / L   # the point in the clamp's frame
 
         def fun(z):      # z of shape (2,), or (1, 2) in the line search
-            try:
-                return np.reshape((rod(z.ravel()).tip - (X, Y)) / L, z.shape)
-            except ValueError:      # a load beyond the closed form: the line search backs off
-                return np.full(z.shape, np.nan)
+            return np.reshape(np.subtract(_growing_tip(*z.ravel())[:2], (X, Y)), z.shape)
 
-        z = np.array([math.copysign(0.5 * math.pi, Y), math.sqrt(3.0 * abs(Y) / L)])
+        z = np.array([math.copysign(0.5 * math.pi, Y), math.sqrt(3.0 * abs(Y))])
         try:
             z = newton.solve(fun, z, tol=START_TOL, maxiter=START_MAXITER, damping=True).x
         except MechnumError as error:  # the best iterate of an iteration that stopped short
             z = error.result.history[np.argmin(error.result.residual_norms)]
-        local = rod(z)
-        fx, fy = local.force
-        starts[i] = local.clamp_moment, c * fx - s * fy, s * fx + c * fy
+        m0, R = _growing_tip(*z)[2], EI * (z[1] / L) ** 2
+        starts[i] = m0 * EI / L, R * math.cos(z[0] + theta0), R * math.sin(z[0] + theta0)
     return starts
 
 
