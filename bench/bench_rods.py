@@ -15,6 +15,8 @@ module prints the ratios (package time over peer time, minimum over rounds) at i
 * **the closed-form tip**: ``cantilever(..., nodes=2)`` against the textbook closed form of
   Bisshopp and Drucker (Brent's method on ``K(k) - F(phi1, k) = sqrt(P L^2 / EI)``, then the
   tip). Target: ratio <= 2.
+* **one rod's sweep**: ``rods.integrate`` of one rod (RK4 on Python floats) against the
+  package's vectorised sweep on a batch of one (numpy).
 
 Run with ``make bench``, or ``pytest bench/bench_rods.py -o python_files='bench_*.py'
 --benchmark-only``. Timings on a shared machine are noisy: compare ratios from one run.
@@ -43,14 +45,15 @@ RESULTS = {}
 def ratios(request):
     """Print package time over peer time for every pair measured, at the module's end."""
     yield
-    report = request.config.pluginmanager.getplugin("terminalreporter")
-    if report is None:
-        return
-    report.write_line("\nbench_rods: time of mechnum / time of the peer (minimum over rounds)")
+    lines = ["", "bench_rods: time of mechnum / time of the peer (minimum over rounds)"]
     for (what, case), times in sorted(RESULTS.items()):
         if {"mechnum", "peer"} <= set(times):
-            report.write_line(f"  {what:34} {case:>10}   {times['mechnum'] * 1e3:8.3f} ms / "
-                              f"{times['peer'] * 1e3:8.3f} ms = {times['mechnum'] / times['peer']:.2f}")
+            ours, peer = times["mechnum"], times["peer"]
+            load = f"PL2/EI = {case:g}" if case else ""
+            lines.append(f"  {what:38} {load:>13}   {ours * 1e3:8.3f} ms / "
+                         f"{peer * 1e3:8.3f} ms = {ours / peer:.2f}")
+    with request.config.pluginmanager.getplugin("capturemanager").global_and_fixture_disabled():
+        print("\n".join(lines))
 
 
 def record(benchmark, what, case, who):
@@ -102,14 +105,14 @@ def test_cantilever_shooting(benchmark, alpha):
     nodes = CASES[alpha][0]
     res = benchmark(rods.shoot_cantilever, EI, L, [0.0, alpha], nodes=nodes)
     assert np.abs(res.rod.tip - exact(alpha).tip).max() <= TOL
-    record(benchmark, "cantilever, tip to 1e-10", f"PL2/EI={alpha:g}", "mechnum")
+    record(benchmark, "cantilever, tip to 1e-10", alpha, "mechnum")
 
 
 @pytest.mark.parametrize("alpha", CASES)
 def test_cantilever_solve_bvp(benchmark, alpha):
     res = benchmark(bvp_cantilever, alpha, CASES[alpha][2])
     assert res.status == 0 and np.abs(res.y[:2, -1] - exact(alpha).tip).max() <= TOL
-    record(benchmark, "cantilever, tip to 1e-10", f"PL2/EI={alpha:g}", "peer")
+    record(benchmark, "cantilever, tip to 1e-10", alpha, "peer")
 
 
 @pytest.mark.parametrize("alpha", CASES)
@@ -117,7 +120,7 @@ def test_pinned_shooting(benchmark, alpha):
     tip = exact(alpha).tip
     res = benchmark(rods.shoot_pinned, EI, L, tip, nodes=CASES[alpha][1])
     assert backward_error(res.rod.clamp_moment, res.rod.force, tip) <= TOL
-    record(benchmark, "pinned rod, tip to 1e-10", f"PL2/EI={alpha:g}", "mechnum")
+    record(benchmark, "pinned rod, tip to 1e-10", alpha, "mechnum")
 
 
 @pytest.mark.parametrize("alpha", CASES)
@@ -125,7 +128,7 @@ def test_pinned_solve_bvp(benchmark, alpha):
     tip = exact(alpha).tip
     res = benchmark(bvp_pinned, tip, CASES[alpha][3])
     assert res.status == 0 and backward_error(res.y[3, 0], res.p, tip) <= TOL
-    record(benchmark, "pinned rod, tip to 1e-10", f"PL2/EI={alpha:g}", "peer")
+    record(benchmark, "pinned rod, tip to 1e-10", alpha, "peer")
 
 
 def plain_float_shooting(alpha, nodes):
@@ -156,13 +159,13 @@ def plain_float_shooting(alpha, nodes):
 def test_overhead_shoot_cantilever(benchmark):
     res = benchmark(rods.shoot_cantilever, EI, L, [0.0, 1.0], nodes=41)
     assert np.abs(res.rod.tip - plain_float_shooting(1.0, 41)).max() < 1e-12
-    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", "", "mechnum")
+    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", 0, "mechnum")
 
 
 def test_overhead_plain_floats(benchmark):
     tip = benchmark(plain_float_shooting, 1.0, 41)
     assert abs(tip[1] - exact(1.0).tip[1]) < 3e-9
-    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", "", "peer")
+    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", 0, "peer")
 
 
 def textbook_tip(alpha):
@@ -185,14 +188,31 @@ def textbook_tip(alpha):
 def test_tip_closed_form(benchmark, alpha):
     rod = benchmark(rods.cantilever, EI, L, [0.0, alpha], nodes=2)
     assert np.abs(rod.tip - textbook_tip(alpha)).max() < 1e-14
-    record(benchmark, "closed-form tip", f"PL2/EI={alpha:g}", "mechnum")
+    record(benchmark, "closed-form tip", alpha, "mechnum")
 
 
 @pytest.mark.parametrize("alpha", [0.1, 1.0, 5.0, 15.0])
 def test_tip_textbook(benchmark, alpha):
     tip = benchmark(textbook_tip, alpha)
     assert np.abs(np.array(tip) - exact(alpha).tip).max() < 1e-14
-    record(benchmark, "closed-form tip", f"PL2/EI={alpha:g}", "peer")
+    record(benchmark, "closed-form tip", alpha, "peer")
+
+
+def test_sweep_one_rod_on_floats(benchmark):
+    rod = benchmark(rods.integrate, EI, L, 2.0, [0.0, 5.0], nodes=201)
+    assert rod.x.shape == (201,)
+    record(benchmark, "one rod, 200 RK4 steps (peer: numpy)", 0, "mechnum")
+
+
+def test_sweep_one_rod_vectorised(benchmark):
+    # the package's own vectorised sweep on a batch of one: what a single rod cost before
+    from mechnum.rods.shooting import _sweep
+
+    args = (np.ones(1), np.ones(1), np.full(1, 2.0), np.array([[0.0, 5.0]]), np.zeros(1),
+            np.zeros((1, 2)), 201)
+    Y = benchmark(_sweep, *args)
+    assert np.abs(Y[0, :, 0] - rods.integrate(EI, L, 2.0, [0.0, 5.0], nodes=201).x).max() < 1e-13
+    record(benchmark, "one rod, 200 RK4 steps (peer: numpy)", 0, "peer")
 
 
 def test_closed_form_41_nodes(benchmark):

@@ -58,7 +58,8 @@ def test_batch_equals_separate_runs_and_backward_grid():
 def test_complex_states_give_complex_step_derivatives():
     h = 1e-30
     y = rk4(pendulum, [2.0 + 1j * h, 0.0], np.linspace(0.0, 1.0, 21))[-1]
-    up, down = (rk4(pendulum, [2.0 + d, 0.0], np.linspace(0.0, 1.0, 21))[-1] for d in (1e-6, -1e-6))
+    up, down = (rk4(pendulum, [2.0 + d, 0.0], np.linspace(0.0, 1.0, 21))[-1]
+                for d in (1e-6, -1e-6))
     assert_allclose(y.imag / h, (up - down).real / 2e-6, rtol=1e-8)
 
 

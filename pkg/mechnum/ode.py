@@ -1,4 +1,4 @@
-"""Ordinary differential equations: fixed-step RK4, and boundary value problems by multiple shooting.
+"""Ordinary differential equations: fixed-step RK4, and two-point boundary value problems.
 
 :func:`rk4` is the classical fourth-order Runge-Kutta method on a given grid of nodes, the
 integrator of the flexible-rod study (its equations (81) to (85)). It is vectorised: the state

@@ -4,8 +4,8 @@ The thesis's first program (its Annex II, 1.1 and 1.2) solves a rod clamped at t
 along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) of length
 1 m and circular section of diameter 2 mm, 61 RK4 nodes, initial guesses
 ``m0 = 0.1`` N m and ``n0 = (0.1, 0.1)`` N, tolerance ``1e-7``. Its Newton loop is not the
-plain one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences with
-a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
+one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
+with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
 loop, on the package's RK4 rod (:func:`mechnum.rods.shooting.integrate`).
 """
@@ -26,6 +26,7 @@ TARGET = np.array([0.8, 0.1])                 # m, the pinned tip
 GUESS = np.array([0.1, 0.1, 0.1])             # (m0 [N m], n_x [N], n_y [N]), the study's
 TOL = 1e-7
 FD_STEP = 1e-10
+HALVING_FLOOR = 1e-3                          # the study's: halve a step while |delta| > 1e-3 tol
 _MAX_COND = 1.0 / np.finfo(float).eps         # a Jacobian past this condition has no digit left
 
 # The thesis's budget (its Section 14 and Tabla 9), as its text states it: two annual Matlab
@@ -133,7 +134,8 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
         delta = -np.linalg.solve(jac, resid0)
         p = p + delta
         resid = _residual(p[None], target, ei, length, nodes)[0][0]
-        while np.max(np.abs(resid)) > np.max(np.abs(resid0)) and np.max(np.abs(delta)) > tol * 1e-3:
+        while (np.max(np.abs(resid)) > np.max(np.abs(resid0))
+               and np.max(np.abs(delta)) > tol * HALVING_FLOOR):
             delta = 0.5 * delta
             p = p - delta
             resid = _residual(p[None], target, ei, length, nodes)[0][0]
@@ -154,7 +156,7 @@ def _q(rod):
 
 
 def budget():
-    """The thesis's budget (Section 14, Tabla 9) recomputed from the hours and rates its text states.
+    """The thesis's budget (Section 14, Tabla 9), recomputed from the hours and rates it states.
 
     Returns
     -------

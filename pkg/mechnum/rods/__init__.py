@@ -33,8 +33,10 @@ parameter ``m = k**2``. To place a closed-form rod clamped at ``(x0, y0)`` at an
 force direction relative to the clamped tangent.
 
 Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_jacobian`,
-the shooting solvers) and :mod:`mechnum.rods.elliptic` (the closed form, its inverse maps and
-:func:`pinned_equilibria`); everything is importable from :mod:`mechnum.rods`. In a Newton
+the shooting solvers, single and multiple) and :mod:`mechnum.rods.elliptic` (the closed form
+as the study prints it, its inverse maps, :func:`pinned_equilibria`, and the growing branch in
+a chart that holds every digit, behind :func:`cantilever`); everything is importable from
+:mod:`mechnum.rods`. In a Newton
 loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of all rods:
 one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little more than
 one rod (the cost of a sweep is per numpy call, not per rod).
@@ -44,6 +46,8 @@ import numpy as np
 
 from mechnum import _validate
 from mechnum.rods.elliptic import (
+    CLOSED_FORM_MAXITER,
+    CLOSED_FORM_TOL,
     TWO_PI,
     EllipticRod,
     NoEquilibriumError,
@@ -129,4 +133,4 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
         return integrate(EI, L, 0.0, force, nodes=nodes)
     if method == "shooting":
         return shoot_cantilever(EI, L, force, nodes=nodes).rod
-    return _cantilever(EI, L, force, nodes, 1e-14, 100)
+    return _cantilever(EI, L, force, nodes, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER)

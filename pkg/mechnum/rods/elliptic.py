@@ -206,6 +206,12 @@ _TAN_LIMIT = 1.5  # the start's beam-column law arctan(...) is used below the Eu
 _TANH_LIMIT = 0.999  # and kept away from zeta = infinity
 _B_MIN = 1e-150  # below, sin(psi/2)**2 underflows; the rod deflects by less than b L: none
 _SMALL_STEP = 1e-8  # a Newton step below 1e-8 t1 leaves an error near 1e-16 t1 (quadratic rate)
+CLOSED_FORM_TOL = 1e-14  # relative residual of lambda L at which the cantilever's modulus is kept
+CLOSED_FORM_MAXITER = 100  # Newton-bisection steps for it: bisection alone needs some 60
+# pinned_equilibria: |k_rel| = logistic(z), clipped where it is within 1e-11 of 0 or 1 (the chart
+# is flat beyond); Newton's most steps from a grid cell; a root is kept if its tip is within
+# 1e-10 L of the point; two roots equal to 9 digits are one
+_LOGIT_CLIP, _POLISH_MAXITER, _TIP_ACCEPT, _SAME_DIGITS = 25.0, 60, 1e-10, 9
 
 
 def _branch(a, b, zeta):
@@ -358,7 +364,7 @@ def _growing_tip(psi, Lam):
     sign = 1.0 if half >= 0 else -1.0
     a, b = sign * math.cos(half), max(abs(math.sin(half)), _B_MIN)
     Lam = min(max(abs(Lam), _TINY), _ZETA_MAX)
-    v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, 1e-14, 100))
+    v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER))
     c, d = math.cos(psi), math.sin(psi)
     along = c + 2.0 * (b * v) ** 2 - 2.0 * k * k * _clamp_G(a, b, v, s, k) / Lam
     across = -2.0 * sign * b * v / Lam
@@ -415,7 +421,7 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
     >>> round(float(rod.R), 12), np.round(rod.tip, 5).tolist()
     (1.0, [0.94357, 0.30172])
     """
-    EI, L, R = (_validate.positive(value, name) for value, name in ((EI, "EI"), (L, "L"), (R, "R")))
+    EI, L, R = (_validate.positive(v, name) for v, name in ((EI, "EI"), (L, "L"), (R, "R")))
     psi, mode = _angles(psi), _mode(mode)
     tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
     EI, L, R, psi, mode = np.broadcast_arrays(EI, L, R, psi, mode)
@@ -429,13 +435,13 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
         if target <= low:
             raise NoEquilibriumError(
                 f"mode {mode[i]:.0f} needs R > {EI[i] * (low / L[i]) ** 2:.6g} N at "
-                f"psi = {psi[i]!r}, got R = {R[i]!r}")
+                f"psi = {psi[i]:.6g}, got R = {R[i]:.6g}")
         v, _, k = _branch(a, b, _zeta(a, b, target, int(mode[i]), tol, maxiter))
         k_rel[i] = (1.0 if a >= 0 else -1.0) * v * v * (1.0 + abs(a)) / (k + abs(a))
         if not _TINY <= abs(k_rel[i]) < 1.0:
             raise ValueError(
-                f"R L^2/EI = {target ** 2:.6g} at psi = {psi[i]!r}: k_rel = {k_rel[i]!r} is "
-                f"not representable in double precision (it rounds to +-1 or underflows); "
+                f"R L^2/EI = {target ** 2:.6g} at psi = {psi[i]:.6g}: k_rel = {k_rel[i]:.17g} "
+                f"is not representable in double precision (it rounds to +-1 or underflows); "
                 f"use rods.cantilever or rods.shoot_cantilever for this rod")
     return k_rel
 
@@ -544,21 +550,22 @@ def pinned_equilibria(EI, L, tip, modes=(1, 2, 3), *, n_psi=120, n_k=80, tol=1e-
             sign = np.sign(K[i, j])
 
             def unpack(z, sign=sign):   # psi free (wrapped), |k_rel| = logistic(z[1])
-                return np.mod(z[0], TWO_PI), sign * expit(np.clip(z[1], -25.0, 25.0))
+                return np.mod(z[0], TWO_PI), sign * expit(np.clip(z[1], -_LOGIT_CLIP,
+                                                                  _LOGIT_CLIP))
 
             def fun(z, mode=mode, unpack=unpack):
                 return clamped_pinned(EI, L, *unpack(z), mode).tip - tip
 
             z0 = [P[i, j], np.log(abs(K[i, j]) / (1 - abs(K[i, j])))]
             try:
-                z = newton.solve(fun, z0, tol=tol, maxiter=60).x
+                z = newton.solve(fun, z0, tol=tol, maxiter=_POLISH_MAXITER).x
             except (MechnumError, ValueError):
                 continue
-            if np.linalg.norm(fun(z)) < 1e-10 * L:
+            if np.linalg.norm(fun(z)) < _TIP_ACCEPT * L:
                 found.append((*unpack(z), mode))
     if not found:
         return np.empty((0, 3))
     found = np.array(found, dtype=float)   # the same root from two cells: keep one, unrounded
-    sols = found[np.unique(np.round(found, 9), axis=0, return_index=True)[1]]
+    sols = found[np.unique(np.round(found, _SAME_DIGITS), axis=0, return_index=True)[1]]
     R = clamped_pinned(EI, L, sols[:, 0], sols[:, 1], sols[:, 2]).R
     return sols[np.lexsort((R, sols[:, 2]))]

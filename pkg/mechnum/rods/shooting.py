@@ -8,15 +8,16 @@ start that lands on the intended equilibrium.
 **Two sweeps, one algorithm.** A batch of rods advances in one vectorised sweep of
 :func:`mechnum.ode.rk4` (arrays of shape ``(batch, 4)``). One rod alone takes the same RK4
 steps on Python floats (:func:`_sweep_one`): a numpy call costs about a microsecond whatever
-its size, a rod has four states, and the float sweep is some fifteen times faster. The tests
-hold the two to the same digits.
+its size, a rod has four states, and the float sweep is an order of magnitude faster
+(``bench/bench_rods.py``). The tests hold the two to the same digits.
 
-**What shooting can resolve.** The tip depends on the clamp moment through the whole rod:
-``d m(L) / d m0`` grows like ``exp(lambda L)`` with ``lambda = sqrt(|n| / EI)``, so the
-rounding of ``m0`` reaches the tip multiplied by that factor. Newton stops when the residual
-is below ``tol`` or below that floor (:data:`ROUNDOFF_FACTOR` ulps of the start's moments,
-amplified), and refuses a rod whose floor exceeds :data:`MAX_FLOOR`: beyond it, multiple
-shooting (:func:`shoot_pinned_multiple`) or the closed form is needed.
+**What shooting can resolve.** The tip depends on the clamp moment through the whole rod, and
+``d m(L) / d m0`` grows quickly with the load (about ``1e4`` at ``lambda L = 10``, with
+``lambda = sqrt(|n| / EI)``; without bound on a grid too coarse for RK4), so the rounding of
+``m0`` reaches the tip multiplied by that factor. Newton stops when the residual is below
+``tol`` or below that floor (:data:`ROUNDOFF_FACTOR` ulps of the start's unknowns, amplified
+by the start's Jacobian), and refuses a rod whose floor exceeds :data:`MAX_FLOOR`: beyond it,
+multiple shooting (:func:`shoot_pinned_multiple`), more nodes or the closed form is needed.
 """
 
 import cmath
@@ -348,12 +349,13 @@ def _floor(J, scale_in, scale_out, p):
 
 
 def _solve(fun, jac, x0, tol, floor, maxiter, what, damping=True):
-    """Damped Newton from ``x0`` (batch, k): one system by ``solve``, a batch by ``solve_batch``."""
+    """Damped Newton from ``x0`` (batch, k): one system by ``solve``, a batch by
+    ``solve_batch``; the tolerance is raised to the rounding floor ``floor``."""
     if floor > MAX_FLOOR:
         raise ConvergenceError(
-            f"{what}: rounding in the unknowns reaches the tip amplified by {floor / _EPS / ROUNDOFF_FACTOR:.3g} "
-            f"(d tip / d unknowns): single shooting cannot resolve this rod (use multiple "
-            f"shooting or the closed form)")
+            f"{what}: rounding in the unknowns reaches the tip amplified by "
+            f"{floor / _EPS / ROUNDOFF_FACTOR:.3g} (d tip / d unknowns): single shooting cannot "
+            f"resolve this rod (use more nodes, multiple shooting or the closed form)")
     tol = max(tol, floor)
     if len(x0) == 1:
         k = x0.shape[1]
@@ -368,14 +370,15 @@ def _solve(fun, jac, x0, tol, floor, maxiter, what, damping=True):
 
 def _cantilever_start(EI, L, forces, theta0):
     """The clamp moments of the closed-form cantilevers (mode 1) under ``forces`` (batch, 2)."""
-    from mechnum.rods.elliptic import _cantilever   # the closed form builds on this module
+    # the closed form builds on this module: import it here
+    from mechnum.rods.elliptic import CLOSED_FORM_MAXITER, CLOSED_FORM_TOL, _cantilever
 
     c, s = math.cos(theta0), math.sin(theta0)
     m0 = np.zeros(len(forces))
     for i, (nx, ny) in enumerate(forces.tolist()):
         local = (c * nx + s * ny, c * ny - s * nx)
         if local[1] != 0:
-            m0[i] = _cantilever(EI, L, local, 2, 1e-14, 100).m[0]
+            m0[i] = _cantilever(EI, L, local, 2, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER).m[0]
     return m0
 
 
@@ -542,10 +545,11 @@ def shoot_pinned(EI, L, tip, guess=None, *, theta0=0.0, nodes=41, tol=1e-12, max
     The unknowns are ``p = (m0, n_x, n_y)``; damped Newton drives the residual
     ``((x(L) - x_t) / L, (y(L) - y_t) / L, m(L) L / EI)`` to zero with the exact Jacobian of
     :func:`tip_jacobian`. A pinned point has many equilibria (buckling modes, both senses of
-    bending): the start selects one. The default start bends the rod towards the point by
-    linear beam theory and solves on a coarse grid of :data:`COARSE_NODES` nodes first (see
-    :func:`_pinned_start`), which leads to the rod of least bending (mode 1 where the point
-    admits one).
+    bending): the start selects one. The default start is the closed-form cantilever (mode 1,
+    the growing branch) whose tip is at the point, found by damped Newton from linear beam
+    theory (:func:`_pinned_start`): it leads to the mode-1 rod where the point admits one and
+    Newton reaches it (a point near the reach ``L`` in near tension may defeat it: the force of
+    a nearly straight rod is ill-determined by its tip).
 
     Parameters
     ----------
