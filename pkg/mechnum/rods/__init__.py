@@ -36,10 +36,10 @@ Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_j
 the shooting solvers, single and multiple) and :mod:`mechnum.rods.elliptic` (the closed form
 as the study prints it, its inverse maps, :func:`pinned_equilibria`, and the growing branch in
 a chart that holds every digit, behind :func:`cantilever`); everything is importable from
-:mod:`mechnum.rods`. In a Newton
-loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of all rods:
-one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little more than
-one rod (the cost of a sweep is per numpy call, not per rod).
+:mod:`mechnum.rods`. In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian`
+once on the batch of all rods: one sweep gives every tip and every
+``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per
+numpy call, not per rod).
 """
 
 import numpy as np
@@ -61,7 +61,6 @@ from mechnum.rods.elliptic import (
 from mechnum.rods.shooting import (
     Rod,
     Shooting,
-    _vectors,
     integrate,
     shoot_cantilever,
     shoot_pinned,
@@ -69,7 +68,7 @@ from mechnum.rods.shooting import (
     tip_jacobian,
 )
 
-__all__ = ["EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "TWO_PI", "cantilever",
+__all__ = ["EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
            "clamped_pinned", "elliptic_k", "elliptic_parameters", "integrate",
            "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
            "shoot_pinned_multiple", "tip_jacobian"]
