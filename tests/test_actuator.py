@@ -275,13 +275,18 @@ def test_newton_slows_to_a_linear_rate_at_a_dead_point():
 
 @MANY
 @given(mechanisms(), st.floats(0.0, 1.0), st.floats(-0.2, 0.2), st.floats(-0.2, 0.2))
-def test_newton_from_a_near_guess_finds_the_triangles_pose(mech, u, e2, e4):
+def test_newton_from_a_near_guess_closes_the_loop(mech, u, e2, e4):
+    # From 0.2 rad off, Newton closes the loop, but on a slim triangle (a short crank b) the
+    # start may lie in the basin of the other assembly mode: the defining property is the loop
+    # closing; from a start close enough (1e-3 rad) it is the triangle's own pose.
     low, high = reach(mech)
     a = low + (high - low) * (0.1 + 0.8 * u)
     exact = np.array(positions(a, mech))
     res = solve_loop(a, mech, x0=exact + [e2, e4])
     assert res.converged
-    assert_allclose(res.x, exact, atol=1e-9)
+    assert_allclose(loop_residual(res.x, a, mech), 0.0, atol=1e-10 * (a + mech.l))
+    near = solve_loop(a, mech, x0=exact + 1e-3 * np.sign([e2, e4]))
+    assert_allclose(near.x, exact, atol=1e-9)
 
 
 # --- kinematics ----------------------------------------------------------------------------

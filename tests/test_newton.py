@@ -428,3 +428,14 @@ def test_broyden_finds_cube_roots_from_nearby(a, b, start):
         return
     assert res.x.shape == (2,) and res.converged
     np.testing.assert_allclose(res.x, roots, rtol=1e-9)
+
+
+def test_max_step_bounds_every_step():
+    res = solve(atan_system, [1.5], atan_jac, max_step=0.5, tol=1e-14)
+    assert res.converged and abs(res.x[0]) < 1e-14
+    assert np.all(res.step_norms <= 0.5 + 1e-15) and res.step_norms[0] == pytest.approx(0.5)
+    batch = solve_batch(lambda x: np.arctan(x), [[1.5], [-3.0]],
+                        lambda x: (1 / (1 + x ** 2))[:, :, None], max_step=0.5, tol=1e-14)
+    assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
+    with pytest.raises(ValueError, match="max_step must be positive"):
+        solve(atan_system, [1.5], atan_jac, max_step=0.0)

@@ -16,7 +16,7 @@ def test_animation_is_self_contained_html():
     assert isinstance(html, JSAnimation) and html._repr_html_() == str(html)
     assert "http" not in html and 'class="fa ' not in html
     assert html.count("data:image/png;base64") == 4
-    assert not plt.get_fignums()  # the figure was closed
+    assert not plt.fignum_exists(fig.number)  # the figure was closed
 
 
 def line_animation(frames):

@@ -317,7 +317,8 @@ def _line_search(fun, x, fx, dx, moving, rnorm, tol, norm, domain):
     return x_new, fx_new, np.where(pending, failed, ""), calls
 
 
-def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False):
+def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False,
+          max_step=None):
     """Solve ``fun(x) = 0`` by Newton-Raphson.
 
     Parameters
@@ -339,6 +340,10 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
     damping : bool, optional
         Backtrack along each step until ``||f||`` decreases (see the module's description);
         raise :class:`~mechnum.errors.ConvergenceError` if no step length decreases it.
+    max_step : float, optional
+        Shorten every Newton step to at most this size (largest component) before anything
+        else: a start far from the root then moves towards it in bounded strides, where a full
+        step could leap across a periodic or unbounded variable to a far, wrong basin.
 
     Returns
     -------
@@ -371,10 +376,20 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
     (True, True)
     """
     return _iterate(fun, x0, lambda x, fx: _jacobian(jac, fun, x), tol, maxiter, criterion, norm,
-                    damping, "Newton", "Jacobian")
+                    damping, "Newton", "Jacobian", max_step)
 
 
-def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, what):
+def _bounded(dx, max_step):
+    """The steps ``dx`` (one per row), each shortened to at most ``max_step`` in its largest
+    component; all of them if ``max_step`` is None."""
+    if max_step is None:
+        return dx
+    largest = np.max(np.abs(dx), axis=-1, keepdims=True)
+    return dx * np.minimum(1.0, max_step / np.maximum(largest, _TINY))
+
+
+def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, what,
+             max_step=None):
     """The iteration of :func:`solve` and :func:`broyden`: step ``dx`` solves
     ``matrix(x, fx) dx = -fx``, where ``matrix`` is the Jacobian (Newton) or its update
     (Broyden), the ``what`` of the error messages."""
@@ -382,6 +397,7 @@ def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, wh
     if x.size == 0:
         raise ValueError("x0 must have shape (n,) with n >= 1, got shape (0,)")
     tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
+    max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     history, residuals, steps = [x], [], []
     converged = singular = stagnated = False
     fx = _evaluate(fun, x, "fun")
@@ -398,6 +414,7 @@ def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, wh
         dx, singular, cond = _newton_step(matrix(x, fx), fx)
         if singular:
             break
+        dx = _bounded(dx, max_step)
         if damping:  # the batched line search, on a batch of this one system
             new, f_new, failed, _ = _line_search(lambda z: fun(z[0])[None], x[None], fx[None],
                                                  dx[None], np.ones(1, bool), residuals[-1:],
@@ -495,7 +512,7 @@ def broyden(fun, x0, jac=None, *, tol=1e-10, maxiter=100, criterion="step", norm
 
 
 def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
-                damping=False, domain=None, raise_on_failure=True):
+                damping=False, domain=None, raise_on_failure=True, max_step=None):
     """Solve ``batch`` independent systems ``fun(x)[b] = 0`` at once by Newton-Raphson.
 
     Every system takes the step of :func:`solve`; a system that meets the criterion (or fails)
@@ -511,7 +528,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         Initial guesses; must be finite and real. An empty batch is valid.
     jac : callable, optional
         ``jac(x) -> ndarray (batch, n, n)``. Default: :func:`fd_jacobian`.
-    tol, maxiter, criterion, norm, damping
+    tol, maxiter, criterion, norm, damping, max_step
         As in :func:`solve`, applied to each system; with damping, a system whose line search
         stagnates gets the status "stagnated".
     domain : callable, optional
@@ -554,6 +571,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     if x.shape[1] == 0:
         raise ValueError(f"x0 must have shape (batch, n) with n >= 1, got shape {x.shape}")
     tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
+    max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     batch = len(x)
     iterations = np.zeros(batch, dtype=int)
     status = np.full(batch, "", dtype="<U11")  # "" while a system is running
@@ -585,6 +603,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
             singular = active.copy()
             singular[active] = stuck
             stop(singular, "singular")
+        dx = _bounded(dx, max_step)
         if damping:
             x_new, fx_new, failed, calls = _line_search(fun, x, fx, dx, running, rnorm, tol, norm,
                                                         domain)

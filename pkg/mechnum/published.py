@@ -50,6 +50,7 @@ FINDING_COLUMNS = ("finding", "chapter", "seeds", "what", "where", "proof")
 ``finding``), its chapter, the studies it concerns, what it is, where the study prints it, and
 how the chapter proves it (one sentence each)."""
 _EXACT_ZERO = 1e-12  # a printed "0" is met by round-off of unit-sized quantities
+_EPS = float(np.finfo(float).eps)
 
 
 def half_unit(printed):
@@ -67,6 +68,14 @@ def half_unit(printed):
     if number is None or not number.is_finite():
         raise ValueError(f"not a printed number: {printed!r}")
     return 0.5 * 10.0 ** number.as_tuple().exponent
+
+
+def _within_half_unit(value, printed):
+    """``|value - printed| <= half a unit of its last digit``, allowing for the binary rounding
+    of both numbers (the printed decimal is itself a float)."""
+    number = float(printed)
+    slack = 4 * _EPS * max(abs(value), abs(number))
+    return bool(abs(value - number) <= half_unit(printed) + slack)
 
 
 def is_claim(published):
@@ -97,13 +106,13 @@ def agrees(published, value):
     if not is_claim(published):
         raise ValueError(f"not a printed number or numeric claim: {published!r}")
     if published.startswith("<"):
-        return abs(value) < float(published[1:])
+        return bool(abs(value) < float(published[1:]))
     if published.startswith("~"):
         magnitude = float(published[1:])
-        return magnitude <= abs(value) < 10 * magnitude
+        return bool(magnitude <= abs(value) < 10 * magnitude)
     if published.strip() in ("0", "-0", "+0"):
-        return abs(value) < _EXACT_ZERO
-    return abs(value - float(published)) <= half_unit(published) * (1 + 1e-9)
+        return bool(abs(value) < _EXACT_ZERO)
+    return _within_half_unit(value, published)
 
 
 def below(value, bound):
@@ -204,7 +213,7 @@ def check_row(row, value):
         if not abs(value) < float(computed[1:]):
             raise AssertionError(f"{name}: the registry bounds it by {computed}, "
                                  f"the package gives {value!r}")
-    elif abs(value - float(computed)) > half_unit(computed) * (1 + 1e-9):
+    elif not _within_half_unit(value, computed):
         raise AssertionError(f"{name}: the registry says {computed}, the package gives {value!r}")
     if row["verdict"] in AGREEING:
         if value is None or not agrees(published, value):
