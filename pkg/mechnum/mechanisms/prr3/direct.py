@@ -124,7 +124,7 @@ def _candidates(psi, c, A):
     their dimensionless determinant is below :data:`_CRAMER_DET` (then it is NaN); candidates
     1 and 2 are the intersections of the two circles whose centres are farthest apart, which
     still works where the radical axes are parallel (the study's "singular position"). The
-    caller keeps those that close all three loops.
+    caller keeps those that close all three loops. The dimensionless determinant is returned too.
     """
     centres = _centres(psi, c, A)
     M, b, det, scaled = _radical_axes(centres)
@@ -140,7 +140,7 @@ def _candidates(psi, c, A):
     h = np.sqrt(np.maximum(1.0 - half ** 2, 0.0)) / np.maximum(2 * half, np.finfo(float).tiny)
     normal = np.stack([-d[..., 1], d[..., 0]], -1) * h[..., None]
     mid = start + d / 2
-    return np.stack([linear, mid + normal, mid - normal], axis=-2)
+    return np.stack([linear, mid + normal, mid - normal], axis=-2), scaled
 
 
 def _wrap(psi):
@@ -251,19 +251,24 @@ def direct(lambdas, geometry, *, imag_tol=IMAG_TOL, residual_tol=RESIDUAL_TOL):
     real = np.abs(psi.imag) <= imag_tol
     root_row = np.nonzero(real)[0]  # the input of each real root, flattened
     psi = _wrap(psi[real].real)
-    points = _candidates(psi, local[root_row] / ell, A / ell)
+    points, elimination = _candidates(psi, local[root_row] / ell, A / ell)
     points = points * geometry.L + c[rows[root_row], None, 0, :]  # back to the fixed frame
     flat = np.concatenate([points, np.broadcast_to(psi[:, None, None], (len(psi), 3, 1))], -1)
     own = batch[rows[root_row], None, :]
     flat_res = _residual_norms(flat, own, geometry)
-    near = (flat_res > _EXACT) & (flat_res < _CANDIDATE)
-    if near.any():  # roots blurred by a multiple root: polish them on the loop equations
+    # Each root keeps its best candidate; all three only where the elimination is singular (to
+    # the angle's uncertainty, IMAG_TOL): there alone can two poses share an angle. The others
+    # are copies of the best or miss; polishing them could land on a neighbouring root's pose.
+    kept = (np.arange(3) == np.argmin(flat_res, axis=1)[:, None]) | \
+        (np.abs(elimination) <= IMAG_TOL)[:, None]
+    near = kept & (flat_res > _EXACT) & (flat_res < _CANDIDATE)
+    if near.any():  # roots blurred by round-off or a multiple root: polish on the loop equations
         which = np.nonzero(near)
         polished = _polish(flat[which], own[which[0], 0], geometry)
         polished[:, 2] = _wrap(polished[:, 2])
         flat[which] = polished
         flat_res[which] = _residual_norms(polished, own[which[0], 0], geometry)
-    valid = flat_res <= residual_tol
+    valid = kept & (flat_res <= residual_tol)
     found, res, index = flat[valid], flat_res[valid], rows[root_row][np.nonzero(valid)[0]]
     keep = _distinct(found, res, index, geometry.L)
     order = np.lexsort((found[keep, 2], index[keep]))
