@@ -229,6 +229,15 @@ class PolynomialSystem:
             raise ValueError(f"every exponent tuple must have the same length, got {widths}")
         return cls(tuple(terms))
 
+    def __post_init__(self):
+        # all the terms of all the equations stacked, so that evaluating the system is a few
+        # array operations: exponents (T, n), coefficients (T,), and which equation (E, T)
+        exponents = np.concatenate([e for e, _ in self.terms])
+        which = np.repeat(np.arange(len(self.terms)), [len(c) for _, c in self.terms])
+        object.__setattr__(self, "_exponents", exponents)
+        object.__setattr__(self, "_coefficients", np.concatenate([c for _, c in self.terms]))
+        object.__setattr__(self, "_sum", (which == np.arange(len(self.terms))[:, None]) * 1.0)
+
     @property
     def n(self):
         """The number of unknowns."""
@@ -247,20 +256,20 @@ class PolynomialSystem:
     def __call__(self, x):
         """The equations at ``x`` of shape ``(..., n)``: shape ``(..., len(terms))``."""
         x = np.asarray(x, dtype=complex)
-        return np.stack([np.prod(x[..., None, :] ** e, axis=-1) @ c for e, c in self.terms], -1)
+        monomials = np.prod(x[..., None, :] ** self._exponents, axis=-1)
+        return (monomials * self._coefficients) @ self._sum.T
 
     def jacobian(self, x):
         """The Jacobian at ``x`` of shape ``(..., n)``: shape ``(..., len(terms), n)``."""
         x = np.asarray(x, dtype=complex)
-        rows = []
-        for e, c in self.terms:
-            columns = []
-            for j in range(self.n):
-                lower = e.copy()
-                lower[:, j] = np.maximum(lower[:, j] - 1, 0)
-                columns.append(np.prod(x[..., None, :] ** lower, axis=-1) @ (c * e[:, j]))
-            rows.append(np.stack(columns, -1))
-        return np.stack(rows, -2)
+        E = self._exponents
+        powers = x[..., None, :] ** E  # (..., T, n)
+        lower = x[..., None, :] ** np.maximum(E - 1, 0)
+        # d/dx_j of a monomial: E_j x_j^(E_j - 1) times the other factors, for every j at once
+        factors = np.where(np.eye(self.n, dtype=bool), lower[..., :, None, :],
+                           powers[..., :, None, :])  # (..., T, j, k)
+        slopes = E * np.prod(factors, axis=-1) * self._coefficients[:, None]
+        return np.einsum("et,...tj->...ej", self._sum, slopes)
 
     def homogenized(self):
         """The system in ``n + 1`` unknowns ``(x0, x1, ..., xn)``, each term multiplied by
