@@ -23,6 +23,8 @@ The loop-closure equations, with the bar angles eliminated, are ``|P_i - C_i|^2 
 * :mod:`~mechnum.mechanisms.prr3.direct`: the direct problem (inputs -> poses), at most 6
   poses, for one input or thousands at once (:func:`direct`), and Newton from many starts as
   a check (:func:`direct_by_newton`);
+* :mod:`~mechnum.mechanisms.prr3.paths`: a path of poses between two assembly modes of one
+  input that crosses no singularity (:func:`mode_change_path`);
 * :mod:`~mechnum.mechanisms.prr3.study`: the study's examples (:data:`EXAMPLES`) and
   :func:`reproduce`.
 """
@@ -34,10 +36,11 @@ from mechnum.mechanisms.prr3.geometry import (Geometry, bars, direct_jacobian, d
                                               inverse_jacobian, jacobian_dets, loop_residuals,
                                               radicands, sliders, vertices)
 from mechnum.mechanisms.prr3.inverse import branch_inputs, inverse, workspace
+from mechnum.mechanisms.prr3.paths import mode_change_path
 from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, reproduce
 
 __all__ = ["DirectSolution", "EXAMPLES", "Geometry", "WORKSPACE_GEOMETRY", "bars",
            "branch_inputs", "deflate", "direct", "direct_by_newton", "direct_jacobian", "draw",
-           "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals",
+           "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals", "mode_change_path",
            "polynomial", "radicands", "reproduce", "sliders", "solutions_from_equations",
            "vertices", "workspace"]
