@@ -478,3 +478,57 @@ def test_reproduce_gives_every_quantity_of_the_chapter():
     values = prr3.reproduce()
     assert all(np.isfinite(v) for v in values.values())
     assert values["Tabla 3 number of solutions"] == 8 == values["Tabla 4 number of solutions"]
+
+
+# --- singularity-free paths ---------------------------------------------------------------
+
+def _assert_singularity_free(path, g, signs):
+    dense = np.concatenate([a + np.linspace(0, 1, 50)[:, None] * (b - a)
+                            for a, b in zip(path[:-1], path[1:])])
+    lam = prr3.branch_inputs(dense, g, signs)
+    assert np.all(prr3.radicands(dense, g) > 0)
+    dets = prr3.jacobian_dets(dense, lam, g)[1]
+    assert np.all(np.sign(dets) == np.sign(dets[0])) and np.all(np.abs(dets) > 0)
+
+
+def test_mode_change_path_joins_two_assembly_modes_of_one_input():
+    g, signs = TABLE_5, (1, 1, 1)
+    lam0 = np.array([3.1266, 1.8887, 3.6427])
+    sol = prr3.direct(lam0, g)
+    start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
+    assert_allclose(prr3.branch_inputs(sol.poses[[1, 3]], g, signs), [lam0, lam0], atol=1e-9)
+    path = prr3.mode_change_path(start, end, g, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
+    assert_allclose(path[[0, -1]], [start, end], atol=1e-12)
+    _assert_singularity_free(path, g, signs)
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)),
+       b=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)))
+def test_mode_change_path_is_singularity_free_or_none(a, b):
+    g, signs = TABLE_5, (1, 1, 1)
+    a, b = np.array(a), np.array(b)
+    lam = prr3.branch_inputs(np.stack([a, b]), g, signs)
+    assume(np.all(np.isfinite(lam)))
+    dets = prr3.jacobian_dets(np.stack([a, b]), lam, g)[1]
+    assume(dets[0] * dets[1] > 0)
+    path = prr3.mode_change_path(a, b, g, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
+                                 shape=(12, 6, 24))
+    if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
+        assert pose_gap(path[0], a)[0] < 1e-12 and pose_gap(path[-1], b)[0] < 1e-12
+        _assert_singularity_free(path, g, signs)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(start=[2.4, 0.81, 2.97], end=[2.5, -0.79, 1.99]), "one sign"),
+    (dict(bounds=[[0.0, 1.0], [0.0, 1.0]]), "outside bounds"),
+    (dict(bounds=[[0.0, 1.0]]), "bounds"),
+    (dict(shape=(10, 10)), "shape"),
+    (dict(start=[np.nan, 0.8, 3.0]), "start"),
+    (dict(signs=(1, 2, 1)), "signs"),
+])
+def test_mode_change_path_refuses_bad_input(kwargs, message):
+    args = dict(start=[2.5338, 0.8053, 3.0427], end=[2.4711, 0.7552, 4.3283],
+                geometry=TABLE_5, signs=(1, 1, 1), bounds=[[-0.5, 4.5], [-1.0, 1.0]]) | kwargs
+    with pytest.raises(ValueError, match=message):
+        prr3.mode_change_path(**args)

@@ -15,6 +15,9 @@ from mechnum import _validate
 from mechnum.mechanisms.prr3.geometry import jacobian_dets, radicands, vectors
 from mechnum.mechanisms.prr3.inverse import branch_inputs
 
+# Passes of neighbour averaging that turn the voxel staircase into a smooth path (each pass
+# spreads a corner over one more point; 30 round the corners of a path of a few dozen voxels).
+_SMOOTHING = 30
 # Each segment between two voxel centres of the path is checked at this many points: the
 # determinant and the radicands are smooth, and a voxel is small against their variation.
 _CHECKS_PER_STEP = 8
@@ -36,6 +39,8 @@ def _bfs(region, start, end):
 
     ids = np.full(region.shape, -1)
     ids[region] = np.arange(region.sum())
+    if ids[start] < 0 or ids[end] < 0:  # an end's voxel centre lies across a singularity
+        return None
     rows, cols = [], []
     for axis in range(3):
         ahead = np.roll(ids, -1, axis=axis)
@@ -51,7 +56,7 @@ def _bfs(region, start, end):
     graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n)).tocsr()
     _, parent = breadth_first_order(graph, ids[start], directed=False, return_predecessors=True)
     node, chain = ids[end], []
-    if node < 0 or ids[start] < 0 or (node != ids[start] and parent[node] < 0):
+    if node != ids[start] and parent[node] < 0:
         return None
     while node >= 0:
         chain.append(node)
@@ -66,8 +71,9 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     Both poses must belong to the working mode ``signs`` and have the same sign of the direct
     Jacobian's determinant. The pose space inside ``bounds`` (``psi`` periodic) is cut into
     voxels; a breadth-first search finds a shortest chain of neighbouring voxels where every
-    leg reaches its guide and the determinant keeps its sign, and the path (the voxel centres,
-    with ``psi`` unwrapped) is then checked finely between them. It is a certificate when it is
+    leg reaches its guide and the determinant keeps its sign; the path (the voxel centres, with
+    ``psi`` unwrapped, smoothed by neighbour averaging where that keeps it safe) is then
+    checked finely. It is a certificate when it is
     returned; None means none was found at this resolution, not that none exists.
 
     Parameters
@@ -85,7 +91,8 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     Returns
     -------
     ndarray, shape (k, 3), or None
-        The path's poses, from ``start`` to ``end``.
+        The path's poses, from ``start`` to ``end``; ``psi`` is continuous along it, so it may
+        end at ``end``'s angle plus a multiple of ``2 pi``.
 
     Raises
     ------
@@ -136,9 +143,25 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     path = np.vstack([start, centres, end])
     path[:, 2] = np.unwrap(path[:, 2])
     path[-1, 2] = path[-2, 2] + np.mod(end[2] - path[-2, 2] + np.pi, 2 * np.pi) - np.pi
-    fine = vectors(np.concatenate([a + np.linspace(0, 1, _CHECKS_PER_STEP, endpoint=False)[:, None]
-                                   * (b - a) for a, b in zip(path[:-1], path[1:])]
-                                  + [path[-1:]]), "path")
-    if not np.all(_region(fine, geometry, signs, np.sign(dets[0]))):
-        return None
-    return path
+    for candidate in (_smoothed(path), path):  # the smooth path if it passes the check
+        if _certified(candidate, geometry, signs, np.sign(dets[0])):
+            return candidate
+    return None
+
+
+def _smoothed(path):
+    """``path`` with its interior points averaged with their neighbours: the voxel staircase
+    becomes a smooth curve with the same ends."""
+    out = path.copy()
+    for _ in range(_SMOOTHING):
+        out[1:-1] = (out[:-2] + 2 * out[1:-1] + out[2:]) / 4
+    return out
+
+
+def _certified(path, geometry, signs, sign):
+    """Whether every point of ``path``, and :data:`_CHECKS_PER_STEP` points between each two,
+    lies where the legs reach their guides and ``det J`` has the sign ``sign``."""
+    steps = np.linspace(0, 1, _CHECKS_PER_STEP, endpoint=False)[:, None]
+    fine = np.concatenate([a + steps * (b - a) for a, b in zip(path[:-1], path[1:])]
+                          + [path[-1:]])
+    return bool(np.all(_region(vectors(fine, "path"), geometry, signs, sign)))
