@@ -41,6 +41,6 @@ from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, reproduc
 
 __all__ = ["DirectSolution", "EXAMPLES", "Geometry", "WORKSPACE_GEOMETRY", "bars",
            "branch_inputs", "deflate", "direct", "direct_by_newton", "direct_jacobian", "draw",
-           "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals", "mode_change_path",
-           "polynomial", "radicands", "reproduce", "sliders", "solutions_from_equations",
-           "vertices", "workspace"]
+           "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals",
+           "mode_change_path", "polynomial", "radicands", "reproduce", "sliders",
+           "solutions_from_equations", "vertices", "workspace"]
