@@ -200,7 +200,7 @@ def direct(lambdas, geometry, *, imag_tol=IMAG_TOL, residual_tol=RESIDUAL_TOL):
     ----------
     lambdas : array_like, shape (3,) or (m, 3)
         The inputs ``(lambda1, lambda2, lambda3)``, metres; an empty batch is valid.
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     imag_tol : float, optional
         Largest ``|Im psi|`` (radians) of a root taken as real (:data:`IMAG_TOL`).
     residual_tol : float, optional
@@ -340,7 +340,7 @@ def direct_by_newton(lambdas, geometry, starts, *, tol=1e-12):
     Parameters
     ----------
     lambdas : array_like, shape (3,)
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     starts : array_like, shape (m, 3)
         Starting poses ``(x, y, psi)``; an empty batch gives no pose.
     tol : float, optional

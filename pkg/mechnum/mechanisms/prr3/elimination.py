@@ -73,7 +73,7 @@ def polynomial(lambdas, geometry):
     Parameters
     ----------
     lambdas : array_like, shape (..., 3)
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
 
     Returns
     -------
@@ -166,7 +166,7 @@ def equations(lambdas, geometry):
     Parameters
     ----------
     lambdas : array_like, shape (3,)
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
 
     Returns
     -------

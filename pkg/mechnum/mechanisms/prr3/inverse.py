@@ -33,7 +33,7 @@ def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
     Parameters
     ----------
     poses : array_like, shape (..., 3)
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     signs : array_like of +-1, shape (3,)
         The branch of each leg.
     tol : float, optional
@@ -81,7 +81,7 @@ def inverse(pose, geometry, *, tol=TANGENT_TOL):
     ----------
     pose : array_like, shape (3,)
         ``(x, y, psi)`` in metres and radians.
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     tol : float, optional
         Relative tolerance of tangency (:data:`TANGENT_TOL`).
 
@@ -122,7 +122,7 @@ def workspace(x, y, psi, geometry, *, tol=TANGENT_TOL):
     x, y, psi : array_like
         Coordinates (m) and orientation (rad) of the poses; broadcast against each other (use
         :func:`numpy.meshgrid` with ``indexing="ij"`` for a full grid). Empty arrays are valid.
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     tol : float, optional
         A radicand down to ``-tol * L**2`` counts as zero (a tangent leg is reachable).
 

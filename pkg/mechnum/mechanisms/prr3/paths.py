@@ -80,7 +80,7 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     ----------
     start, end : array_like, shape (3,)
         Poses ``(x, y, psi)``.
-    geometry : Geometry
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     signs : array_like of +-1, shape (3,)
         The working mode (:func:`branch_inputs`).
     bounds : array_like, shape (2, 2)
