@@ -532,3 +532,22 @@ def test_mode_change_path_refuses_bad_input(kwargs, message):
                 geometry=TABLE_5, signs=(1, 1, 1), bounds=[[-0.5, 4.5], [-1.0, 1.0]]) | kwargs
     with pytest.raises(ValueError, match=message):
         prr3.mode_change_path(**args)
+
+
+def test_a_root_at_infinity_is_the_pose_psi_pi():
+    # (t - 1)(t + 2)(t - 3)(t + 4)(t - 5) with a zero t^6 coefficient: the sixth root is t = inf
+    quintic = np.polynomial.polynomial.polyfromroots([1, -2, 3, -4, 5])
+    psi = DIRECT._angles(np.r_[quintic, 0.0][None])[0]
+    assert np.all(np.isfinite(psi))
+    assert angle_gap(psi.real, np.pi).min() < 1e-15
+    expected = 2 * np.arctan([1, -2, 3, -4, 5])
+    for value in expected:
+        assert angle_gap(psi.real, value).min() < 1e-12
+
+
+def test_direct_emits_no_overflow_far_away():
+    import warnings
+    g = EXAMPLES["Tabla 6"][0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow in the polynomial of far-apart sliders
+        assert prr3.direct([[1e100, 0.0, 0.0], [1e300, 0.0, -1e300]], g).counts.tolist() == [0, 0]
