@@ -774,8 +774,9 @@ def solve_path(fun, params, x0, jac=None, *, tol=1e-12, maxiter=10, domain=None,
         # secant prediction, scaled by the projection of this parameter step on the last one
         step = (p - params[i - 1]).reshape(len(x), -1) if i else np.zeros((len(x), 1))
         previous = (last_p - before_p).reshape(len(x), -1)
-        scale = np.divide(np.sum(step * previous, axis=1), np.sum(previous ** 2, axis=1),
-                          out=np.zeros(len(x)), where=streak >= 2)
+        length = np.sum(previous ** 2, axis=1)
+        scale = np.divide(np.sum(step * previous, axis=1), length, out=np.zeros(len(x)),
+                          where=(streak >= 2) & (length > 0))
         start = (last + scale[:, None] * (last - before))[rows]
         if domain is not None:    # a prediction out of the domain falls back on the last point
             start = np.where(np.asarray(domain(start), bool)[:, None], start, last[rows])

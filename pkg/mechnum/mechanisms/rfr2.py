@@ -147,8 +147,27 @@ def _scales(mech):
     return np.array([mech.L, mech.L, mech.EI / mech.L ** 2, mech.EI / mech.L ** 2])
 
 
-def _forward4(mech, modes, theta):
-    """The study's 4 x 4 closed-form system at fixed ``theta``: residual and Jacobian in z."""
+def forward_system(mech, theta, modes=(1, 1)):
+    """The direct problem in closed form: the residual and its Jacobian, batched.
+
+    The study's four equations (its 11.3.2: both tips at one point, ``n1 + n2 = F``) in the
+    four unknowns ``z = (psi1, t1, psi2, t2)``, dimensionless (positions over ``L``, forces
+    over ``EI / L**2``), with the analytic Jacobian of :mod:`mechnum.rods.regular`.
+
+    Returns
+    -------
+    fun, jac : callable
+        ``fun(z) -> (batch, 4)`` and ``jac(z) -> (batch, 4, 4)`` for ``z`` of shape
+        ``(batch, 4)`` in the chart.
+
+    Examples
+    --------
+    >>> fun, jac = forward_system(TABLE7, TABLE7_THETA)
+    >>> z = chart_from_thesis([[5.304574, 0.969830, 1.825456, -0.992135]])
+    >>> fun(z).shape, jac(z).shape, bool(np.abs(fun(z)).max() < 3e-4)
+    ((1, 4), (1, 4, 4), True)
+    """
+    theta, modes = _theta(theta), _modes(modes)
     scale = _scales(mech)
 
     def fun(z):
@@ -283,7 +302,7 @@ def forward_elliptic(mech, theta, modes=(1, 1), *, n_starts=200, check=10, rng=N
     ([1.962541, -0.004391, 4.811041, 0.943413], [True, True, True], True)
     """
     theta, modes = _theta(theta), _modes(modes)
-    fun, jac = _forward4(mech, modes, theta)
+    fun, jac = forward_system(mech, theta, modes)
     found = newton.solve_all(fun, _sample, jac, n_starts=n_starts, check=check, rng=rng,
                              domain=_in_chart, tol=1e-12, maxiter=40)
     z = found.roots
@@ -1226,6 +1245,31 @@ def recover_inputs(solutions, free="EI"):
             "residual": float(np.abs(residuals(fit.x)).max())}
 
 
+def _path_sizes():
+    """The sizes of the study's trajectories, measured on :func:`path`'s points."""
+    out = {}
+    for kind in STUDY_PATHS:
+        p, unit = path(kind), " (m)" if kind.startswith("inverse") else " (rad)"
+        name = kind.replace(" ", " path: ", 1)
+        if kind.endswith("line"):
+            out[f"{name} length{unit}"] = float(np.hypot(*(p[-1] - p[0])))
+            out[f"{name} direction (deg)"] = float(np.degrees(np.arctan2(*(p[-1] - p[0])[::-1])))
+            out[f"{name} divisions"] = float(len(p) - 1)
+        elif kind.endswith("circles"):
+            radii = np.unique(np.round(np.hypot(*p.T), 12))
+            outer = np.isclose(np.hypot(*p.T), radii[-1])
+            out[f"{name} outer diameter{unit}"] = float(2 * radii[-1])
+            out[f"{name} number"] = float(np.count_nonzero(radii))
+            out[f"{name} divisions"] = float(outer.sum())
+        else:
+            b, h = 2 * np.abs(p[:, 0]).max(), 2 * np.abs(p[:, 1]).max()
+            scale = np.round(np.maximum(np.abs(p[:, 0]) / b, np.abs(p[:, 1]) / h), 12)
+            out[f"{name} outer base{unit}"], out[f"{name} outer height{unit}"] = b, h
+            out[f"{name} number"] = float(np.count_nonzero(np.unique(scale)))
+            out[f"{name} divisions per side"] = float(np.sum(scale == scale.max()) / 4)
+    return out
+
+
 def reproduce():
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
@@ -1260,6 +1304,19 @@ def reproduce():
                    "load F_x (n1 + n2 at the printed solution 1)": float(load[0]),
                    "load F_y (n1 + n2 at the printed solution 1)": float(load[1])})
     values["mode-1 equilibria for the Table 7 inputs"] = float(len(eq.P))
+    # the listing of EmpArt_xyR returns tips relative to their clamps: at the printed
+    # solution 1 its residual Res_x, Res_y is the distance between the motors
+    relative = _rods(TABLE7, np.ones(2), printed, TABLE7_THETA)[0] - TABLE7.origins
+    values["tip gap at the printed solution 1 with EmpArt_xyR as listed (m)"] = float(
+        np.hypot(*(relative[0] - relative[1])))
+    X = shooting_guess(TABLE7, TABLE7_THETA, eq.chart)
+    shot = forward_shooting(TABLE7, TABLE7_THETA, X, nodes=STUDY_NODES)
+    scale = np.array([TABLE7.EI / TABLE7.L, TABLE7.L, TABLE7.L] * 2 + [TABLE7.EI] * 2)
+    values["shooting residual at convergence, N = 41 (N m, m, N)"] = float(np.max(np.abs(
+        _shooting_system(TABLE7, STUDY_NODES, "P")[0](shot.newton.x, shot.theta) * scale)))
+    values["elliptic residual (105) at convergence (m, N)"] = float(np.abs(residual(
+        TABLE7, TABLE7_THETA, eq.chart)).max())
+    values.update(_path_sizes())
     sol1 = eq.forces[np.argmin(np.abs(eq.solutions - TABLE7_PUBLISHED[0]).max(axis=1))]
     values["force balance (104) as printed, at solution 1 (N)"] = float(
         np.hypot(*(sol1.sum(axis=0) + TABLE7.force)))

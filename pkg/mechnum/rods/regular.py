@@ -91,20 +91,33 @@ def _q(t):
     return t * t / ((1.0 - t) * (1.0 + t))
 
 
-def k_rel_from_t(psi, t):
-    """The study's ``k_rel`` of the rod ``(psi, t)``.
+def k_rel_from_t(psi, t, *, complement=False):
+    """The study's ``k_rel`` of the rod ``(psi, t)``, or ``1 - |k_rel|``.
+
+    Parameters
+    ----------
+    psi, t : array_like
+        The rod in the chart.
+    complement : bool, optional
+        Return ``1 - |k_rel|`` instead, computed without cancellation (a rod in near-straight
+        tension has ``|k_rel|`` too close to 1 for a double to tell it from 1).
 
     Examples
     --------
     >>> round(float(k_rel_from_t(2.0, t_from_k_rel(2.0, -0.004391))), 12)
     -0.004391
+    >>> float(k_rel_from_t(5.3, -0.99, complement=True)) < 1e-20
+    True
     """
     psi, t = _check(psi, t)
     a, b = np.abs(np.cos(0.5 * psi)), np.sin(0.5 * psi)
     q = _q(t)
     k = np.sqrt(a * a - np.expm1(-q) * b * b)
-    # |k| - k_min and 1 - k_min, each without cancellation
-    return np.sign(t) * (-np.expm1(-q) * b * b / (k + a)) / (b * b / (1.0 + a))
+    one_minus_kmin = b * b / (1.0 + a)
+    if complement:     # (1 - |k|) / (1 - k_min), with 1 - |k| = (1 - k**2) / (1 + |k|)
+        return b * b * np.exp(-q) / (1.0 + k) / one_minus_kmin
+    # |k| - k_min = (k**2 - k_min**2) / (|k| + k_min), without cancellation
+    return np.sign(t) * (-np.expm1(-q) * b * b / (k + a)) / one_minus_kmin
 
 
 def t_from_k_rel(psi, k_rel):
@@ -220,7 +233,8 @@ def _closed_form(EI, L, psi, t, mode, jacobian):
     E1_m = tuple(0.5 * (E1 - F1) / m * dm for dm in (-a * b * w, p * q_t))
     K_m = (-0.5 * a * (Ek - p * K) / (m * b), 0.5 * q_t * (Ek - p * K) / m)
     Ek_m = tuple(0.5 * (Ek - K) / m * dm for dm in (-a * b * w, p * q_t))
-    J = np.empty(psi.shape + (5, 2))
+    J = np.empty(np.broadcast_shapes(psi.shape, t.shape, np.shape(EI), L.shape, np.shape(mode))
+                 + (5, 2))
     for i in range(2):
         Lam_d = j * K_m[i] - (phi1_d[i] / b + F1_m[i])       # dF/dphi = 1/Delta, Delta = b
         D_d = j * Ek_m[i] - (phi1_d[i] * b + E1_m[i])        # dE/dphi = Delta

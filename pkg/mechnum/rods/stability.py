@@ -34,7 +34,7 @@ Maddocks, *Stability and folds*, Arch. Rational Mech. Anal. 99 (1987) 301-328.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import eigh, null_space, solve_banded
+from scipy.linalg import null_space, solve_banded
 
 from mechnum import _validate
 
@@ -146,7 +146,7 @@ def constrained_eigenvalues(hessian, constraints):
         raise ValueError(f"hessian {hessian.shape} and constraints {constraints.shape} must be "
                          f"(n, n) and (c, n) with c < n")
     Z = null_space(constraints)    # dependent rows (a straight rod's axial tip) drop out
-    return eigh(Z.T @ hessian @ Z, eigvals_only=True)
+    return np.linalg.eigvalsh(Z.T @ hessian @ Z)
 
 
 def _negative_pivots(diagonal, off_diagonal):
