@@ -655,7 +655,7 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
     moments to zero, both tips to ``P`` and ``n1 + n2`` to ``F``, with the complex-step
-    Jacobian of :func:`mechnum.rods.tip_jacobian` (the study differentiates by forward
+    Jacobian of :func:`mechnum.rods.shooting.tip_jacobian` (the study differentiates by forward
     differences with a step of ``1e-11``). The guess picks the equilibrium.
 
     Parameters
