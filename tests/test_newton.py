@@ -6,7 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
+from mechnum.newton import (STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch,
+                            solve_path)
 
 
 def circle_line(x):
@@ -439,3 +440,40 @@ def test_max_step_bounds_every_step():
     assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
     with pytest.raises(ValueError, match="max_step must be positive"):
         solve(atan_system, [1.5], atan_jac, max_step=0.0)
+# --- independent systems, stacked backtracking, path following ------------------------------
+
+def test_independent_batch_gives_the_same_iterates_with_fewer_calls():
+    rng = np.random.default_rng(7)
+    x0 = rng.uniform(-3, 3, (200, 2))
+    kwargs = dict(tol=1e-12, damping=True, raise_on_failure=False, halvings=8)
+    a = solve_batch(cubic_pair, x0, cubic_pair_jac, **kwargs)
+    b = solve_batch(cubic_pair, x0, cubic_pair_jac, independent=True, **kwargs)
+    np.testing.assert_array_equal(a.status, b.status)
+    np.testing.assert_allclose(a.x, b.x, rtol=0, atol=1e-14)
+    assert b.nfev < a.nfev
+
+
+def test_fewer_halvings_drop_hard_starts():
+    res = solve_batch(atan_system, [[1.5], [20.0]], lambda x: atan_jac(x[0])[None] if len(x) == 1
+                      else np.stack([atan_jac(xi) for xi in x]), damping=True, halvings=1,
+                      raise_on_failure=False)
+    assert res.status.tolist() == ["converged", "stagnated"]
+
+
+def test_solve_path_follows_a_branch_and_reports_failures():
+    # x**2 = p on p from 1 down to -1: the positive root exists until p = 0
+    p = np.linspace(1.0, -1.0, 21)
+    fun = lambda x, c: x ** 2 - c[:, None]  # noqa: E731
+    jac = lambda x, c: 2 * x[:, :, None]  # noqa: E731
+    path = solve_path(fun, p, [1.0], jac)
+    ok = p > 0
+    assert np.array_equal(path.converged, ok)
+    np.testing.assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
+    assert np.isnan(path.x[~ok]).all()
+    # two paths at once, with their own parameters; a failed path may be abandoned
+    both = solve_path(fun, np.stack([p, p + 2], axis=1), [[1.0], [-np.sqrt(3.0)]], jac,
+                      resume=False)
+    assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
+    np.testing.assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
+    with pytest.raises(ValueError, match="params"):
+        solve_path(fun, p, [[1.0], [2.0]], jac)

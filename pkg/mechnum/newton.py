@@ -1,6 +1,6 @@
 """Newton-Raphson for systems of nonlinear equations, one, many, and all solutions.
 
-Four forms share one step rule:
+Five forms share one step rule:
 
 * :func:`solve` solves one system ``f(x) = 0`` of ``n`` equations in ``n`` unknowns and keeps
   its whole history;
@@ -11,7 +11,9 @@ Four forms share one step rule:
   the roots deduplicated and counted, and a completeness check (ten times more starts that find
   no new root);
 * :func:`broyden` replaces the Jacobian of :func:`solve` after the first by rank-one updates
-  (Broyden's method): no Jacobian evaluations, superlinear instead of quadratic convergence.
+  (Broyden's method): no Jacobian evaluations, superlinear instead of quadratic convergence;
+* :func:`solve_path` follows a root while a parameter changes (continuation), one path or a
+  batch of paths.
 
 The Newton step solves ``J(x_k) dx = -f(x_k)`` and sets ``x_{k+1} = x_k + dx``. With
 ``damping=True`` the step is shortened, ``x_{k+1} = x_k + alpha dx`` with ``alpha = 1, 1/2,
@@ -54,6 +56,11 @@ _NORMS = (1, 2, np.inf)
 _ARMIJO = 1e-4
 # Backtracking gives up after this many halvings (alpha < 1e-6): the start has stagnated.
 _MAX_HALVINGS = 20
+# In an all-solutions search, a start gets 4 halvings (alpha >= 1/16): a start whose Newton step
+# must be cut further lies where Newton's linear model is poor, and dropping it costs hits, not
+# roots (other starts reach them), while its 20 halvings per step would dominate the run (on the
+# 2RFR of Chapter 5, 4 halvings keep half the converging starts for 1/30 of the time).
+_SEARCH_HALVINGS = 4
 STATUSES = ("converged", "maxiter", "singular", "non-finite", "stagnated", "left-domain")
 """What :attr:`BatchNewtonResult.status` may say of a system: it met the criterion; it ran out
 of iterations; its Jacobian was singular; its residual stopped being finite; its line search
@@ -291,19 +298,28 @@ def _newton_step(jac, fx):
     return np.where(singular[..., None], 0.0, dx), singular, cond
 
 
-def _line_search(fun, x, fx, dx, moving, rnorm, tol, norm, domain):
+def _line_search(call, x, fx, dx, moving, rnorm, tol, norm, domain, stacked=False,
+                 halvings=_MAX_HALVINGS):
     """Backtracking for the systems ``moving`` of a batch: halve ``alpha`` from 1 until the
     trial point lies in the domain and ``||f||`` decreases by Armijo's rule (or the step is
-    already below ``tol``). Returns the new ``x``, ``f(x)``, the status of the systems that found
-    no such ``alpha`` ("stagnated" or "left-domain", "" elsewhere) and the calls of ``fun``."""
+    already below ``tol``). ``call(points, rows)`` evaluates the residual (at least of the
+    systems ``rows``). With ``stacked`` (the systems do not depend on their position), the
+    step lengths ``1/2, 1/4, ...`` of the systems that refuse ``alpha = 1`` are all tried in one
+    call, with the same outcome as one halving at a time. Returns the new ``x``, ``f(x)``, the
+    status of the systems that found no such ``alpha`` ("stagnated" or "left-domain", ""
+    elsewhere) and the calls of ``fun``."""
     alpha = np.ones(len(x))
     size = _norms(dx, norm)
     x_new, fx_new = x.copy(), fx.copy()
     pending, outside = moving.copy(), np.zeros(len(x), dtype=bool)
-    for calls in range(1, _MAX_HALVINGS + 2):
+    for calls in range(1, halvings + 2):
+        if stacked and calls == 2:
+            return _all_halvings(call, x, dx, x_new, fx_new, pending, rnorm, size, tol, norm,
+                                 domain, halvings)
         trial = np.where(pending[:, None], x + alpha[:, None] * dx, x_new)
-        f_trial = _evaluate(fun, trial, "fun")
         inside = np.ones(len(x), dtype=bool) if domain is None else np.asarray(domain(trial), bool)
+        # fun is never evaluated outside the domain (where it may be undefined or raise)
+        f_trial = call(np.where(inside[:, None], trial, x_new), pending & inside)
         t_norm = _norms(f_trial, norm)
         ok = pending & inside & np.isfinite(t_norm) & (
             (t_norm <= (1 - _ARMIJO * alpha) * rnorm) | (alpha * size < tol))
@@ -315,6 +331,35 @@ def _line_search(fun, x, fx, dx, moving, rnorm, tol, norm, domain):
         alpha[pending] /= 2
     failed = np.where(outside, "left-domain", "stagnated")
     return x_new, fx_new, np.where(pending, failed, ""), calls
+
+
+def _all_halvings(call, x, dx, x_new, fx_new, pending, rnorm, size, tol, norm, domain,
+                  halvings):
+    """The rest of :func:`_line_search` for position-free systems: ``alpha = 2**-1, ...,
+    2**-halvings`` of every pending system in one call; each takes its largest acceptable
+    ``alpha``, as the halving loop would."""
+    rows = np.flatnonzero(pending)
+    alpha = 0.5 ** np.arange(1, halvings + 1)
+    trial = x[rows, None, :] + alpha[:, None] * dx[rows, None, :]       # (rows, alphas, n)
+    flat = trial.reshape(-1, x.shape[1])
+    inside = (np.ones(len(flat), dtype=bool) if domain is None
+              else np.asarray(domain(flat), bool))
+    f_flat = np.full(flat.shape, np.nan)
+    if inside.any():
+        f_flat[inside] = call(flat[inside], np.ones(inside.sum(), dtype=bool))
+    t_norm = _norms(f_flat, norm).reshape(len(rows), -1)
+    ok = inside.reshape(len(rows), -1) & np.isfinite(t_norm) & (
+        (t_norm <= (1 - _ARMIJO * alpha) * rnorm[rows, None])
+        | (alpha * size[rows, None] < tol))
+    first = ok.argmax(axis=1)
+    found = ok[np.arange(len(rows)), first]
+    take = rows[found]
+    x_new[take] = trial[found, first[found]]
+    fx_new[take] = f_flat.reshape(len(rows), -1, x.shape[1])[found, first[found]]
+    status = np.full(len(x), "", dtype="<U11")
+    status[rows[~found]] = np.where(inside.reshape(len(rows), -1)[~found, -1], "stagnated",
+                                    "left-domain")
+    return x_new, fx_new, status, 2
 
 
 def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False,
@@ -416,9 +461,9 @@ def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, wh
             break
         dx = _bounded(dx, max_step)
         if damping:  # the batched line search, on a batch of this one system
-            new, f_new, failed, _ = _line_search(lambda z: fun(z[0])[None], x[None], fx[None],
-                                                 dx[None], np.ones(1, bool), residuals[-1:],
-                                                 tol, norm, None)
+            new, f_new, failed, _ = _line_search(
+                lambda z, _: _evaluate(fun, z[0], "fun")[None], x[None], fx[None], dx[None],
+                np.ones(1, bool), residuals[-1:], tol, norm, None)
             if failed[0]:
                 stagnated = True
                 break
@@ -512,13 +557,15 @@ def broyden(fun, x0, jac=None, *, tol=1e-10, maxiter=100, criterion="step", norm
 
 
 def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
-                damping=False, domain=None, raise_on_failure=True, max_step=None):
+                damping=False, domain=None, raise_on_failure=True, max_step=None,
+                independent=False, halvings=_MAX_HALVINGS):
     """Solve ``batch`` independent systems ``fun(x)[b] = 0`` at once by Newton-Raphson.
 
     Every system takes the step of :func:`solve`; a system that meets the criterion (or fails)
     is frozen while the others go on, so each has its own iteration count and ``status``.
-    ``fun`` (and ``jac``) are always evaluated on the whole batch, so they may depend on a
-    per-system parameter (a time, a pose) by position in the batch.
+    ``fun`` (and ``jac``) are evaluated on the whole batch, so they may depend on a
+    per-system parameter (a time, a pose) by position in the batch; with ``independent=True``
+    they are evaluated on the systems still running only.
 
     Parameters
     ----------
@@ -534,10 +581,20 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     domain : callable, optional
         ``domain(x) -> ndarray of bool (batch,)``, whether each iterate lies where the equations
         are meant to be solved. A step that leaves it is shortened (with damping) or ends its
-        system with the status "left-domain".
+        system with the status "left-domain"; ``fun`` is never called on a point outside it
+        (only the starts ``x0`` are the caller's to choose inside).
     raise_on_failure : bool, optional
         Raise (as below) if some system does not converge; with False, return the result and
         let the caller read ``status``.
+    independent : bool, optional
+        Declare that ``fun``, ``jac`` and ``domain`` do not depend on the position in the batch
+        (one system from many starts, as in :func:`solve_all`): then they are called on the
+        rows that need them only, and the backtracking step lengths of all the systems that
+        refuse a full step are tried in one call, so that a few slow systems do not cost a
+        whole batch per halving.
+    halvings : int, optional
+        With damping, the most halvings of a step before the system is "stagnated" (or
+        "left-domain").
 
     Returns
     -------
@@ -572,10 +629,19 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         raise ValueError(f"x0 must have shape (batch, n) with n >= 1, got shape {x.shape}")
     tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
     max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
+    halvings = _validate.maxiter(halvings, "halvings")
     batch = len(x)
     iterations = np.zeros(batch, dtype=int)
     status = np.full(batch, "", dtype="<U11")  # "" while a system is running
     running = np.ones(batch, dtype=bool)  # status == "", kept up to date (cheaper to test)
+
+    def call(points, rows):  # the residual at points, at least of the systems rows
+        if not independent:
+            return _evaluate(fun, points, "fun")
+        out = np.full(points.shape, np.nan)
+        if rows.any():
+            out[rows] = _evaluate(fun, points[rows], "fun")
+        return out
 
     def stop(which, why):  # end the systems ``which`` (a mask) with the status ``why``
         if which.any():
@@ -592,28 +658,31 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         active = running.copy()
         if not active.any() or k == maxiter:
             break
-        J = _jacobian(jac, fun, x)
+        subset = independent and not active.all()  # then jac is called on the active rows only
+        J = _jacobian(jac, fun, x[active] if subset else x)
         nfev, njev = (nfev + x.shape[1], njev) if jac is None else (nfev, njev + 1)
         if active.all():  # the usual case: no copies of J and f
             dx, stuck, _ = _newton_step(J, fx)
         else:
             dx = np.zeros_like(x)
-            dx[active], stuck, _ = _newton_step(J[active], fx[active])
+            dx[active], stuck, _ = _newton_step(J if subset else J[active], fx[active])
         if stuck.any():
             singular = active.copy()
             singular[active] = stuck
             stop(singular, "singular")
         dx = _bounded(dx, max_step)
         if damping:
-            x_new, fx_new, failed, calls = _line_search(fun, x, fx, dx, running, rnorm, tol, norm,
-                                                        domain)
+            x_new, fx_new, failed, calls = _line_search(call, x, fx, dx, running, rnorm, tol,
+                                                        norm, domain, independent, halvings)
             stop(failed != "", failed[failed != ""])
             nfev += calls
         else:
             x_new = x + dx  # dx is zero for the systems that are not moving
-            fx_new, nfev = _evaluate(fun, x_new, "fun"), nfev + 1
-            if domain is not None:
-                stop(running & ~np.asarray(domain(x_new), bool), "left-domain")
+            if domain is not None:  # a step out of the domain is not taken, nor evaluated
+                outside = running & ~np.asarray(domain(x_new), bool)
+                stop(outside, "left-domain")
+                x_new[outside] = x[outside]
+            fx_new, nfev = call(x_new, running), nfev + 1
         iterations += running
         size = _norms(x_new - x, norm)
         if running.all():
@@ -655,18 +724,20 @@ def _raise_for(result, criterion, tol, maxiter):
 def _distinct(points, same):
     """Group the rows of ``points`` that lie within ``same`` (inf-norm) of a group's first row.
 
-    Returns the representatives and, for every row, the index of its group."""
-    reps, label = [], np.empty(len(points), dtype=int)
-    for i, p in enumerate(points):
-        near = [j for j, r in enumerate(reps) if np.max(np.abs(p - r)) <= same]
-        label[i] = near[0] if near else len(reps)
-        if not near:
-            reps.append(p)
+    Returns the representatives and, for every row, the index of its group (one pass over
+    the groups, each comparing all the rows at once)."""
+    label = np.full(len(points), -1)
+    reps = []
+    while (free := np.flatnonzero(label < 0)).size:
+        rep = points[free[0]]
+        near = free[np.max(np.abs(points[free] - rep), axis=1) <= same]
+        label[near] = len(reps)
+        reps.append(rep)
     return np.array(reps).reshape(-1, points.shape[1]), label
 
 
 def solve_all(fun, sample, jac=None, *, n_starts=1000, check=10, rng=None, starts=None,
-              tol=1e-12, maxiter=50, domain=None, same=1e-8):
+              tol=1e-12, maxiter=50, domain=None, same=1e-8, halvings=_SEARCH_HALVINGS):
     """Every root that damped Newton finds from many starts, deduplicated, with evidence.
 
     The search runs :func:`solve_batch` (damped, with the status of each start) from
@@ -693,9 +764,13 @@ def solve_all(fun, sample, jac=None, *, n_starts=1000, check=10, rng=None, start
     starts : array_like, shape (m, n), optional
         Starts added to the search (continuation seeds, starts aimed at small basins).
     tol, maxiter, domain
-        As in :func:`solve_batch` (``criterion="step"``).
+        As in :func:`solve_batch` (``criterion="step"``); ``fun``, ``jac`` and ``domain`` must
+        not depend on the position in the batch (``independent=True``).
     same : float, optional
         Two converged points closer than this (largest component) are one root.
+    halvings : int, optional
+        Most halvings of a Newton step (4: ``alpha >= 1/16``); a start that needs more is
+        dropped, as "stagnated" or "left-domain" (see the module's constants).
 
     Returns
     -------
@@ -724,7 +799,8 @@ def solve_all(fun, sample, jac=None, *, n_starts=1000, check=10, rng=None, start
             x0 = np.concatenate([_validate.array(extra, "starts", ndim=2), x0])
         if len(x0):
             runs.append(solve_batch(fun, x0, jac, tol=tol, maxiter=maxiter, damping=True,
-                                    domain=domain, raise_on_failure=False))
+                                    domain=domain, raise_on_failure=False, independent=True,
+                                    halvings=halvings))
     ends = [r.x[r.converged] for r in runs]
     width = runs[0].x.shape[1]
     roots, label = _distinct(np.concatenate(ends).reshape(-1, width), same)
@@ -735,3 +811,120 @@ def solve_all(fun, sample, jac=None, *, n_starts=1000, check=10, rng=None, start
     return RootSet(roots[order], hits[order], np.linalg.norm(fun(roots[order]), axis=-1)
                    if len(roots) else np.empty(0), n_starts, check * n_starts,
                    len(roots) - first, {s: int(np.sum(statuses == s)) for s in STATUSES})
+
+
+@dataclass(frozen=True)
+class PathResult:
+    """The outcome of :func:`solve_path`.
+
+    Attributes
+    ----------
+    x : ndarray, shape (steps, batch, n) (or (steps, n) for one path)
+        The solution at every step, NaN where Newton did not converge.
+    converged : ndarray of bool, shape (steps, batch) (or (steps,))
+        Which steps converged.
+    iterations : ndarray of int, same shape as ``converged``
+        Newton steps taken at every step.
+    """
+
+    x: np.ndarray
+    converged: np.ndarray
+    iterations: np.ndarray
+
+
+def solve_path(fun, params, x0, jac=None, *, tol=1e-12, maxiter=10, domain=None,
+               halvings=_SEARCH_HALVINGS, criterion="residual", resume=True):
+    """Follow solutions of ``fun(x, p) = 0`` along a sequence of parameters, by continuation.
+
+    Step ``i`` solves ``fun(x, params[i]) = 0`` by damped Newton (:func:`solve_batch`) from a
+    secant prediction, ``x_{i-1} + c (x_{i-1} - x_{i-2})`` with ``c`` the projection of the
+    parameter step ``p_i - p_{i-1}`` on the last one (1 on a uniform straight path, 0 where
+    the path turns a right angle; ``x_{i-1}`` itself after a failure or at the first steps),
+    so each solution stays on the branch of the one before; small parameter steps keep it
+    there. Many paths may be followed at once (a batch); each may fail on its own.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(x, p) -> (m, n)`` for ``x`` of shape ``(m, n)`` and ``p`` of shape ``(m, ...)``:
+        the rows of ``x`` and their parameters.
+    params : array_like, shape (steps, ...) or (steps, batch, ...)
+        The parameters of every step: for one path (``x0`` of shape ``(n,)``), or for each
+        of ``batch`` paths.
+    x0 : array_like, shape (n,) or (batch, n)
+        A solution at (or a start close to) ``params[0]``.
+    jac : callable, optional
+        ``jac(x, p) -> (m, n, n)``; default forward differences.
+    tol, maxiter, criterion : optional
+        Newton's tolerance, most iterations per step (from a good prediction Newton needs a
+        few; a step that needs more has likely lost the branch) and stopping criterion (the
+        residual: no last step spent confirming a converged one).
+    domain : callable, optional
+        ``domain(x) -> (m,) bool``, as in :func:`solve_batch`.
+    halvings : int, optional
+        Most halvings of a Newton step, as in :func:`solve_all`.
+    resume : bool, optional
+        After a step that fails, go on from the last converged solution (the study's
+        trajectories do so), or abandon the path (``False``: the rest of it is NaN).
+
+    Returns
+    -------
+    PathResult
+
+    Examples
+    --------
+    The positive root of ``x**2 = p`` as ``p`` goes from 1 to 4:
+
+    >>> p = np.linspace(1.0, 4.0, 7)
+    >>> path = solve_path(lambda x, c: x ** 2 - c[:, None], p, [1.0],
+    ...                   lambda x, c: 2 * x[:, :, None])
+    >>> bool(np.allclose(path.x[:, 0], np.sqrt(p))), bool(path.converged.all())
+    (True, True)
+    """
+    params = np.asarray(params)
+    x = _validate.array(x0, "x0", ndim=(1, 2))
+    single = x.ndim == 1
+    if single:
+        x, params = x[None], params[:, None]
+    if params.ndim < 2 or params.shape[1] != len(x):
+        raise ValueError(f"params must have shape (steps, {len(x)}, ...) for {len(x)} paths, "
+                         f"got {params.shape}")
+    steps = len(params)
+    out = np.full((steps,) + x.shape, np.nan)
+    converged = np.zeros((steps, len(x)), dtype=bool)
+    iterations = np.zeros((steps, len(x)), dtype=int)
+    last, before = x.copy(), x.copy()
+    last_p, before_p = params[0].astype(float), params[0].astype(float)
+    streak = np.zeros(len(x), dtype=int)    # converged steps in a row, up to the last one
+    alive = np.ones(len(x), dtype=bool)
+    for i, p in enumerate(params):
+        rows = np.flatnonzero(alive)
+        if not rows.size:
+            break
+        # secant prediction, scaled by the projection of this parameter step on the last one
+        step = (p - params[i - 1]).reshape(len(x), -1) if i else np.zeros((len(x), 1))
+        previous = (last_p - before_p).reshape(len(x), -1)
+        length = np.sum(previous ** 2, axis=1)
+        scale = np.divide(np.sum(step * previous, axis=1), length, out=np.zeros(len(x)),
+                          where=(streak >= 2) & (length > 0))
+        start = (last + scale[:, None] * (last - before))[rows]
+        if domain is not None:    # a prediction out of the domain falls back on the last point
+            start = np.where(np.asarray(domain(start), bool)[:, None], start, last[rows])
+        res = solve_batch(lambda z, p=p[rows]: fun(z, p), start,
+                          None if jac is None else (lambda z, p=p[rows]: jac(z, p)), tol=tol,
+                          maxiter=maxiter, criterion=criterion, damping=True, domain=domain,
+                          raise_on_failure=False, halvings=halvings)
+        ok = np.zeros(len(x), dtype=bool)
+        ok[rows] = res.converged
+        out[i, rows[res.converged]] = res.x[res.converged]
+        converged[i], iterations[i, rows] = ok, res.iterations
+        before = np.where(ok[:, None], last, before)
+        before_p = np.where(ok.reshape((-1,) + (1,) * (p.ndim - 1)), last_p, before_p)
+        last[rows[res.converged]] = res.x[res.converged]
+        last_p = np.where(ok.reshape((-1,) + (1,) * (p.ndim - 1)), p, last_p)
+        streak = np.where(ok, streak + 1, 0)
+        if not resume:
+            alive &= ok
+    if single:
+        return PathResult(out[:, 0], converged[:, 0], iterations[:, 0])
+    return PathResult(out, converged, iterations)
