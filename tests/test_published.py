@@ -25,8 +25,8 @@ def test_half_unit_rejects_text():
 @pytest.mark.parametrize("published, value, ok", [
     ("1.942", 1.94163, True), ("1.942", 1.94149, False), ("-0.099672", -0.0996725, True),
     ("<1e-13", 9.9e-14, True), ("<1e-13", 1.1e-13, False), ("<1e-13", -2e-13, False),
-    ("~1e-12", 9e-12, True), ("~1e-12", 1e-12, True), ("~1e-12", -3e-12, True),
-    ("~1e-12", 2e-11, False), ("~1e-12", 9e-13, False), ("~1e-12", 1e-14, False),
+    ("~1e-12", 3.1e-12, True), ("~1e-12", 1e-12, True), ("~1e-12", -4e-13, True),
+    ("~1e-12", 3.2e-12, False), ("~1e-12", 3.1e-13, False), ("~1e-12", 1e-14, False),
     ("0", 3e-17, True), ("0", -9e-13, True), ("0", 0.3, False), ("0", 2e-12, False),
     ("0.000", 4e-4, True), ("0.000", 6e-4, False)])
 def test_agrees(published, value, ok):

@@ -7,8 +7,9 @@ last printed digit. :func:`agrees` applies that rule, and its variants for claim
 * ``"0"``: an exact zero, which a computation meets to round-off (``|value| < 1e-12``); a zero
   printed with decimals (``"0.000"``) follows the half-unit rule;
 * ``"<1e-13"``: an upper bound, ``|value| < 1e-13``;
-* ``"~1e-12"``: an order of magnitude, "of the order of ``10^-12``": ``value`` written in
-  scientific notation has the exponent ``-12``, ``1e-12 <= |value| < 1e-11``.
+* ``"~1e-12"``: an order of magnitude, "of the order of ``10^-12``": the power of ten nearest
+  to ``|value|`` on a logarithmic scale is ``10^-12``, ``10^-12.5 <= |value| < 10^-11.5``
+  (from ``3.2e-13`` to ``3.2e-12``).
 
 The registry ``book/published_values.csv`` has one row per number a study publishes, with the
 columns :data:`COLUMNS`: where the study prints it, the package's value (``computed``), a verdict
@@ -51,6 +52,7 @@ FINDING_COLUMNS = ("finding", "chapter", "seeds", "what", "where", "proof")
 how the chapter proves it (one sentence each)."""
 _EXACT_ZERO = 1e-12  # a printed "0" is met by round-off of unit-sized quantities
 _EPS = float(np.finfo(float).eps)
+_ROOT_10 = 10 ** 0.5  # an order of magnitude spans a factor sqrt(10) either way of its power
 
 
 def half_unit(printed):
@@ -100,7 +102,7 @@ def agrees(published, value):
     --------
     >>> agrees("1.942", 1.9416), agrees("62", 61.4), agrees("0", 3e-17), agrees("0", 0.3)
     (True, False, True, False)
-    >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 2e-11)
+    >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 5e-12)
     (True, True, False)
     """
     if not is_claim(published):
@@ -109,7 +111,7 @@ def agrees(published, value):
         return bool(abs(value) < float(published[1:]))
     if published.startswith("~"):
         magnitude = float(published[1:])
-        return bool(magnitude <= abs(value) < 10 * magnitude)
+        return bool(magnitude / _ROOT_10 <= abs(value) < magnitude * _ROOT_10)
     if published.strip() in ("0", "-0", "+0"):
         return bool(abs(value) < _EXACT_ZERO)
     return _within_half_unit(value, published)
