@@ -8,7 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
-                              read_findings, read_registry, reproduction_table)
+                              read_findings, read_published, read_registry,
+                              reproduction_table)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -136,3 +137,10 @@ def test_findings_file_with_the_wrong_columns_is_named(tmp_path):
     path.write_text("finding,what\nx,y\n")
     with pytest.raises(ValueError, match="columns"):
         read_findings(path)
+
+
+def test_read_published_gives_the_printed_text_by_quantity(tmp_path):
+    path = tmp_path / "registry.csv"
+    path.write_text(",".join(COLUMNS) + "\n000,a,q1,1.50,s,1.5,reproduced,01,,\n"
+                    "000,a,q2,7,s,7,reproduced,02,,\n")
+    assert read_published(path, "01") == {"q1": "1.50"}

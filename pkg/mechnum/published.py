@@ -182,6 +182,23 @@ def read_registry(path, chapter=None):
     return [row for row in _read(path, COLUMNS) if chapter is None or row["chapter"] == chapter]
 
 
+def read_published(path, chapter):
+    """The numbers a chapter's study publishes, as printed: ``{quantity: published text}``.
+
+    For a chapter that works with the study's printed numbers (a table it audits, a value it
+    quotes), so that no published number is typed into a notebook or a test.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> read_published(path, "01")
+    {'T': '1.942'}
+    """
+    return {row["quantity"]: row["published"] for row in read_registry(path, chapter)}
+
+
 def check_row(row, value):
     """Assert what a registry row says of ``value``, the package's number for it (or None).
 
