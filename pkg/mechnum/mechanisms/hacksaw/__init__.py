@@ -33,7 +33,7 @@ solvers work on the unchecked private kernels, so the checks cost nothing inside
 
 The package's modules:
 
-* :mod:`~mechnum.mechanisms.hacksaw.model`: the unknowns (:data:`NAMES`), the links
+* :mod:`~mechnum.mechanisms.hacksaw.model`: the unknowns (``NAMES``), the links
   (:class:`Geometry`), the motor's profile (:func:`motor`, :func:`first_revolution_time`), the
   study's seeds and tolerance, and the input checks;
 * :mod:`~mechnum.mechanisms.hacksaw.equations`: the constraints and their Jacobians

@@ -8,7 +8,7 @@ and all nine at once (:func:`~mechnum.mechanisms.hacksaw.residual`). The rate eq
 linear in their unknowns, with the position Jacobian as their matrix, rows permuted
 (:func:`~mechnum.mechanisms.hacksaw.rate_jacobian`); the 9x9 Jacobian
 (:func:`~mechnum.mechanisms.hacksaw.jacobian`) is block lower triangular. Where
-``|cos(theta3)|`` falls below :data:`DEAD_POINT_COS` (a dead point) the rate equations are
+``|cos(theta3)|`` falls below ``DEAD_POINT_COS`` (a dead point) the rate equations are
 singular. Each public evaluator checks its input and calls a private kernel (``_loop``,
 ``_velocity``, ...), which the solvers call directly.
 """

@@ -1,6 +1,6 @@
 """The saw and its motor: the unknowns, the links, the motor's profile, and the input checks.
 
-The nine unknowns are :data:`NAMES`, in that order;
+The nine unknowns are ``NAMES``, in that order;
 :class:`~mechnum.mechanisms.hacksaw.Geometry` holds the link lengths (``STUDY``: the study's),
 and :func:`~mechnum.mechanisms.hacksaw.motor` gives the study's jerk-limited start of the motor.
 The study's seeds and tolerance are here too. Every public function of the package checks its

@@ -30,7 +30,8 @@ The residual is dimensionless: positions over ``L``, forces over ``EI / L**2``.
 The package's modules:
 
 * :mod:`~mechnum.mechanisms.rfr2.model`: the :class:`Mechanism`, the study's example
-  (:data:`TABLE7`, :data:`TABLE7_THETA`), and both rods in the chart
+  (:data:`~mechnum.mechanisms.rfr2.model.TABLE7`,
+  :data:`~mechnum.mechanisms.rfr2.model.TABLE7_THETA`), and both rods in the chart
   (:func:`chart_from_thesis`);
 * :mod:`~mechnum.mechanisms.rfr2.elliptic`: the closed form's equations
   (:func:`forward_system`, :func:`residual`) and all its equilibria
@@ -47,8 +48,9 @@ The package's modules:
 * :mod:`~mechnum.mechanisms.rfr2.trajectories`: the study's paths (:func:`straight_path`,
   :func:`circles`, :func:`rectangles`, :func:`path`);
 * :mod:`~mechnum.mechanisms.rfr2.drawing`: :func:`draw`;
-* :mod:`~mechnum.mechanisms.rfr2.study`: the published Table 7 (:data:`TABLE7_PUBLISHED`),
-  :func:`recover_inputs` and :func:`reproduce`.
+* :mod:`~mechnum.mechanisms.rfr2.study`: the published Table 7
+  (:data:`~mechnum.mechanisms.rfr2.study.TABLE7_PUBLISHED`), :func:`recover_inputs` and
+  :func:`reproduce`.
 """
 
 # Also imported, though private: _rods, _in_chart, _sample, _shooting_system and _memoised,

@@ -19,7 +19,8 @@ from mechnum.rods import regular
 TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
                              [1.962541, -0.004391, 4.811041, 0.943413]])
 """Table 7 as printed, ``(psi1, k_rel1, psi2, k_rel2)`` of its solutions 1 and 2: input data of
-:func:`recover_inputs` (the reproduction computes them, see :func:`reproduce`)."""
+:func:`~mechnum.mechanisms.rfr2.recover_inputs` (the reproduction computes them, see
+:func:`~mechnum.mechanisms.rfr2.reproduce`)."""
 
 
 def recover_inputs(solutions, free="EI"):

@@ -81,7 +81,8 @@ increments of ``theta``, rad): generator and the study's parameters."""
 
 
 def path(kind):
-    """The increments of one of the study's trajectories (:data:`STUDY_PATHS`).
+    """The increments of one of the study's trajectories
+    (:data:`~mechnum.mechanisms.rfr2.trajectories.STUDY_PATHS`).
 
     Examples
     --------
