@@ -14,12 +14,17 @@ import numpy as np
 
 from mechnum import _validate, newton
 from mechnum.mechanisms.rfr2.analysis import crossings, stability
-from mechnum.mechanisms.rfr2.model import _in_chart, _modes, _rods, _scales, _theta
+from mechnum.mechanisms.rfr2.model import _in_chart, _modes, _rods, _theta
 from mechnum.rods import regular
 
 # Starts of the all-solutions search are drawn with |t| <= 0.985 (forces up to ~(q/2)**2 =
 # 1000 EI / L**2, far beyond what the study's mechanism can balance); iterates may go on to T_MAX.
 START_T = 0.985
+
+
+def _scales(mech):
+    """Scales of the residual rows: positions by ``L``, forces by ``EI / L**2``."""
+    return np.array([mech.L, mech.L, mech.EI / mech.L ** 2, mech.EI / mech.L ** 2])
 
 
 def forward_system(mech, theta, modes=(1, 1)):

@@ -75,8 +75,6 @@ class Mechanism:
 TABLE7 = Mechanism(origins=[[-0.3, 0.0], [0.3, 0.0]], force=[0.3, -0.1])
 """The study's example of its Table 7 (13.2.1, Annex II 3.4): motor 2 at ``(0.3, 0)``, where its
 code puts it and where the published solutions belong (the text says ``(0, 0.3)``)."""
-
-
 TABLE7_THETA = np.radians([40.0, 60.0])
 """The motor angles of Table 7 (rad)."""
 
@@ -103,11 +101,6 @@ def _rods(mech, modes, z, theta):
     rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2], modes, True)
     tip, force, d_chart, d_angle = regular.place(rod, mech.origins, theta)
     return tip, force, rod.clamp_moment, d_chart, d_angle
-
-
-def _scales(mech):
-    """Scales of the residual rows: positions by ``L``, forces by ``EI / L**2``."""
-    return np.array([mech.L, mech.L, mech.EI / mech.L ** 2, mech.EI / mech.L ** 2])
 
 
 def _in_chart(z):
