@@ -138,6 +138,20 @@ def test_crossings_of_polylines():
     assert crossing.mutual_crossings(u, u ** 2, u, u, shared_tip=True) == 0
 
 
+@pytest.mark.parametrize("seed", range(20))
+def test_crossing_counts_do_not_depend_on_the_bounding_boxes(seed, monkeypatch):
+    """Random walks (many crossings): the pruned count equals the count over all pairs."""
+    rng = np.random.default_rng(seed)
+    x, y = rng.standard_normal((2, rng.integers(2, 90))).cumsum(axis=1)
+    u, v = rng.standard_normal((2, rng.integers(2, 90))).cumsum(axis=1)
+    u[-1], v[-1] = x[-1], y[-1]
+    counts = [crossing.self_crossings(x, y), crossing.mutual_crossings(x, y, u, v),
+              crossing.mutual_crossings(x, y, u, v, shared_tip=True)]
+    monkeypatch.setattr(crossing, "BLOCK", 1000)          # one box: every pair compared
+    assert counts == [crossing.self_crossings(x, y), crossing.mutual_crossings(x, y, u, v),
+                      crossing.mutual_crossings(x, y, u, v, shared_tip=True)]
+
+
 def test_crossing_input_is_checked():
     with pytest.raises(ValueError, match="polyline"):
         crossing.self_crossings([0.0], [0.0])
