@@ -14,7 +14,7 @@ import numpy as np
 from mechnum.mechanisms import prr3
 from mechnum.mechanisms.prr3 import EXAMPLES
 
-GEOMETRY = EXAMPLES["Tabla 5"][0]
+GEOMETRY = EXAMPLES["Table 5"][0]
 PEER = {}
 
 
@@ -74,12 +74,12 @@ def test_direct_2000_inputs(benchmark, capsys):
 
 
 def test_direct_problem_table_5(benchmark):
-    geometry, lam = EXAMPLES["Tabla 5"]
+    geometry, lam = EXAMPLES["Table 5"]
     assert benchmark(prr3.direct, lam, geometry).poses.shape == (2, 3)
 
 
 def test_inverse_problem_table_3(benchmark):
-    geometry, pose = EXAMPLES["Tabla 3"]
+    geometry, pose = EXAMPLES["Table 3"]
     assert benchmark(prr3.inverse, pose, geometry).shape == (8, 3)
 
 

@@ -1,4 +1,4 @@
-"""Benchmarks of Chapter 5 (seed 001): the flexible 2RFR mechanism of Tabla 7.
+"""Benchmarks of Chapter 5 (seed 001): the flexible 2RFR mechanism of Table 7.
 
 Targets on the book's 2-core machine: every mode-1 equilibrium (with the completeness check of
 ten times more starts) in 0.1 s, every equilibrium with modes up to 3 per rod in 5 s, a

@@ -40,13 +40,13 @@ from mechnum.mechanisms.actuator import (
     stroke_kinematics,
     virtual_power_force,
 )
-from mechnum.published import agrees, read_registry
+from mechnum.published import agrees, read_published
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 
 REGISTRY = Path(__file__).resolve().parents[1] / "book" / "published_values.csv"
-PUBLISHED = {r["quantity"]: r["published"] for r in read_registry(REGISTRY, "07_actuator_force")}
+PUBLISHED = read_published(REGISTRY, "07_actuator_force")
 GRID = np.linspace(0.0, 1.0, 101)  # the annex's t := 0, 0.01 .. 1
 MANY = settings(max_examples=200, deadline=None)
 ROUTES = (virtual_power_force, kane_force, lagrange_force)

@@ -17,13 +17,13 @@ from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import prr3
-from mechnum.mechanisms.prr3 import EXAMPLES, Geometry
+from mechnum.mechanisms.prr3 import EXAMPLES, Geometry, annex_i
 from mechnum.newton import fd_jacobian
 
 DIRECT = sys.modules["mechnum.mechanisms.prr3.direct"]
 MANY = settings(max_examples=200, deadline=None,
                 suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
-TABLE_5 = EXAMPLES["Tabla 5"][0]
+TABLE_5 = EXAMPLES["Table 5"][0]
 # |det J| above this (dimensionless) is a regular pose: round-off moves it by about
 # eps / |det J|, and its neighbouring assembly modes are far enough to be told apart.
 REGULAR = 1e-2
@@ -147,7 +147,7 @@ def test_branch_inputs_close_the_loops_where_the_legs_reach(case, signs):
 
 
 def test_a_tangent_leg_gives_one_value_of_its_input():
-    geometry, _ = EXAMPLES["Tabla 3"]
+    geometry, _ = EXAMPLES["Table 3"]
     pose = [0.6, 1.0, 0.0]  # y_P = L: legs 1 and 2 tangent (psi = 0 puts P2 at the same y)
     lam = prr3.inverse(pose, geometry)
     assert lam.shape == (2, 3)
@@ -225,7 +225,7 @@ def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
 
 
 def test_polynomial_equals_equation_148_times_one_plus_t_squared_to_the_fourth():
-    geometry, lam = EXAMPLES["Tabla 6"]
+    geometry, lam = EXAMPLES["Table 6"]
     l1, l2, l3 = lam
     a, B2, B3, H3, L = geometry.a, geometry.B2, geometry.B3, geometry.H3, geometry.L
     r3 = np.sqrt(3)
@@ -258,6 +258,35 @@ def test_one_plus_t_squared_divides_the_polynomial_symbolically():
     D = f2 * g1 - f1 * g2
     assert sp.expand((f3 * g2 - f2 * g3 - l1 * D) ** 2 + (f1 * g3 - f3 * g1) ** 2
                      - L ** 2 * D ** 2) == 0
+
+
+def test_annex_i_as_printed_against_the_expansion():
+    # The typeset coefficients have as many terms as the expansion of (148) in the K and Q;
+    # the wrong ones (wrong powers, hence absent from the expansion) are all in C8, C7, C6, C2.
+    t, L, lam = sp.symbols("t L lambda1")
+    K, Q = sp.symbols("K1:6"), sp.symbols("Q1:10")
+    c, s, one = 1 - t ** 2, 2 * t, 1 + t ** 2
+    f1, f2, f3 = K[0] * c + K[1] * one, K[2] * s, K[3] * c + K[4] * one
+    g1, g2, g3 = [Q[3 * j] * s + Q[3 * j + 1] * c + Q[3 * j + 2] * one for j in range(3)]
+    D = f2 * g1 - f1 * g2
+    poly = sp.Poly(sp.expand((f3 * g2 - f2 * g3 - lam * D) ** 2 + (f1 * g3 - f3 * g1) ** 2
+                             - L ** 2 * D ** 2), t)
+    names = {str(v): v for v in (*K, *Q, L, lam)}
+    wrong = {}
+    for k, printed in prr3.annex_i_terms().items():
+        expansion = sp.Poly(poly.coeff_monomial(t ** k), *names.values())
+        assert len(printed) == len(expansion.terms())
+        monomials = [sp.Mul(*(names[n] ** p for n, p in powers.items()))
+                     for _, powers in printed]
+        wrong[k] = sum(expansion.coeff_monomial(m) != coefficient
+                       for (coefficient, _), m in zip(printed, monomials))
+    assert {k for k, n in wrong.items() if n} == {8, 7, 6, 2}
+
+
+def test_annex_i_parser_refuses_what_is_not_a_monomial():
+    assert annex_i.parse_terms("3*K1^2 - Q5") == [(3, {"K1": 2}), (-1, {"Q5": 1})]
+    with pytest.raises(ValueError, match="not a monomial"):
+        annex_i.parse_terms("3*K1^2 - Q5/2")
 
 
 @MANY
@@ -324,7 +353,7 @@ def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
 
 
 def test_far_apart_sliders_have_no_pose_even_at_1e300():
-    g = EXAMPLES["Tabla 6"][0]
+    g = EXAMPLES["Table 6"][0]
     sol = prr3.direct([[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]], g)
     assert sol.counts.tolist() == [0, 0, 2]
     c = prr3.sliders([1e100, 0.0, 0.0], g)  # no pose: sliders 1 and 2 are 1e100 apart
@@ -333,7 +362,7 @@ def test_far_apart_sliders_have_no_pose_even_at_1e300():
 
 @pytest.mark.parametrize("scale", [1e-90, 1e-3, 1e3, 1e90])
 def test_direct_does_not_depend_on_the_unit_of_length(scale):
-    g, lam = EXAMPLES["Tabla 6"]
+    g, lam = EXAMPLES["Table 6"]
     big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
                    H3=g.H3 * scale)
     base = prr3.direct(lam, g).poses
@@ -343,7 +372,7 @@ def test_direct_does_not_depend_on_the_unit_of_length(scale):
 
 
 def test_pose_at_psi_pi_is_found_whatever_the_leading_coefficient():
-    g = EXAMPLES["Tabla 3"][0]
+    g = EXAMPLES["Table 3"][0]
     pose = np.array([1.25, -0.75, np.pi])
     for lam in prr3.inverse(pose, g):
         assert pose_gap(prr3.direct(lam, g).poses, pose).min() < 1e-12
@@ -439,7 +468,7 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
 def test_bad_input_raises_a_value_error_that_names_it(call):
     with pytest.raises(ValueError, match="pose|lambdas|tol|signs|x, y|psi|y must|overflow|"
                                          "c must|starts|takes one|shape"):
-        call(EXAMPLES["Tabla 6"][0])
+        call(EXAMPLES["Table 6"][0])
 
 
 def test_an_empty_batch_is_valid_everywhere():
@@ -461,7 +490,7 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    g, pose = EXAMPLES["Tabla 3"]
+    g, pose = EXAMPLES["Table 3"]
     lam = prr3.inverse(pose, g)[0]
     fig, ax = plt.subplots()
     assert len(prr3.draw(ax, pose, lam, g)) == len(prr3.draw(ax, pose, lam, g, guides=False)) + 3
@@ -477,7 +506,7 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
 def test_reproduce_gives_every_quantity_of_the_chapter():
     values = prr3.reproduce()
     assert all(np.isfinite(v) for v in values.values())
-    assert values["Tabla 3 number of solutions"] == 8 == values["Tabla 4 number of solutions"]
+    assert values["Table 3 number of solutions"] == 8 == values["Table 4 number of solutions"]
 
 
 # --- singularity-free paths ---------------------------------------------------------------
@@ -547,7 +576,7 @@ def test_a_root_at_infinity_is_the_pose_psi_pi():
 
 def test_direct_emits_no_overflow_far_away():
     import warnings
-    g = EXAMPLES["Tabla 6"][0]
+    g = EXAMPLES["Table 6"][0]
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no overflow in the polynomial of far-apart sliders
         assert prr3.direct([[1e100, 0.0, 0.0], [1e300, 0.0, -1e300]], g).counts.tolist() == [0, 0]

@@ -26,9 +26,12 @@ The loop-closure equations, with the bar angles eliminated, are ``|P_i - C_i|^2 
 * :mod:`~mechnum.mechanisms.prr3.paths`: a path of poses between two assembly modes of one
   input that crosses no singularity (:func:`mode_change_path`);
 * :mod:`~mechnum.mechanisms.prr3.study`: the study's examples (:data:`EXAMPLES`) and
-  :func:`reproduce`.
+  :func:`reproduce`;
+* :mod:`~mechnum.mechanisms.prr3.annex_i`: the polynomial's coefficients as typeset in the
+  study's Annex I, term by term (:func:`annex_i_terms`), for the chapter's audit.
 """
 
+from mechnum.mechanisms.prr3.annex_i import annex_i_terms
 from mechnum.mechanisms.prr3.direct import DirectSolution, direct, direct_by_newton
 from mechnum.mechanisms.prr3.elimination import (deflate, equations, polynomial,
                                                  solutions_from_equations)
@@ -39,8 +42,8 @@ from mechnum.mechanisms.prr3.inverse import branch_inputs, inverse, workspace
 from mechnum.mechanisms.prr3.paths import mode_change_path
 from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, reproduce
 
-__all__ = ["DirectSolution", "EXAMPLES", "Geometry", "WORKSPACE_GEOMETRY", "bars",
-           "branch_inputs", "deflate", "direct", "direct_by_newton", "direct_jacobian", "draw",
-           "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals",
+__all__ = ["DirectSolution", "EXAMPLES", "Geometry", "WORKSPACE_GEOMETRY", "annex_i_terms",
+           "bars", "branch_inputs", "deflate", "direct", "direct_by_newton", "direct_jacobian",
+           "draw", "equations", "inverse", "inverse_jacobian", "jacobian_dets", "loop_residuals",
            "mode_change_path", "polynomial", "radicands", "reproduce", "sliders",
            "solutions_from_equations", "vertices", "workspace"]

@@ -104,7 +104,7 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     --------
     >>> import numpy as np
     >>> from mechnum.mechanisms.prr3 import EXAMPLES
-    >>> g = EXAMPLES["Tabla 5"][0]
+    >>> g = EXAMPLES["Table 5"][0]
     >>> a, b = np.array([2.2, 0.5, 3.0]), np.array([2.3, 0.5, 3.2])
     >>> path = mode_change_path(a, b, g, (1, 1, 1), bounds=[[1.5, 3.5], [0.0, 1.0]],
     ...                         shape=(20, 10, 36))
