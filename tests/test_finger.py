@@ -2,6 +2,7 @@
 properties checked by hypothesis (200 examples each)."""
 
 import math
+from pathlib import Path
 
 import matplotlib
 import numpy as np
@@ -13,11 +14,15 @@ from numpy.testing import assert_allclose
 from mechnum.errors import (DivergenceError, GeometryError, RelaxationFactorError,
                             SingularJacobianError, UnreachablePoseError)
 from mechnum.mechanisms import finger as F
+from mechnum.published import check_row, read_published, read_registry
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 TABLE3 = F.TABLE3_LINKAGE
+_PATH = Path(__file__).resolve().parents[1] / "book" / "published_values.csv"
+REGISTRY = {row["quantity"]: row for row in read_registry(_PATH, "02_linear_systems_finger")}
+PUBLISHED = read_published(_PATH, "02_linear_systems_finger")
 HYPOTHESIS = settings(max_examples=200, deadline=None)
 
 
@@ -47,13 +52,16 @@ def test_angle_convention_against_table1():
     assert np.abs(misfit[2]) > 5e-4
 
 
-def test_table1_linkage_is_the_median_of_the_rows():
+def test_table1_linkage_fits_every_row_but_the_corrupted_one():
+    # one rigid linkage: with its ground pivot H = (-r4, 0), the lengths |DE|, |EI|, |HI| of
+    # nine measured rows equal r1, r2, r3 to the printed digits; row 3 holds the copying error
     L = F.table1_linkage()
     E, I = F.TABLE1_EI[:, :2], F.TABLE1_EI[:, 2:]
-    r1 = [math.hypot(*e) for e in E]
-    assert L.r1 == sorted(r1)[4] / 2 + sorted(r1)[5] / 2
-    assert L.r4 == F.TABLE1_R4
-    assert abs(math.dist(E[0], I[0]) - L.r2) < 1e-4
+    H = (-L.r4, 0.0)
+    misses = np.array([[abs(math.hypot(*e) - L.r1), abs(math.dist(e, i) - L.r2),
+                        abs(math.dist(i, H) - L.r3)] for e, i in zip(E, I)]).max(axis=1)
+    assert np.flatnonzero(misses > 1e-3).tolist() == [2]
+    assert np.delete(misses, 2).max() < 2e-4
 
 
 def test_crossed_branch_is_the_studys():
@@ -131,9 +139,37 @@ def test_ill_conditioned_example_formula():
 
 def test_reproduce_covers_the_tables():
     values = F.reproduce()
-    assert sum(k.startswith("Tabla 4 pos") for k in values) == 52
-    assert values["Tabla 3 r1"] == pytest.approx(35.0761, abs=5e-5)
-    assert values["best omega"] == pytest.approx(1.6527, abs=5e-5)
+    assert sum(k.startswith("Table 4 pos") for k in values) == 52
+    for quantity in ("Table 3 r1", "best omega", "Fig. 1 example loop closure"):
+        check_row(REGISTRY[quantity], values[quantity])
+    # every row with a computed number has its value, and no other row has one
+    computed = {q for q, row in REGISTRY.items() if row["computed"]}
+    assert computed == set(values)
+
+
+def test_fig1_printed_solution_is_the_registrys():
+    assert {name: float(PUBLISHED[f"Fig. 1 example {name}"]) for name in F.FIG1_PRINTED} == \
+        F.FIG1_PRINTED
+
+
+def test_loop_closure_finds_a_closed_loop():
+    # a closed quadrilateral of four vectors, with distractors: the search finds it exactly
+    lengths, angles = [3.0, 4.0, 5.0, 1.0, 2.0], [0.0, 90.0, 180 + 53.13010235415598, 10, 70]
+    miss, signs, count = F.loop_closure(lengths, angles)
+    assert miss < 1e-12 and np.abs(signs).tolist() == [1, 1, 1, 0, 0]
+    assert len(set(signs[:3])) == 1  # the loop, in one sense or the other
+    assert count == sum(math.comb(5, k) * 2 ** k for k in (3, 4, 5))
+
+
+def test_tables_7_to_10_are_table_5_shifted():
+    # the registry's claim on Tables 7 to 10: each column is Table 5's plus one constant
+    table5 = np.hstack(F.published_points(PUBLISHED, 5))
+    for table in (7, 8, 9, 10):
+        shifts, spread = F.column_shifts(np.hstack(F.published_points(PUBLISHED, table)),
+                                         table5)
+        assert np.all(spread < 1e-12) and np.all(np.abs(shifts) > 0.4)
+    # and the check can fail: Table 4 is no shifted copy of Table 5
+    assert F.column_shifts(np.hstack(F.published_points(PUBLISHED, 4)), table5)[1].max() > 0.1
 
 
 def test_draw_puts_the_links_at_the_pose():
@@ -316,15 +352,15 @@ def test_angles_from_points_are_in_range(points, r4):
 
 
 @HYPOTHESIS
-@given(st.lists(st.tuples(st.floats(-10, 10), st.floats(-10, 10)), min_size=0, max_size=8))
-def test_design_matrix_rows(pairs):
-    theta_in = np.array([p[0] for p in pairs])
-    theta_out = np.array([p[1] for p in pairs])
-    A, b = F.design_matrix(theta_in, theta_out)
-    assert A.shape == (len(pairs), 3) and b.shape == (len(pairs),)
-    k = np.array([0.3, -0.2, 0.1])
-    assert_allclose(A @ k - b, np.array(_freudenstein_misfit(k, theta_in, theta_out)).reshape(-1),
-                    atol=1e-12)
+@given(assembled(), st.floats(0.0, 1.0), st.integers(0, 6), st.sampled_from([F.CROSSED, F.OPEN]))
+def test_design_matrix_holds_at_a_linkages_own_poses(case, span, n, branch):
+    # A k = b, with k the linkage's Freudenstein coefficients, at every pose it can take
+    L, theta = case
+    grid = theta + span * np.linspace(-0.1, 0.1, n)
+    p = F.pose(grid[F.reachable(grid, L)], L, branch)
+    A, b = F.design_matrix(p.theta_in, p.theta_out)
+    assert A.shape == (len(p.theta_in), 3) and b.shape == (len(p.theta_in),)
+    assert_allclose(A @ F.freudenstein_coefficients(L), b, rtol=0, atol=1e-6)
 
 
 @HYPOTHESIS
@@ -362,3 +398,13 @@ def test_draw_any_pose(case):
     links, _ = F.draw(ax, F.pose([theta], L))
     assert_allclose(links.get_xydata()[2], F.pose([theta], L).I[0])
     plt.close(fig)
+
+
+@HYPOTHESIS
+@given(lengths, lengths, lengths, lengths)
+def test_lengths_from_coefficients_inverts_the_coefficients(r1, r2, r3, r4):
+    k = F.freudenstein_coefficients(F.Linkage(r1, r2, r3, r4))
+    got = F.lengths_from_coefficients(np.array([k, [0.0, -1.0, 0.0], [-1.0, -1.0, -9.0]]), r4)
+    # r2 comes from a difference of squares: accurate to sqrt(eps) of the longest link
+    assert_allclose(got[0], [r1, r2, r3], rtol=1e-9, atol=1e-6 * max(r1, r2, r3, r4))
+    assert np.isnan(got[1:]).all()  # k1 = 0 and r2^2 < 0 belong to no linkage

@@ -44,6 +44,14 @@ TABLE2_THETA_OUT = np.array([1.0400, 1.2574, 1.5410, 1.7736, 2.0165, 2.2205, 2.4
 TABLE2_THETA_IN_UNROUNDED = np.radians(225.5 + 11.0 * np.arange(13))
 #: The study's SOR relaxation factors (Tables 5 and 7 to 11).
 STUDY_OMEGAS = (0.33, 0.28, 0.309, 0.2889, 0.3289)
+#: The opening example of the study (its Fig. 1): the given lengths (m) and angles (degrees)
+#: of its nine vectors ``p_i at theta_i``, as the study prints them (input data).
+FIG1_GIVEN = {"p1": 2.0, "p2": 2.0, "p5": 6.0, "p6": 4.0, "p7": 6.0, "p8": 1.0,
+              "theta1": 0.0, "theta7": 0.0, "theta8": -90.0, "theta9": 0.0}
+#: The example's printed solution for its eight unknowns: the data under test (the registry
+#: holds the same numbers; a test checks that the two agree).
+FIG1_PRINTED = {"p3": 8.0, "p4": 8.0, "p9": 9.91, "theta2": 175.63, "theta3": 173.71,
+                "theta4": 157.47, "theta5": 20.08, "theta6": 88.12}
 #: Sign of the circle-intersection branch of the study's (crossed) assembly.
 CROSSED, OPEN = 1, -1
 #: Machine epsilon: example 1.1's ``A`` is singular to working precision when
@@ -143,6 +151,43 @@ def freudenstein_coefficients(linkage):
                      (L.r2 ** 2 - L.r1 ** 2 - L.r3 ** 2 - L.r4 ** 2) / (2 * L.r1 * L.r3)])
 
 
+def lengths_from_coefficients(k, r4):
+    """The link lengths ``(r1, r2, r3)`` of Freudenstein coefficients, vectorised over ``k``.
+
+    Parameters
+    ----------
+    k : array_like, shape (..., 3)
+        Coefficients ``k1, k2, k3``, one set per row (the iterates of a solver, say).
+    r4 : float
+        The proposed ground link, positive.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ``r1 = -r4 / k2``, ``r2 = sqrt(2 r1 r3 k3 + r1^2 + r3^2 + r4^2)``, ``r3 = -r4 / k1``;
+        NaN in every row whose coefficients belong to no linkage (``k1`` or ``k2`` not
+        negative, or ``r2^2 <= 0``).
+
+    Examples
+    --------
+    >>> lengths_from_coefficients([[-0.25, -0.5, -0.75], [0.0, 0.0, 0.0]], 1.0).round(12)
+    array([[ 2.,  3.,  4.],
+           [nan, nan, nan]])
+    """
+    k = _validate.array(k, "k")
+    if k.ndim == 0 or k.shape[-1] != 3:
+        raise ValueError(f"k must have 3 coefficients in its last axis, got shape {k.shape}")
+    r4 = _validate.scalar(r4, "r4", positive=True)
+    k1, k2, k3 = np.moveaxis(k, -1, 0)
+    valid = (k1 < 0) & (k2 < 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r3, r1 = np.where(valid, -r4 / k1, np.nan), np.where(valid, -r4 / k2, np.nan)
+        r2_squared = 2 * r1 * r3 * k3 + r1 ** 2 + r3 ** 2 + r4 ** 2
+        r2 = np.where(r2_squared > 0, np.sqrt(r2_squared), np.nan)
+    lengths = np.stack([r1, r2, r3], axis=-1)
+    return np.where(np.isnan(lengths).any(axis=-1, keepdims=True), np.nan, lengths)
+
+
 def linkage_from_coefficients(k, r4):
     """The link lengths of Freudenstein coefficients ``k`` for a proposed ground link ``r4``.
 
@@ -163,11 +208,11 @@ def linkage_from_coefficients(k, r4):
     r4 = _validate.scalar(r4, "r4", positive=True)
     if k[0] >= 0 or k[1] >= 0:
         raise GeometryError(f"k1 = {k[0]:.6g} and k2 = {k[1]:.6g} must be negative")
-    r3, r1 = -r4 / k[0], -r4 / k[1]
-    r2_squared = 2 * r1 * r3 * k[2] + r1 ** 2 + r3 ** 2 + r4 ** 2
-    if not r2_squared > 0:
-        raise GeometryError(f"k gives r2^2 = {r2_squared:.6g} <= 0: no coupler fits")
-    return Linkage(float(r1), float(np.sqrt(r2_squared)), float(r3), r4)
+    r1, r2, r3 = lengths_from_coefficients(k, r4)
+    if np.isnan(r2):
+        raise GeometryError(f"k gives r2^2 = {2 * r1 * r3 * k[2] + r1 ** 2 + r3 ** 2 + r4 ** 2:.6g}"
+                            " <= 0: no coupler fits")
+    return Linkage(float(r1), float(r2), float(r3), r4)
 
 
 def _wrap(theta):
@@ -512,9 +557,114 @@ def ill_conditioned_example(delta, rhs_shift):
     return np.linalg.solve(A, [1.0, 1.0 + shift]), cond
 
 
-def _table_rows(prefix, I, E):
-    """Registry keys ``"<prefix> pos <i> <I|E> <x|y>"`` for the points of a table."""
-    return {f"{prefix} pos {i + 1} {name} {axis}": float(points[i, j])
+def loop_closure(lengths, angles, terms=(3, 5)):
+    """The signed sum of a few of the vectors ``lengths[i] at angles[i]`` closest to zero.
+
+    A solution of a linkage's loop equations closes its loops: some sum of its vectors, each
+    taken with sign +1, -1 or 0, vanishes. This searches every such sum of ``terms[0]`` to
+    ``terms[1]`` vectors (``3^n`` sign patterns: keep ``n`` small).
+
+    Parameters
+    ----------
+    lengths : array_like, shape (n,)
+    angles : array_like, shape (n,)
+        Degrees.
+    terms : (int, int), optional
+        The smallest and largest number of vectors in a sum.
+
+    Returns
+    -------
+    miss : float
+        The smallest ``max(|sum_x|, |sum_y|)`` over the sums searched.
+    signs : ndarray of int, shape (n,)
+        The signs of that sum.
+    count : int
+        The number of sums searched.
+
+    Examples
+    --------
+    >>> miss, signs, count = loop_closure([1.0, 1.0, 2.0], [0.0, 0.0, 180.0])
+    >>> round(miss, 12), signs.tolist(), count
+    (0.0, [-1, -1, -1], 8)
+    """
+    lengths = _validate.array(lengths, "lengths", ndim=1)
+    angles = _validate.array(angles, "angles", shape=lengths.shape)
+    vectors = lengths[:, None] * _unit(np.radians(angles))
+    signs = np.array(np.meshgrid(*[[-1, 0, 1]] * lengths.size)).reshape(lengths.size, -1).T
+    used = np.abs(signs).sum(axis=1)
+    signs = signs[(used >= terms[0]) & (used <= terms[1])]
+    misses = np.abs(signs @ vectors).max(axis=1)
+    best = int(np.argmin(misses))
+    return float(misses[best]), signs[best], len(signs)
+
+
+def fig1_vectors(printed=None):
+    """The lengths and angles (degrees) of the nine vectors of the study's Fig. 1 example.
+
+    Parameters
+    ----------
+    printed : dict, optional
+        The printed unknowns (``"p3"``, ..., ``"theta6"``) as numbers or printed text;
+        :data:`FIG1_PRINTED` by default.
+
+    Examples
+    --------
+    >>> lengths, angles = fig1_vectors()
+    >>> lengths.tolist()[:4], angles.tolist()[-2:]
+    ([2.0, 2.0, 8.0, 8.0], [-90.0, 0.0])
+    """
+    values = FIG1_GIVEN | {name: float(v) for name, v in (printed or FIG1_PRINTED).items()}
+    return (np.array([values[f"p{i}"] for i in range(1, 10)]),
+            np.array([values[f"theta{i}"] for i in range(1, 10)]))
+
+
+def published_points(published, table, positions=13):
+    """A table of points as the study prints it: ``(I, E)``, arrays of shape ``(n, 2)``.
+
+    Parameters
+    ----------
+    published : dict
+        ``{quantity: printed text}`` of the registry (``mechnum.published.read_published``),
+        with keys ``"Table <t> pos <i> <I|E> <x|y>"``.
+    table : int
+    positions : int, optional
+
+    Examples
+    --------
+    >>> cells = {f"Table 4 pos 1 {p} {a}": v for p, a, v in
+    ...          [("I", "x", "1"), ("I", "y", "2"), ("E", "x", "3"), ("E", "y", "4")]}
+    >>> [x.tolist() for x in published_points(cells, 4, positions=1)]
+    [[[1.0, 2.0]], [[3.0, 4.0]]]
+    """
+    return tuple(np.array([[float(published[f"Table {table} pos {i} {point} {axis}"])
+                            for axis in "xy"] for i in range(1, positions + 1)])
+                 for point in "IE")
+
+
+def column_shifts(table, reference):
+    """How far ``table`` is ``reference`` shifted by one constant per column.
+
+    Returns
+    -------
+    shifts : ndarray
+        The median difference of each column.
+    spread : ndarray
+        The range (max - min) of each column's differences: zero, up to the rounding of the
+        printed digits, if the table is the reference shifted.
+
+    Examples
+    --------
+    >>> shifts, spread = column_shifts([[1.5, 2.0], [2.5, 3.0]], [[1.0, 0.0], [2.0, 1.0]])
+    >>> shifts.tolist(), spread.tolist()
+    ([0.5, 2.0], [0.0, 0.0])
+    """
+    difference = np.asarray(table, dtype=float) - np.asarray(reference, dtype=float)
+    return np.median(difference, axis=0), np.ptp(difference, axis=0)
+
+
+def _table_rows(table, I, E):
+    """Registry keys ``"Table <t> pos <i> <I|E> <x|y>"`` for the points of a table."""
+    return {f"Table {table} pos {i + 1} {name} {axis}": float(points[i, j])
             for i in range(len(I)) for name, points in (("I", I), ("E", E))
             for j, axis in enumerate("xy")}
 
@@ -528,48 +678,58 @@ def reproduce():
 
     Examples
     --------
-    >>> round(reproduce()["Tabla 3 r1"], 4)
+    >>> round(reproduce()["Table 3 r1"], 4)
     35.0761
     """
     values = {}
     # Table 1: each point predicted from the other point's angle through one linkage.
     L1 = table1_linkage()
     theta_in, theta_out = angles_from_points(TABLE1_EI[:, :2], TABLE1_EI[:, 2:], TABLE1_R4)
-    values.update(_table_rows("Tabla 1", pose_from_output(theta_out, L1).I,
+    values.update(_table_rows(1, pose_from_output(theta_out, L1).I,
                               pose(theta_in, L1).E))
     # Table 2: each angle from the other one through the published linkage (Table 3).
     published = TABLE3_LINKAGE
     ok = reachable(TABLE2_THETA_IN, published)
     out = pose(TABLE2_THETA_IN[ok], published).theta_out
     for i, value in zip(np.flatnonzero(ok), out):
-        values[f"Tabla 2 pos {i + 1} theta_1"] = float(value)
+        values[f"Table 2 pos {i + 1} theta_1"] = float(value)
     ok = reachable(TABLE2_THETA_OUT, published, "output")
     back = pose_from_output(TABLE2_THETA_OUT[ok], published).theta_in
     for i, value in zip(np.flatnonzero(ok), back):
-        values[f"Tabla 2 pos {i + 1} theta_3"] = float(value)
+        values[f"Table 2 pos {i + 1} theta_3"] = float(value)
     # Table 3: the least-squares fit of Table 2. Table 4: the rockers of Table 3 placed at
     # Table 2's angles, the input ones unrounded (I depends on theta_in only, E on theta_out).
     fit = synthesize(TABLE2_THETA_IN, TABLE2_THETA_OUT, TABLE1_R4, "qr")
     for name in ("r1", "r2", "r3"):
-        values[f"Tabla 3 {name}"] = getattr(fit.linkage, name)
+        values[f"Table 3 {name}"] = getattr(fit.linkage, name)
     placed = place_links(TABLE2_THETA_IN_UNROUNDED, TABLE2_THETA_OUT, published)
-    values.update(_table_rows("Tabla 4", placed.I, placed.E))
+    values.update(_table_rows(4, placed.I, placed.E))
     # Tables 5 to 11: SOR on the normal equations for each omega, converged.
     for table, omega in zip((5, 7, 8, 9, 10), STUDY_OMEGAS):
         sol = synthesize(TABLE2_THETA_IN, TABLE2_THETA_OUT, TABLE1_R4, "sor", omega,
                          tol=1e-12, maxiter=20_000)
         placed = place_links(TABLE2_THETA_IN, TABLE2_THETA_OUT, sol.linkage)
-        values.update(_table_rows(f"Tabla {table}", placed.I, placed.E))
-        for name in ("r1", "r2", "r3"):
+        values.update(_table_rows(table, placed.I, placed.E))
+        # r4 is the proposed input: every solution keeps it, so its error is zero
+        for name in ("r1", "r2", "r3", "r4"):
             if omega == 0.33:
-                values[f"Tabla 6 {name}"] = getattr(sol.linkage, name)
-            values[f"Tabla 11 omega={omega} {name}"] = abs(
+                values[f"Table 6 {name}"] = getattr(sol.linkage, name)
+            values[f"Table 11 omega={omega} {name}"] = abs(
                 getattr(sol.linkage, name) - getattr(published, name))
+    # The fixed pivots, D = (0, 0) and H = (-r4, 0), wherever the tables print them.
+    for table in (4, 5):
+        values[f"Table {table} H x"] = -TABLE1_R4
+    for table in (7, 8, 9, 10):
+        values.update({f"Table {table} H x": -TABLE1_R4, f"Table {table} H y": 0.0,
+                       f"Table {table} D x": 0.0, f"Table {table} D y": 0.0})
     A, b = design_matrix(TABLE2_THETA_IN, TABLE2_THETA_OUT)
     values["best omega"] = linear.optimal_omega(A.T @ A).omega
     # Example 1.1.
     (x, y), cond = ill_conditioned_example(1e-6, 1e-6)
     (x2, y2), _ = ill_conditioned_example(1e-6, 2e-6)
-    values.update({"Ej. 1.1 x": x, "Ej. 1.1 y": y, "Ej. 1.1 cond_inf(A), delta=1e-6": cond,
-                   "Ej. 1.1 perturbed x": x2, "Ej. 1.1 perturbed y": y2})
+    values.update({"Example 1.1 x": x, "Example 1.1 y": y,
+                   "Example 1.1 cond_inf(A), delta=1e-6": cond,
+                   "Example 1.1 perturbed x": x2, "Example 1.1 perturbed y": y2})
+    # The Fig. 1 example: how nearly its printed solution closes a loop (0 if it were one).
+    values["Fig. 1 example loop closure"] = loop_closure(*fig1_vectors())[0]
     return {key: float(value) for key, value in values.items()}
