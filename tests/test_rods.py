@@ -160,6 +160,19 @@ def test_small_loads_are_linear_beam_theory():
         assert_allclose(rod.clamp_moment, P * L, rtol=1e-12)
 
 
+@pytest.mark.parametrize("psi", [1.0, 2.5, 4.0, 5.5])
+def test_small_oblique_loads_keep_their_digits(psi):
+    # a tiny load at an angle: the tip deflection is not the difference of the rotated
+    # positions along and across the force (that gave y with 85 % error at alpha = 1e-14)
+    EI, L, alpha = 2.0, 0.5, 1e-14
+    force = polar(alpha, psi, EI, L)
+    rod = rods.cantilever(EI, L, force, nodes=3)
+    P = force[1]
+    assert rod.tip[0] <= L
+    assert_allclose(rod.tip[1], P * L ** 3 / (3 * EI), rtol=1e-13)   # beam theory, to O(alpha)
+    assert_allclose(rod.theta[-1], P * L ** 2 / (2 * EI), rtol=1e-13)
+
+
 def test_large_loads_follow_the_force():
     # a transverse load P: beyond a boundary layer of length 1 / lambda at the clamp
     # (lambda = sqrt(P / EI)) the rod lies along the force, and up to terms exp(-lambda L)
