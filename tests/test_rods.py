@@ -6,8 +6,11 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize_scalar
 
 from mechnum import rods
+from mechnum.continuation import pseudo_arclength
 from mechnum.errors import ConvergenceError, MechnumError
 from mechnum.rods import NoEquilibriumError, shooting
 
@@ -564,3 +567,33 @@ def test_newton_that_cannot_converge_raises_a_named_error():
         rods.shoot_pinned(1.0, 1.0, [0.8, 0.1], [0.1, 0.1, 0.1], maxiter=5, damping=False)
     with pytest.raises(ConvergenceError, match="did not converge in 2 iterations"):
         rods.shoot_pinned(0.1649, 1.0, [0.8, 0.1], [0.1, 0.1, 0.1], maxiter=2)
+
+
+def test_equations_are_those_the_sweeps_integrate():
+    force = np.array([-2.0, 1.5])
+    f = rods.equations(1.3, force)
+    sol = solve_ivp(f, (0.0, 0.9), [0.0, 0.0, 0.0, 0.4], rtol=1e-12, atol=1e-12)
+    rod = rods.integrate(1.3, 0.9, 0.4, force, nodes=801)
+    assert_allclose(sol.y[:, -1], [*rod.tip, rod.tip_angle, rod.m[-1]], atol=1e-10)
+    states = np.random.default_rng(0).normal(size=(4, 7))     # solve_bvp's (4, k) layout
+    assert_allclose(f(0.0, states)[3], force[0] * np.sin(states[2]) - force[1] *
+                    np.cos(states[2]))
+    assert_allclose(f(0.0, states)[2], states[3] / 1.3)
+
+
+def test_imperfect_column_folds_at_the_closed_form_least_load():
+    # a cantilever pushed nearly along its axis: the branch bent against the small transverse
+    # component of the force exists only above a least load, where it folds; it is stable on
+    # the side of large deflection and unstable on the nearly straight side
+    psi = np.pi - 0.1
+    load = rods.DeadLoad(1.0, 1.0, psi, segments=80)
+    branch = pseudo_arclength(load.fun, load.jac, load.start(-0.5), direction=[0.0, -1.0],
+                              step=0.2, max_step=0.5, steps=60, stop=lambda u: u[1] > 6)
+    least = minimize_scalar(lambda k: rods.clamped_pinned(1.0, 1.0, psi, k).R,
+                            bounds=(-0.99, -0.01), method="bounded",
+                            options={"xatol": 1e-10}).fun
+    assert branch.folds.size == 1
+    assert_allclose(branch.fold_points[0, 1], least, rtol=1e-7)
+    index = np.array([load.index(u) for u in branch.u])
+    fold = branch.folds[0]
+    assert np.all(index[:fold + 1] == 0) and np.all(index[fold + 1:] == 1)
