@@ -12,6 +12,7 @@ from scipy.optimize import minimize_scalar
 from mechnum import rods
 from mechnum.continuation import pseudo_arclength
 from mechnum.errors import ConvergenceError, MechnumError
+from mechnum.mechanisms import elastica
 from mechnum.rods import NoEquilibriumError, shooting
 
 PI = np.pi
@@ -323,13 +324,7 @@ def test_euler_critical_loads(mode):
     assert_allclose(rod.R, euler, rtol=1e-9)
 
 
-# Mattiasson (1981), Table 1 (after Bisshopp and Drucker 1945): a cantilever under a transverse
-# tip load P; horizontal shortening u/L and deflection v/L against P L^2 / EI
-MATTIASSON = [(1.0, 0.05643, 0.30172), (2.0, 0.16064, 0.49346), (5.0, 0.38763, 0.71379),
-              (10.0, 0.55500, 0.81061)]
-
-
-@pytest.mark.parametrize("alpha, u, v", MATTIASSON)
+@pytest.mark.parametrize("alpha, u, v", elastica.MATTIASSON.tolist())   # five digits
 @pytest.mark.parametrize("method", ["elliptic", "shooting"])
 def test_large_deflection_cantilever_table(alpha, u, v, method):
     rod = rods.cantilever(1.0, 1.0, [0.0, alpha], method, nodes=801)
