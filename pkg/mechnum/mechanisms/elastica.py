@@ -29,6 +29,13 @@ FD_STEP = 1e-10
 HALVING_FLOOR = 1e-3                          # the study's: halve a step while |delta| > 1e-3 tol
 _MAX_COND = 1.0 / np.finfo(float).eps         # a Jacobian past this condition has no digit left
 
+# A benchmark the thesis does not give, for validating any cantilever solver: Mattiasson
+# (1981), Table 1 (after Bisshopp and Drucker 1945), a cantilever under a transverse tip load
+# P; rows (P L^2 / EI, horizontal shortening u / L, deflection v / L), to five digits.
+MATTIASSON = np.array([(1.0, 0.05643, 0.30172), (2.0, 0.16064, 0.49346),
+                       (5.0, 0.38763, 0.71379), (10.0, 0.55500, 0.81061)])
+MATTIASSON.flags.writeable = False
+
 # The thesis's budget (its Section 14 and Tabla 9), as its text states it: two annual Matlab
 # licences of 800 EUR (the student's charged in full, the professor's at 2 EUR/h over 400 h a
 # year); two computers of 600 EUR (6 years of 400 h); 250 h of junior and 50 h of senior

@@ -35,7 +35,9 @@ force direction relative to the clamped tangent.
 Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_jacobian`,
 the shooting solvers, single and multiple) and :mod:`mechnum.rods.elliptic` (the closed form
 as the study prints it, its inverse maps, :func:`pinned_equilibria`, and the growing branch in
-a chart that holds every digit, behind :func:`cantilever`); everything is importable from
+a chart that holds every digit, behind :func:`cantilever`), :mod:`mechnum.rods.stability`
+(the second variation) and :mod:`mechnum.rods.loading` (a cantilever's equilibria under a
+growing dead load, for continuation); everything is importable from
 :mod:`mechnum.rods`. In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian`
 once on the batch of all rods: one sweep gives every tip and every
 ``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per
@@ -58,9 +60,11 @@ from mechnum.rods.elliptic import (
     k_rel_for_force,
     pinned_equilibria,
 )
+from mechnum.rods.loading import DeadLoad
 from mechnum.rods.shooting import (
     Rod,
     Shooting,
+    equations,
     integrate,
     shoot_cantilever,
     shoot_pinned,
@@ -68,8 +72,8 @@ from mechnum.rods.shooting import (
     tip_jacobian,
 )
 
-__all__ = ["EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
-           "clamped_pinned", "elliptic_k", "elliptic_parameters", "integrate",
+__all__ = ["DeadLoad", "EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
+           "clamped_pinned", "elliptic_k", "elliptic_parameters", "equations", "integrate",
            "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
            "shoot_pinned_multiple", "tip_jacobian"]
 

@@ -205,6 +205,9 @@ _TINY = np.finfo(float).tiny  # keeps R_D finite where a = cos(psi/2) is 0 (its 
 _TAN_LIMIT = 1.5  # the start's beam-column law arctan(...) is used below the Euler plateau pi/2
 _TANH_LIMIT = 0.999  # and kept away from zeta = infinity
 _B_MIN = 1e-150  # below, sin(psi/2)**2 underflows; the rod deflects by less than b L: none
+_SERIES = 5e-3  # _rf_excess uses its series below: error near 4e-17 of the excess at 5e-3;
+#                  beyond, the difference loses at most eps / 5e-3 of it
+_STRAIGHT = 0.25  # _Branch.tip: a deviation from the straight rod where |excess| is below
 _SMALL_STEP = 1e-8  # a Newton step below 1e-8 t1 leaves an error near 1e-16 t1 (quadratic rate)
 CLOSED_FORM_TOL = 1e-14  # relative residual of lambda L at which the cantilever's modulus is kept
 CLOSED_FORM_MAXITER = 100  # Newton-bisection steps for it: bisection alone needs some 60
@@ -314,7 +317,7 @@ def _cantilever(EI, L, force, nodes, tol, maxiter):
     """The growing-branch (mode 1) cantilever under a tip force, in closed form: a Rod.
 
     ``EI``, ``L`` positive floats, ``force`` a finite 2-vector with ``force[1] != 0``,
-    ``nodes >= 2``; the formulas are those of the comment above, in the force's frame. The
+    ``nodes >= 2``; the formulas are those of the comment above and of :class:`_Branch`. The
     clamp and the tip are computed on floats, the nodes between them on arrays.
     """
     nx, ny = float(force[0]), float(force[1])
@@ -325,28 +328,17 @@ def _cantilever(EI, L, force, nodes, tol, maxiter):
     if b < _B_MIN:  # a force this close to pure tension leaves the rod straight to rounding
         return Rod(np.linspace(0.0, L, nodes), np.linspace(0.0, L, nodes), np.zeros(nodes),
                    np.zeros(nodes), np.zeros(nodes), np.array([nx, ny]))
-    psi = 2.0 * half if half >= 0 else 2.0 * half + TWO_PI
-    c, d = nx / R, ny / R               # cos(psi), sin(psi)
     Lam = L * math.sqrt(R / EI)
-    v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, tol, maxiter))
-    G1 = _clamp_G(a, b, v, s, k)
-    straight = c + 2.0 * (b * v) ** 2   # 2 k**2 - 1: the projection's rate along the force
-
-    def state(sigma, eta, cos_t, G):    # (x, y, theta, m) where t has sin(t) = b eta / |k|
-        along = L * (straight * sigma - 2.0 * k * k * (G1 - G) / Lam)
-        across = -2.0 * sign * b * L / Lam * (v - eta)
-        theta = psi - 2.0 * np.arctan2(b * np.sqrt(s * s + eta * eta), sign * k * cos_t)
-        return (along * c - across * d, along * d + across * c, theta,
-                2.0 * EI * Lam / L * sign * b * eta)
-
-    ends = np.array([[0.0, 0.0, 0.0, 2.0 * EI * Lam / L * sign * b * v],
-                     state(1.0, 0.0, 1.0, 0.0)])
-    ends[1, 3] = 0.0
+    rod = _Branch(a, b, Lam, nx / R, ny / R, tol, maxiter)
+    ends = np.array([[0.0, 0.0, 0.0, EI / L * rod.moment(rod.v)],
+                     [*(L * rod.tip()), rod.angle(0.0, 1.0), 0.0]])
     if nodes > 2:
         sigma = np.linspace(0.0, 1.0, nodes)[1:-1]
+        v, s, k = rod.v, rod.s, rod.k
         t = _amplitudes(b, v, s, k, math.atan2(b * v, abs(a)), Lam * (1.0 - sigma), maxiter)
         eta, cos_t = np.minimum(k * np.sin(t) / b, v), np.cos(t)
-        inner = np.column_stack(state(sigma, eta, cos_t, _arcs(b, s, k, eta, cos_t)[1]))
+        x, y = rod.position(sigma, eta, _arcs(b, s, k, eta, cos_t)[1])
+        inner = np.column_stack((L * x, L * y, rod.angle(eta, cos_t), EI / L * rod.moment(eta)))
         ends = np.concatenate((ends[:1], inner, ends[1:]))
     return Rod(np.linspace(0.0, L, nodes), *ends.T, np.array([nx, ny]))
 
@@ -354,6 +346,95 @@ def _cantilever(EI, L, force, nodes, tol, maxiter):
 def _clamp_G(a, b, v, s, k):
     """``G(t1)``, the integral from the tip to the clamp (scalars)."""
     return b * b * v ** 3 * s * s / (3.0 * k ** 3) * float(elliprd((s * a / k) ** 2, 1.0, s * s))
+
+
+def _rf_excess(a, b, v, w):
+    """``|a| lambda L / v - 1`` of the growing branch (scalars), accurate as the load tends to 0.
+
+    ``lambda L / v = R_F(w a**2, k**2, w k**2)`` (R_F is homogeneous) and ``1 / |a| =
+    R_F(a**2, a**2, a**2)``: for small loads the excess is a difference of nearly equal values.
+    The three arguments exceed ``a**2`` by ``delta = v**2 (-a**2, b**2, b**2 w - a**2)``,
+    computed without cancellation; where they differ from their mean ``A`` by less than
+    ``_SERIES A``, Carlson's series of R_F about ``A`` (DLMF 19.36.1, with an error of the
+    eighth order in the deviations) gives the excess from the ``delta`` alone. Beyond, the
+    plain difference loses at most ``eps / _SERIES`` of the excess.
+    """
+    if a == 0.0:
+        return -1.0
+    aa = abs(a)
+    deltas = (-(v * a) ** 2, (v * b) ** 2, v * v * (b * b * w - a * a))
+    mean = sum(deltas) / 3.0
+    A = a * a + mean
+    X, Y = ((mean - delta) / A for delta in deltas[:2])
+    Z = -X - Y
+    if max(abs(X), abs(Y), abs(Z)) > _SERIES:
+        k2 = a * a + (b * v) ** 2
+        return aa * float(elliprf(w * a * a, k2, w * k2)) - 1.0
+    E2, E3 = X * Y - Z * Z, X * Y * Z
+    series = (-E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0
+              - 5.0 * E2 ** 3 / 208.0 + 3.0 * E3 * E3 / 104.0 + E2 * E2 * E3 / 16.0)
+    root = math.sqrt(A)
+    return (aa * series - mean / (aa + root)) / root   # |a| A**-1/2 (1 + series) - 1
+
+
+class _Branch:
+    """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and the
+    default start of :func:`mechnum.rods.shoot_pinned`: the force direction's ``a`` (signed as
+    ``n_y``) and ``b``, ``Lam = lambda L`` and ``(c, d) = (cos psi, sin psi)``.
+
+    In the force's frame, the point at arc fraction ``sigma`` lies ``L (sigma c + along)``
+    along the force and ``-2 sign(a) b L (v - eta) / Lam`` across it, with ``along = 2 (b
+    v)**2 sigma - 2 k**2 (G1 - G) / Lam``; :meth:`position` rotates it into the clamp's frame.
+    At the tip of a nearly straight rod that rotation would subtract terms of order ``L`` to
+    find a small ``y`` (all digits were lost at loads near 1e-14), so :meth:`tip` writes the
+    tip as the straight rod ``(L, 0)`` plus a deviation computed from small terms only: across
+    the force, ``L across`` beyond ``-L d``, with ``across = 2 sign(a) b (|a| - v / Lam)`` from
+    :func:`_rf_excess`; rotated back with ``c**2 + d**2 = 1``, ``x = L (1 + along c - across
+    d)`` and ``y = L (along d + across c)``.
+    """
+
+    def __init__(self, a, b, Lam, c, d, tol, maxiter):
+        self.a, self.b, self.Lam, self.c, self.d = a, b, Lam, c, d
+        self.sign = 1.0 if a >= 0 else -1.0
+        self.v, self.s, self.k = _branch(a, b, _zeta(a, b, Lam, 1, tol, maxiter))
+        self.G1 = _clamp_G(a, b, self.v, self.s, self.k)
+
+    def _along(self, sigma, G):
+        return 2.0 * (self.b * self.v) ** 2 * sigma - 2.0 * self.k ** 2 * (self.G1 - G) / self.Lam
+
+    def position(self, sigma, eta, G):
+        """``(x / L, y / L)`` at arc fraction ``sigma``, where ``sin(t) = b eta / |k|``."""
+        along = sigma * self.c + self._along(sigma, G)
+        across = -2.0 * self.sign * self.b * (self.v - eta) / self.Lam
+        return along * self.c - across * self.d, along * self.d + across * self.c
+
+    def tip(self):
+        """``(x(L) / L, y(L) / L)``: as a deviation from the straight rod where the rod is nearly
+        straight (``|excess| <= _STRAIGHT``), as :meth:`position` where it is not."""
+        excess = _rf_excess(self.a, self.b, self.v, self.s ** 2)
+        if abs(excess) > _STRAIGHT:
+            return np.array(self.position(1.0, 0.0, 0.0))
+        along = self._along(1.0, 0.0)
+        across = 2.0 * self.sign * self.b * excess * self.v / self.Lam
+        return np.array((1.0 + (along * self.c - across * self.d),
+                         along * self.d + across * self.c))
+
+    def angle(self, eta, cos_t):
+        """``theta`` where ``sin(t) = b eta / |k|``.
+
+        ``theta = psi - 2 beta``, ``beta`` the angle of ``(sign(a) k cos t, b q)`` with ``q =
+        sqrt(s**2 + eta**2)``, written as one arctan of the difference of ``psi / 2`` and
+        ``beta``, whose sine has the factor ``|k| cos t - |a| q = (v**2 - eta**2) / (|k| cos t
+        + |a| q)``: zero at the clamp, and accurate at small loads.
+        """
+        a, b, v, kc = abs(self.a), self.b, self.v, self.k * cos_t
+        q = np.sqrt(self.s ** 2 + eta * eta)
+        return 2.0 * self.sign * np.arctan2(b * (v - eta) * (v + eta),
+                                            (kc + a * q) * (a * kc + b * b * q))
+
+    def moment(self, eta):
+        """``m L / EI`` where ``sin(t) = b eta / |k|``."""
+        return 2.0 * self.Lam * self.sign * self.b * eta
 
 
 def _growing_tip(psi, Lam):
@@ -364,11 +445,8 @@ def _growing_tip(psi, Lam):
     sign = 1.0 if half >= 0 else -1.0
     a, b = sign * math.cos(half), max(abs(math.sin(half)), _B_MIN)
     Lam = min(max(abs(Lam), _TINY), _ZETA_MAX)
-    v, s, k = _branch(a, b, _zeta(a, b, Lam, 1, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER))
-    c, d = math.cos(psi), math.sin(psi)
-    along = c + 2.0 * (b * v) ** 2 - 2.0 * k * k * _clamp_G(a, b, v, s, k) / Lam
-    across = -2.0 * sign * b * v / Lam
-    return along * c - across * d, along * d + across * c, 2.0 * Lam * sign * b * v
+    rod = _Branch(a, b, Lam, math.cos(psi), math.sin(psi), CLOSED_FORM_TOL, CLOSED_FORM_MAXITER)
+    return (*rod.tip(), rod.moment(rod.v))
 
 
 def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):

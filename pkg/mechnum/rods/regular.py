@@ -190,67 +190,117 @@ def clamped_pinned_regular(EI, L, psi, t, mode=1, *, jacobian=True):
     return _closed_form(EI, L, psi, t, mode, jacobian)
 
 
+def _integrals(a, b, v, w, whole=True):
+    """``(k**2, p, I, G, p I + k**2 G, K, E(k))`` of :func:`_waves` (``K, E(k)`` None unless
+    ``whole``)."""
+    m, p = a * a + b * b * v * v, b * b * w
+    k = m ** 0.5
+    X = w * a * a / m
+    I = v / k * elliprf(X, 1.0, w)
+    G = p * v ** 3 / (3.0 * k ** 3) * elliprd(X, 1.0, w)
+    K = Ek = None
+    if whole:
+        K = elliprf(0.0, p, 1.0)
+        Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
+    return m, p, I, G, p * I + m * G, K, Ek
+
+
+def _waves(a, b, v, w, j, sgn, rates=True):
+    """The elliptic integrals of clamped-pinned rods, and their rates: the one core.
+
+    For ``a = cos(psi/2)`` (signed), ``b = sin(psi/2) > 0``, ``v = |v|``, ``w = 1 - v**2``
+    (given, not computed from ``v``: it may be tiny), ``j = 2 mode - 1`` and ``sgn = +1`` on
+    the growing branch (``sign(t) = sign(a)``, with ``a = 0`` taken as positive) or ``-1``:
+    ``Lambda = lambda L = j K - F(phi1)`` and ``D = j E(k) - E(phi1)``. They are built from
+    the complete integrals ``K``, ``E(k)`` and the **partial wave** from ``|phi1|`` to
+    ``pi/2`` (``t = pi/2 - phi`` from 0 to ``t1``, ``cos(t1) = |a| / k``; DLMF 19.25.5, 19.25.7
+    with ``sin(t)`` for ``sin(phi)``)::
+
+        I = int_0^t1 dt / Delta = (v / k) R_F(X, 1, w),    X = w a**2 / k**2
+        G = int_0^t1 sin(t)**2 dt / Delta = b**2 w v**3 / (3 k**3) R_D(X, 1, w)
+
+    whose E-integral is ``p I + k**2 G`` (``p = 1 - k**2 = b**2 w``), so that
+    ``F(phi1) = sgn (K - I)`` and ``Lambda = (j - sgn) K + sgn I``: no difference of nearly
+    equal integrals near the straight rod, and no ``m = k**2`` rounded near 1 (``p`` is exact).
+
+    With ``rates``, also their derivatives in ``|v|`` at fixed ``psi`` and in ``psi`` at fixed
+    ``v`` (``d/dm`` and ``d/dphi`` of DLMF 19.4.1 to 19.4.4 for the partial wave; the factors
+    ``1/p`` cancel analytically)::
+
+        dI/dv = (v G + |a| / k**2) / w
+        dI/dpsi = sign(a) (b**2 v / k**2 - |a| G) / (2 b)
+
+    and likewise for ``K``, ``E(k)`` and ``p I + k**2 G``. Returns ``(Lambda, D)`` and, with
+    ``rates``, ``((Lambda_v, Lambda_psi), (D_v, D_psi))``. Arrays or Python floats: only
+    arithmetic and scipy's ufuncs, so the same lines serve a batch of rods and one rod
+    given as Python floats. Where ``j == sgn`` everywhere (mode 1 on its growing
+    branch) the complete integrals are not needed and not computed.
+    """
+    m, p, I, G, Dp, K, Ek = _integrals(a, b, v, w, np.any(np.not_equal(j, sgn)))
+    if K is None:
+        Lam, D = I, Dp
+    else:
+        Lam, D = (j - sgn) * K + sgn * I, (j - sgn) * Ek + sgn * Dp
+    if not rates:
+        return Lam, D
+    sa, aa = np.where(a < 0, -1.0, 1.0), abs(a)   # sign(a) (+1 at a = 0) and |a|
+    Lam_d = [(v * G + aa / m) / w, sa * (b * b * v / m - aa * G) / (2.0 * b)]
+    D_d = [(v * p * (Dp - I) / w + aa * b * b) / m, sa * b * (v - aa * w * (Dp - I)) / (2.0 * m)]
+    if K is not None:
+        K_d = (v * (Ek - p * K) / (m * w), -a * (Ek - p * K) / (2.0 * m * b))
+        Ek_d = (v * b * b * (Ek - K) / m, -a * b * w * (Ek - K) / (2.0 * m))
+        for i in range(2):
+            Lam_d[i] = (j - sgn) * K_d[i] + sgn * Lam_d[i]
+            D_d[i] = (j - sgn) * Ek_d[i] + sgn * D_d[i]
+    return Lam, D, tuple(Lam_d), tuple(D_d)
+
+
+def _chart(psi, t, mode):
+    """``(a, b, |v|, w, j, sgn, sign(t))`` of chart points, and ``d|v|/dt``."""
+    a, b = np.cos(0.5 * psi), np.sin(0.5 * psi)
+    sign, q = np.sign(t), _q(t)
+    v, w = np.sqrt(-np.expm1(-q)), np.exp(-q)
+    q_t = 2.0 * t / ((1.0 - t) * (1.0 + t)) ** 2
+    # d|v|/dt = w q_t / (2 |v|), which tends to sign(t) where |v| ~ |t| underflows
+    v_t = np.divide(w * q_t, 2.0 * v, out=np.array(sign * np.ones_like(v)), where=v != 0)
+    return a, b, v, w, 2.0 * mode - 1.0, sign * np.where(a < 0, -1.0, 1.0), sign, v_t
+
+
 def _closed_form(EI, L, psi, t, mode, jacobian):
     """:func:`clamped_pinned_regular` on checked float arrays (for solvers that keep their
     iterates in the chart's domain, and call it thousands of times)."""
-    j = 2.0 * mode - 1.0                      # F(phi2, k) = j K(k), E(phi2, k) = j E(k)
-    a, b = np.cos(0.5 * psi), np.sin(0.5 * psi)
-    sign, q = np.sign(t), _q(t)
-    w = np.exp(-q)                            # 1 - v**2
-    v2 = -np.expm1(-q)
-    v = sign * np.sqrt(v2)
-    p = b * b * w                             # 1 - k**2
-    m = a * a + v2 * b * b                    # k**2
-    s1 = sign * a / np.sqrt(m)                # sin(phi1)
-    c2 = v2 * b * b / m                       # cos(phi1)**2
-    rf1, rd1 = elliprf(c2, b * b, 1.0), elliprd(c2, b * b, 1.0)
-    K = elliprf(0.0, p, 1.0)
-    Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
-    F1 = s1 * rf1
-    E1 = F1 - m / 3.0 * s1 ** 3 * rd1
-    Lam, D = j * K - F1, j * Ek - E1
-    u, w2 = 1.0 - 2.0 * D / Lam, 2.0 * v * b / Lam
+    a, b, v, w, j, sgn, sign, v_t = _chart(psi, t, mode)
+    waves = _waves(a, b, v, w, j, sgn, jacobian)
+    Lam, D = waves[:2]
+    vb = sign * v * b                          # k cos(phi1), signed
+    u, w2 = 1.0 - 2.0 * D / Lam, 2.0 * vb / Lam
     cos, sin = np.cos(psi), np.sin(psi)
     L = np.asarray(L)
     tip = L[..., None] * np.stack((u * cos + w2 * sin, u * sin - w2 * cos), axis=-1)
     R = EI * Lam ** 2 / L ** 2
     force = R[..., None] * np.stack((cos, sin), axis=-1)
-    moment = 2.0 * EI * v * b * Lam / L
+    moment = 2.0 * EI * vb * Lam / L
     if not jacobian:
         return RegularRod(tip, force, moment)
 
-    # Derivatives of m = k**2, phi1 and v b with respect to psi (first) and t (second).
-    # dm/dt = p q', so the terms 1/p of dF/dm, dK/dm cancel analytically.
-    q_t = 2.0 * t / ((1.0 - t) * (1.0 + t)) ** 2
-    v2_t = w * q_t
-    abs_v_t = np.divide(v2_t, 2.0 * np.abs(v), out=np.ones_like(t), where=v != 0)
-    c1 = np.sqrt(c2)
-    phi1_d = (-v / (2.0 * m), -sign * a * b * abs_v_t / m)
-    vb_d = (0.5 * v * a, sign * abs_v_t * b)
-    # d/dm of F(phi1), E(phi1), K, E(k), multiplied by dm/dpsi = -a b w and dm/dt = p q_t
-    F1_m = (-0.5 * a * (E1 / (m * b) - F1 * b * w / m - s1 * c1 / (b * b)),
-            0.5 * q_t * (E1 / m - F1 * p / m - s1 * c1 / b))
-    E1_m = tuple(0.5 * (E1 - F1) / m * dm for dm in (-a * b * w, p * q_t))
-    K_m = (-0.5 * a * (Ek - p * K) / (m * b), 0.5 * q_t * (Ek - p * K) / m)
-    Ek_m = tuple(0.5 * (Ek - K) / m * dm for dm in (-a * b * w, p * q_t))
+    # derivatives in psi (column 0, at fixed t) and t (column 1): d/dt = v_t d/d|v|
+    (Lam_v, Lam_psi), (D_v, D_psi) = waves[2:]
+    Lam_d, D_d = (Lam_psi, Lam_v * v_t), (D_psi, D_v * v_t)
+    vb_d = (0.5 * sign * v * a, sign * b * v_t)
     J = np.empty(np.broadcast_shapes(psi.shape, t.shape, np.shape(EI), L.shape, np.shape(mode))
                  + (5, 2))
     for i in range(2):
-        Lam_d = j * K_m[i] - (phi1_d[i] / b + F1_m[i])       # dF/dphi = 1/Delta, Delta = b
-        D_d = j * Ek_m[i] - (phi1_d[i] * b + E1_m[i])        # dE/dphi = Delta
-        u_d = -2.0 * (D_d * Lam - D * Lam_d) / Lam ** 2
-        w2_d = 2.0 * (vb_d[i] * Lam - v * b * Lam_d) / Lam ** 2
+        u_d = -2.0 * (D_d[i] * Lam - D * Lam_d[i]) / Lam ** 2
+        w2_d = 2.0 * (vb_d[i] * Lam - vb * Lam_d[i]) / Lam ** 2
+        dR = 2.0 * EI * Lam * Lam_d[i] / L ** 2
         if i == 0:   # the rotation Rot(psi) and the direction of the force depend on psi too
-            du, dw = u_d + w2, w2_d - u
-            J[..., 0:2, 0] = L[..., None] * np.stack((du * cos + dw * sin, du * sin - dw * cos), -1)
-            dR = 2.0 * EI * Lam * Lam_d / L ** 2
+            u_d, w2_d = u_d + w2, w2_d - u
             J[..., 2:4, 0] = np.stack((dR * cos - R * sin, dR * sin + R * cos), -1)
         else:
-            J[..., 0:2, 1] = L[..., None] * np.stack((u_d * cos + w2_d * sin,
-                                                      u_d * sin - w2_d * cos), -1)
-            dR = 2.0 * EI * Lam * Lam_d / L ** 2
             J[..., 2:4, 1] = dR[..., None] * np.stack((cos, sin), -1)
-        J[..., 4, i] = 2.0 * EI * (vb_d[i] * Lam + v * b * Lam_d) / L
+        J[..., 0:2, i] = L[..., None] * np.stack((u_d * cos + w2_d * sin,
+                                                  u_d * sin - w2_d * cos), -1)
+        J[..., 4, i] = 2.0 * EI * (vb_d[i] * Lam + vb * Lam_d[i]) / L
     return RegularRod(tip, force, moment, J)
 
 
@@ -316,22 +366,16 @@ def shape(EI, L, psi, t, mode=1, *, nodes=201):
     nodes = _validate.maxiter(nodes, "nodes", minimum=2)
     end = _closed_form(EI, L, psi, t, mode, False)
     psi, t, EI, L, mode = np.broadcast_arrays(psi, t, EI, L, mode)
-    a, b, sign = np.cos(0.5 * psi), np.sin(0.5 * psi), np.sign(t)
-    v2 = -np.expm1(-_q(t))
-    m = a * a + v2 * b * b
-    k = sign * np.sqrt(m)
-    s1, c1 = sign * a / np.abs(k), np.sqrt(v2) * b / np.abs(k)
-    F1 = s1 * elliprf(c1 * c1, b * b, 1.0)
-    E1 = F1 - m / 3.0 * s1 ** 3 * elliprd(c1 * c1, b * b, 1.0)
+    a, b, v, w, _, sgn, sign, _ = _chart(psi, t, mode)
+    m, p, I, _, Dp, K, Ek = _integrals(a, b, v, w)
+    F1, E1 = sgn * (K - I), sgn * (Ek - Dp)      # F(phi1, k), E(phi1, k)
+    k, c1 = sign * np.sqrt(m), v * b / np.sqrt(m)
     lam = np.sqrt(np.hypot(*np.moveaxis(end.force, -1, 0)) / EI)
     s = np.linspace(0.0, 1.0, nodes) * L[..., None]
     ex = [np.asarray(x)[..., None] for x in (psi, k, m, F1, E1, lam, c1, EI)]
     psi_, k_, m_, F1_, E1_, lam_, c1_, EI_ = ex
     # reduce u = F1 + lambda s by whole periods 2 K (from the accurate 1 - k**2) before
     # scipy's am and E, which see m = k**2 rounded and, at m = 1, an infinite period
-    p = b * b * np.exp(-_q(t))
-    K = elliprf(0.0, p, 1.0)
-    Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
     u = F1_ + lam_ * s
     turns = np.round(u / (2 * K[..., None]))
     phi_r = ellipj(u - 2 * turns * K[..., None], np.minimum(m_, 1.0))[3]

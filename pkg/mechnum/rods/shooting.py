@@ -138,6 +138,41 @@ def _rhs(EI, L, force):
     return f
 
 
+def equations(EI, force):
+    """The rod's equations (the study's (78)) as ``f(s, state)``, for any ODE or BVP solver.
+
+    ``state = (x, y, theta, m)`` along the **first** axis (shape ``(4,)`` for one point,
+    ``(4, k)`` for ``k`` points, as :func:`scipy.integrate.solve_ivp` and
+    :func:`scipy.integrate.solve_bvp` pass it); ``f`` returns ``(cos theta, sin theta,
+    m / EI, n_x sin theta - n_y cos theta)`` of the same shape. The package's own sweeps use
+    the same lines, in ``s / L``.
+
+    Parameters
+    ----------
+    EI : float or array_like
+        Bending stiffness (N m^2).
+    force : array_like, shape (2,)
+        The force on the rod at its tip (N); it may be an unknown of a boundary value problem.
+
+    Returns
+    -------
+    callable
+
+    Examples
+    --------
+    >>> f = equations(2.0, [0.0, 1.0])
+    >>> f(0.0, np.array([0.0, 0.0, 0.0, 1.0])).tolist()
+    [1.0, 0.0, 0.5, -1.0]
+    """
+    force = np.asarray(force)
+    rhs = _rhs(EI, 1.0, force)
+
+    def f(s, state):
+        return np.moveaxis(rhs(s, np.moveaxis(np.asarray(state), 0, -1)), -1, 0)
+
+    return f
+
+
 def _inputs(EI, L, m0, force, theta0, origin, nodes):
     """Check the inputs of a sweep and broadcast them to one batch shape."""
     EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
