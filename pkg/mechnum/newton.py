@@ -1,6 +1,6 @@
 """Newton-Raphson for systems of nonlinear equations, one, many, and all solutions.
 
-Three forms share one step rule:
+Four forms share one step rule:
 
 * :func:`solve` solves one system ``f(x) = 0`` of ``n`` equations in ``n`` unknowns and keeps
   its whole history;
@@ -9,7 +9,9 @@ Three forms share one step rule:
   each reports a ``status``;
 * :func:`solve_all` looks for every root of one system: :func:`solve_batch` from many starts,
   the roots deduplicated and counted, and a completeness check (ten times more starts that find
-  no new root).
+  no new root);
+* :func:`solve_path` follows a root while a parameter changes (continuation), one path or a
+  batch of paths.
 
 The Newton step solves ``J(x_k) dx = -f(x_k)`` and sets ``x_{k+1} = x_k + dx``. With
 ``damping=True`` the step is shortened, ``x_{k+1} = x_k + alpha dx`` with ``alpha = 1, 1/2,

@@ -55,6 +55,10 @@ START_T = 0.985
 SEGMENTS = (200, 400)
 # Segments for the eigenvalues themselves (a dense eigenproblem): enough for 2 digits.
 EIGEN_SEGMENTS = 64
+# Relative tolerance of the independent check by solve_ivp (DOP853 accepts down to 2.2e-14):
+# integrating a rod in tension from its clamp amplifies errors by ~cosh(L sqrt(R / EI)), so
+# the near-tension equilibria need the tightest tolerance to show their tips within 1e-11 m.
+IVP_RTOL = 3e-14
 # Nodes of the rods' polylines for the crossing test and the drawings: a chord of L / 200 is
 # within ~1e-5 L of the rods of this chapter (curvatures below ~10 / L).
 SHAPE_NODES = 201
@@ -502,11 +506,12 @@ def crossings(mech, theta, chart, modes=(1, 1)):
     return mutual, own.reshape(len(z), 2)
 
 
-def verify(mech, theta, chart, modes=(1, 1), *, rtol=1e-13):
+def verify(mech, theta, chart, modes=(1, 1), *, rtol=IVP_RTOL):
     """Check equilibria independently: integrate each rod from its clamp with scipy.
 
-    Each rod is integrated by ``solve_ivp`` (DOP853) from its clamp, with the clamp moment and
-    the tip force of the closed form, and compared with the closed form's end effector.
+    Each rod is integrated by ``solve_ivp`` (DOP853, relative tolerance ``rtol``) from its
+    clamp, with the clamp moment and the tip force of the closed form, and compared with the
+    closed form's end effector.
 
     Returns
     -------
@@ -655,7 +660,7 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
     moments to zero, both tips to ``P`` and ``n1 + n2`` to ``F``, with the complex-step
-    Jacobian of :func:`mechnum.rods.tip_jacobian` (the study differentiates by forward
+    Jacobian of :func:`mechnum.rods.shooting.tip_jacobian` (the study differentiates by forward
     differences with a step of ``1e-11``). The guess picks the equilibrium.
 
     Parameters

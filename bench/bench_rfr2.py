@@ -1,0 +1,88 @@
+"""Benchmarks of Chapter 5 (seed 001): the flexible 2RFR mechanism of Tabla 7.
+
+Targets on the book's 2-core machine: every mode-1 equilibrium (with the completeness check of
+ten times more starts) in 0.1 s, every equilibrium with modes up to 3 per rod in 5 s, a
+101 x 101 map of det J_FK in 1 s, a 100-point inverse trajectory in 0.2 s. Beside them, the
+plain multistart the package replaces: ``scipy.optimize.fsolve`` from each start in turn, on the
+same residual and analytic Jacobian, with the same test of a root (residual below 1e-10, in
+the chart), from as many starts as the package's search alone (a tenth of its search plus
+check, to keep the run short: compare the time per start). The study reports no run time for
+the 2RFR.
+"""
+
+import numpy as np
+from scipy.optimize import fsolve
+
+from mechnum.mechanisms import rfr2
+
+MECH, THETA = rfr2.TABLE7, rfr2.TABLE7_THETA
+MODES = [(m1, m2) for m1 in (1, 2, 3) for m2 in (1, 2, 3)]
+COUNTS = {(1, 1): 3, (1, 2): 5, (1, 3): 4, (2, 1): 2, (2, 2): 6, (2, 3): 4, (3, 1): 1,
+          (3, 2): 4, (3, 3): 5}   # what the chapter finds (and verifies by solve_ivp)
+
+
+def _fsolve_multistart(modes, n_starts, seed=0):
+    """Every root that fsolve reaches from ``n_starts`` starts, one start at a time."""
+    fun, jac = rfr2.forward_system(MECH, THETA, modes)
+    rng = np.random.default_rng(seed)
+    starts = rfr2._sample(rng, n_starts)
+    roots = []
+    for z0 in starts:
+        def f(z):
+            return fun(z[None])[0] if rfr2._in_chart(z[None])[0] else np.full(4, 1e3)
+
+        def J(z):
+            return jac(z[None])[0] if rfr2._in_chart(z[None])[0] else np.eye(4)
+
+        z, info, ier, _ = fsolve(f, z0, fprime=J, full_output=True, xtol=1e-12)
+        if ier == 1 and np.linalg.norm(f(z)) < 1e-10:
+            roots.append(z)
+    return np.unique(np.round(np.array(roots).reshape(-1, 4), 8), axis=0)
+
+
+def test_mode1_equilibria_of_table7(benchmark):
+    eq = benchmark(rfr2.forward_elliptic, MECH, THETA, rng=0)
+    assert len(eq.P) == 3 and eq.search.complete
+
+
+def test_mode1_equilibria_scipy_fsolve_multistart(benchmark):
+    roots = benchmark.pedantic(_fsolve_multistart, args=((1, 1), 200), rounds=1, iterations=1)
+    assert len(roots) <= 3
+
+
+def _all_modes():
+    return [rfr2.forward_elliptic(MECH, THETA, m, rng=2) for m in MODES]
+
+
+def test_equilibria_with_modes_up_to_3(benchmark):
+    found = benchmark.pedantic(_all_modes, rounds=1, iterations=1)
+    assert [len(e.P) for e in found] == [COUNTS[m] for m in MODES]
+
+
+def test_equilibria_with_modes_up_to_3_scipy_fsolve_multistart(benchmark):
+    found = benchmark.pedantic(lambda: [_fsolve_multistart(m, 200) for m in MODES], rounds=1,
+                               iterations=1)
+    assert sum(len(r) for r in found) <= 34
+
+
+def test_det_jfk_map_101x101(benchmark):
+    eq = rfr2.forward_elliptic(MECH, THETA, rng=0)
+    grid = np.radians(np.linspace(0.0, 180.0, 101))
+    result = benchmark.pedantic(rfr2.forward_map, args=(MECH, grid, grid, THETA, eq.chart[2]),
+                                rounds=3, iterations=1)
+    assert result.jacobians.det_fk.shape == (101, 101) and result.converged.mean() > 0.8
+
+
+def test_inverse_trajectory_100_points(benchmark):
+    eq = rfr2.forward_elliptic(MECH, THETA, rng=0)
+    points = eq.P[2] + rfr2.path("inverse line")       # the study's straight line, opt 4
+    result = benchmark(rfr2.inverse_path, MECH, points, THETA, eq.chart[2], method="elliptic")
+    assert result.converged.all()
+
+
+def test_inverse_trajectory_100_points_study_shooting(benchmark):
+    eq = rfr2.forward_elliptic(MECH, THETA, rng=0)
+    points = eq.P[2] + rfr2.path("inverse line")
+    result = benchmark.pedantic(rfr2.inverse_path, args=(MECH, points, THETA, eq.chart[2]),
+                                rounds=1, iterations=1)
+    assert result.converged.all()
