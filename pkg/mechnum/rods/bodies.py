@@ -16,14 +16,14 @@ row rank ``c``) that of the constrained Hessian plus ``(c, c)`` negative and pos
 
     index = neg(H_r) + neg(K / H_r) - c
 
-with ``O(N)`` work per rod (banded solves) and a dense eigenproblem of size ``k + c`` only.
+with ``O(N)`` work per rod (banded solves, and LAPACK's bisection for the negative eigenvalues
+of each tridiagonal block) and a dense eigenproblem of size ``k + c`` only.
 """
 
 import numpy as np
-from scipy.linalg import solve_banded
+from scipy.linalg import eigvalsh_tridiagonal, solve_banded
 
 from mechnum import _validate
-from mechnum.rods.stability import _negative_pivots
 
 
 def constrained_index_with_body(blocks, dense, constraints):
@@ -69,7 +69,8 @@ def constrained_index_with_body(blocks, dense, constraints):
                          f"(c, {sum(sizes)} + k) with c < {sum(sizes)} + k")
     negative, S, start = 0, np.zeros((c, c)), 0
     for block, n in zip(blocks, sizes):
-        negative += _negative_pivots(block.diagonal, block.off_diagonal)
+        negative += len(eigvalsh_tridiagonal(block.diagonal, block.off_diagonal, select="v",
+                                             select_range=(-np.inf, 0.0)))
         bands = np.zeros((3, n))
         bands[0, 1:], bands[1], bands[2, :-1] = (block.off_diagonal, block.diagonal,
                                                  block.off_diagonal)
@@ -78,4 +79,5 @@ def constrained_index_with_body(blocks, dense, constraints):
         start += n
     G_d = G[:, start:]
     schur = np.block([[dense, G_d.T], [G_d, -S]])
-    return int(negative + np.sum(np.linalg.eigvalsh(schur) < 0) - np.linalg.matrix_rank(G))
+    rank = np.linalg.matrix_rank(G @ G.T, hermitian=True)     # (c, c): cheaper than G's SVD
+    return int(negative + np.sum(np.linalg.eigvalsh(schur) < 0) - rank)

@@ -26,8 +26,10 @@ from mechnum.rods import regular
 from mechnum.rods.shooting import Rod
 
 # The AGM's c_n falls quadratically once a_n ~ b_n; from b_0 = k' >= 1e-131 (the chart's least,
-# q = 600) it needs at most ~log2(131 log2(10)) + 6 = 15 steps to reach round-off.
+# q = 600) it needs at most ~log2(131 log2(10)) + 6 = 15 steps to reach round-off; it stops
+# when every c_n / a_n is below AGM_TOL (the next step would change phi by ~AGM_TOL**2).
 AGM_STEPS = 20
+AGM_TOL = 1e-10
 
 
 def amplitude(u, k, complement):
@@ -63,7 +65,9 @@ def amplitude(u, k, complement):
     for _ in range(AGM_STEPS):
         a, b, c, previous_b = 0.5 * (a + b), np.sqrt(a * b), 0.5 * (a - b), b
         steps.append((c / a, previous_b / a))
-    phi = 2.0 ** AGM_STEPS * a * u
+        if np.all(c / a < AGM_TOL):
+            break
+    phi = 2.0 ** len(steps) * a * u
     for ratio, one_minus_ratio in steps[::-1]:
         delta = phi - (np.round(phi / np.pi - 0.5) + 0.5) * np.pi
         x = np.abs(ratio * np.sin(phi))

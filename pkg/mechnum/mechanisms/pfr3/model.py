@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechnum import _validate
-from mechnum.errors import GeometryError
+from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.mechanisms.rfr2 import EI, LENGTH
 from mechnum.rods import regular
 
@@ -213,6 +213,32 @@ def check_closure(mech, lambdas):
                 f"clamps {i + 1} and {j + 1} are {gap:.4g} m apart: a platform of side "
                 f"{mech.a:g} m on rods of length {mech.L:g} m cannot close (needs "
                 f"{mech.a - 2 * mech.L:.4g} to {mech.a + 2 * mech.L:.4g} m)")
+
+
+def check_reach(mech, pose):
+    """Raise :class:`UnreachablePoseError` if a pin of the platform at ``pose`` (..., 3) is
+    farther than ``L`` from its guide's line (no slider position reaches it).
+
+    Examples
+    --------
+    >>> check_reach(TABLE8, [0.0, 0.0, 0.0])
+    >>> check_reach(TABLE8, [0.0, 2.5, 0.0])
+    Traceback (most recent call last):
+    ...
+    mechnum.errors.UnreachablePoseError: pin 1 of the pose [0.0, 2.5, 0.0] is 2.942 m from its guide, beyond the rod's length 1 m
+    """
+    pose = _validate.array(pose, "pose")
+    if pose.shape[-1:] != (3,):
+        raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got {pose.shape}")
+    normal = np.stack((-np.sin(mech.guide_angles), np.cos(mech.guide_angles)), -1)
+    distance = np.abs(np.sum((pins(mech, pose) - mech.origins) * normal, axis=-1))
+    far = distance > mech.L
+    if far.any():
+        where = np.argwhere(far)[0]
+        raise UnreachablePoseError(
+            f"pin {where[-1] + 1} of the pose {pose[tuple(where[:-1])].tolist()} is "
+            f"{distance[tuple(where)]:.4g} m from its guide, beyond the rod's length "
+            f"{mech.L:g} m")
 
 
 def in_chart(z):

@@ -115,7 +115,8 @@ def _closed_form(mech, modes, unknown):
 
 def _shooting_path(mech, x, converged, known, unknown, nodes, rigid_end):
     """A :class:`Path` from shooting solutions ``x`` (steps, 12) along ``known``: the pose or
-    the sliders and the study's two Jacobians (the rods' charts are not recovered: NaN)."""
+    the sliders, the study's two Jacobians, and the rods' charts from their clamp states
+    (NaN with a rigid end: its rods are no clamped-pinned elasticas)."""
     ok = converged
     _, fk_jac, fk_split = shooting._system(mech, nodes, "pose", rigid_end)
     _, ik_jac, ik_split = shooting._system(mech, nodes, "lambdas", rigid_end)
@@ -128,6 +129,8 @@ def _shooting_path(mech, x, converged, known, unknown, nodes, rigid_end):
     det_fk = np.linalg.det(fk_jac(X_fk, lambdas)) * nan
     det_ik = np.linalg.det(ik_jac(X_ik, pose)) * nan
     chart = np.full((len(ok), 6), np.nan)
+    if ok.any() and not rigid_end:
+        chart[ok] = shooting.chart_from_clamps(mech, m0[ok], n[ok])[0]
     return Path(lambdas * nan[:, None], pose * nan[:, None], chart, ok, det_fk, det_ik)
 
 
@@ -146,13 +149,18 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
         An equilibrium at (or near) ``poses[0]``: its sliders and rods.
     method : {"elliptic", "shooting"}, optional
         The closed form (fixed modes), or RK4 shooting in the study's unknowns (111) as the
-        study does (the rods' charts are then not returned: NaN).
+        study does (modes free: a rod whose clamp moment passes through zero changes mode).
     nodes, rigid_end : optional
         RK4 nodes per rod and the rigid segment at each pin (shooting only).
 
     Returns
     -------
     Path
+
+    Raises
+    ------
+    UnreachablePoseError
+        If a pin of some pose is farther than ``L`` from its guide.
 
     Examples
     --------
@@ -168,6 +176,7 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
     modes, lambdas = model._modes(modes), model._lambdas(lambdas)
     z0 = _validate.array(z, "z", shape=(6,))
     poses = _validate.array(poses, "poses", shape=(None, 3))
+    model.check_reach(mech, poses)
     if method == "shooting":
         fun, jac, _ = shooting._system(mech, _validate.maxiter(nodes, "nodes", minimum=2),
                                        "lambdas", rigid_end)

@@ -21,6 +21,7 @@ import numpy as np
 from mechnum import _validate, newton, rods
 from mechnum.mechanisms.pfr3 import model
 from mechnum.mechanisms.rfr2 import STUDY_NODES, _memoised
+from mechnum.rods import regular
 
 # Shooting converges when the dimensionless residual is below this: round-off of the O(1)
 # positions and forces is ~1e-15; 1e-12 leaves a margin of a thousand.
@@ -194,7 +195,8 @@ def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, 
     """The inverse problem by RK4 shooting: the study's (109) in its unknowns (111).
 
     ``X = (m0_1, n1_x, n1_y, lambda_1, ..., m0_3, n3_x, n3_y, lambda_3)`` for a given pose
-    ``(x, y, phi)``; otherwise as :func:`forward_shooting`.
+    ``(x, y, phi)``; otherwise as :func:`forward_shooting`. A pose with a pin farther than
+    ``L`` from its guide raises :class:`~mechnum.errors.UnreachablePoseError`.
 
     Examples
     --------
@@ -204,8 +206,43 @@ def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, 
     >>> np.round(sol.lambdas, 3).tolist()          # the printed pose has 4 decimals
     [[0.0, -0.0, -0.0]]
     """
+    model.check_reach(mech, pose)
     return _shooting(mech, "lambdas", _validate.array(pose, "pose"), guess, nodes, tol,
                      maxiter, rigid_end)
+
+
+def chart_from_clamps(mech, clamp_moments, forces):
+    """The chart and modes of rods known by their clamp moments and tip forces (shooting).
+
+    Parameters
+    ----------
+    clamp_moments : array_like, shape (..., 3)
+    forces : array_like, shape (..., 3, 2)
+        Global forces on the rods at their tips (N).
+
+    Returns
+    -------
+    z : ndarray, shape (..., 6)
+        ``(psi_i, t_i)``.
+    modes : ndarray of int, shape (..., 3)
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> _, force, moment, _ = model.rods(model.TABLE8, model.TABLE8_LAMBDAS, z, jacobian=False)
+    >>> back, modes = chart_from_clamps(model.TABLE8, moment, force)
+    >>> bool(np.allclose(back, z, atol=1e-12)), modes.tolist()
+    (True, [1, 1, 1])
+    """
+    m0 = _validate.array(clamp_moments, "clamp_moments")
+    forces = _validate.array(forces, "forces")
+    c, s = np.cos(mech.clamp_angles), np.sin(mech.clamp_angles)
+    local = np.stack((c * forces[..., 0] + s * forces[..., 1],
+                      -s * forces[..., 0] + c * forces[..., 1]), axis=-1)
+    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
+    z = np.empty(psi.shape[:-1] + (6,))
+    z[..., 0::2], z[..., 1::2] = psi, regular.t_from_k_rel(psi, k_rel)
+    return z, modes.astype(int)
 
 
 def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
