@@ -40,15 +40,18 @@ SEARCH_MAXITER = 40
 # Roots closer than this (largest chart coordinate) are one.
 SAME = 1e-8
 # The second variation is discretised with N and 2 N segments per rod (the index must agree):
-# at least 200, and 20 per decay length 1 / lambda = sqrt(EI / R) of the most tensioned rod, so
-# that its boundary layers (loops) are resolved (lambda h <= 0.05): the discretisation error
+# at least 200, and 10 per decay length 1 / lambda = sqrt(EI / R) of the most tensioned rod, so
+# that its boundary layers (loops) are resolved (lambda h <= 0.1): the discretisation error
 # of the eigenvalues, ~(lambda h)**2 lambda**2 EI, then stays well below the lowest of them.
 SEGMENTS = 200
-SEGMENTS_PER_DECAY = 20
+SEGMENTS_PER_DECAY = 10
 # A rod is checked by one integration from its clamp when lambda L <= SINGLE_SHOT: the
 # rounding of its clamp data (1e-16) grows like exp(lambda L) along it (6e-12 at 11); a rod in
 # stronger tension is integrated from both ends to its middle (growth exp(lambda L / 2)).
 SINGLE_SHOT = 9.0
+# Relative tolerance of the check by solve_ivp (DOP853 accepts down to 2.2e-14): its error
+# norm is a root mean square over the pieces integrated together, up to 28 components here.
+IVP_RTOL = 3e-14
 # Inflections are counted on the integrated moment where |m| exceeds this fraction of its
 # largest value: along a rod in strong tension the moment is exponentially small (1e-17 of
 # its peak for the rods of Table 8), below the integration's noise, whose sign changes there
@@ -270,7 +273,7 @@ def resolutions(mech, forces):
     Examples
     --------
     >>> resolutions(model.TABLE8, [[0.0, 0.1], [0.2, 0.0], [60.0, 0.0]])
-    (679, 1358)
+    (340, 680)
     """
     lam_L = np.sqrt(np.max(np.linalg.norm(forces, axis=-1)) / mech.EI) * mech.L
     n = max(SEGMENTS, int(np.ceil(SEGMENTS_PER_DECAY * lam_L)))
@@ -343,7 +346,7 @@ def crossings(mech, lambdas, z, modes=(1, 1, 1)):
     return mutual.reshape(-1, 3), own.reshape(-1, 3), edges.reshape(-1)
 
 
-def verify(mech, lambdas, z, modes=(1, 1, 1), *, rtol=1e-13):
+def verify(mech, lambdas, z, modes=(1, 1, 1), *, rtol=IVP_RTOL):
     """Check equilibria independently: integrate each rod with scipy (``solve_ivp``, DOP853).
 
     Each rod is integrated from its clamp, with the clamp moment and tip force of the closed
@@ -352,7 +355,8 @@ def verify(mech, lambdas, z, modes=(1, 1, 1), *, rtol=1e-13):
     along the rod (``lambda = sqrt(R / EI)``). A rod with ``lambda L > SINGLE_SHOT`` is
     therefore integrated in ``ceil(lambda L / SINGLE_SHOT)`` equal pieces, each from the closed
     form's state at its start (:func:`mechnum.rods.profile.shape`), and each piece must end at
-    the state where the next begins (multiple shooting).
+    the state where the next begins (multiple shooting). The pieces of a rod are integrated
+    together, as one system in the fraction of their length.
 
     Returns
     -------
@@ -386,20 +390,20 @@ def verify(mech, lambdas, z, modes=(1, 1, 1), *, rtol=1e-13):
             n, count = force[k, i], pieces[k, i]
             states = _states(mech, lambdas, z[k], modes, i, count)     # (count + 1, 4)
             states[-1, :2], states[-1, 3] = B[k, i], 0.0               # the pin, no moment
+            h = mech.L / count
 
-            def rhs(_, u, n=n):
-                return [np.cos(u[2]), np.sin(u[2]), u[3] / mech.EI,
-                        n[0] * np.sin(u[2]) - n[1] * np.cos(u[2])]
+            def rhs(_, u, n=n, h=h):                  # all pieces, in sigma = (s - s_j) / h
+                u = u.reshape(-1, 4)
+                c, s = np.cos(u[:, 2]), np.sin(u[:, 2])
+                return h * np.column_stack((c, s, u[:, 3] / mech.EI,
+                                            n[0] * s - n[1] * c)).ravel()
 
-            s = np.linspace(0.0, mech.L, count + 1)
-            moments = []
-            for j in range(count):
-                sol = solve_ivp(rhs, (s[j], s[j + 1]), states[j], method="DOP853", rtol=rtol,
-                                atol=rtol * mech.L, dense_output=True)
-                err[k, i] = max(err[k, i], np.hypot(*(sol.y[:2, -1] - states[j + 1, :2])))
-                gap_m[k, i] = max(gap_m[k, i], abs(sol.y[3, -1] - states[j + 1, 3]))
-                moments.append(sol.sol(np.linspace(s[j], s[j + 1], 4001 // count))[3])
-            m = np.concatenate(moments)[:-1]                 # the tip's zero is counted apart
+            sol = solve_ivp(rhs, (0.0, 1.0), states[:-1].ravel(), method="DOP853", rtol=rtol,
+                            atol=rtol * mech.L)
+            path = sol.y.reshape(count, 4, -1)
+            err[k, i] = np.hypot(*(path[:, :2, -1] - states[1:, :2]).T).max()
+            gap_m[k, i] = np.abs(path[:, 3, -1] - states[1:, 3]).max()
+            m = np.concatenate(path[:, 3, :-1])              # the tip's zero is counted apart
             m = m[np.abs(m) > INFLECTION_FLOOR * np.abs(m).max()]
             infl[k, i] = np.sum(np.sign(m[1:]) != np.sign(m[:-1])) + 1
     return err, gap_m, infl.astype(int), pieces

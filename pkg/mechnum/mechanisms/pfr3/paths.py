@@ -114,10 +114,11 @@ def _closed_form(mech, modes, unknown):
 
 
 def _shooting_path(mech, x, converged, known, unknown, nodes, rigid_end):
-    """A :class:`Path` from shooting solutions ``x`` (steps, 12) along ``known``: the pose or
-    the sliders, the study's two Jacobians, and the rods' charts from their clamp states
-    (NaN with a rigid end: its rods are no clamped-pinned elasticas)."""
-    ok = converged
+    """A :class:`Path` from shooting solutions ``x`` (..., 12) along ``known`` (..., 3): the
+    pose or the sliders, the study's two Jacobians, and the rods' charts from their clamp
+    states (NaN with a rigid end: its rods are no clamped-pinned elasticas)."""
+    shape, ok = converged.shape, converged.ravel()
+    x, known = x.reshape(-1, 12), np.broadcast_to(known, shape + (3,)).reshape(-1, 3)
     _, fk_jac, fk_split = shooting._system(mech, nodes, "pose", rigid_end)
     _, ik_jac, ik_split = shooting._system(mech, nodes, "lambdas", rigid_end)
     X = np.where(ok[:, None], x, 0.0)
@@ -131,7 +132,9 @@ def _shooting_path(mech, x, converged, known, unknown, nodes, rigid_end):
     chart = np.full((len(ok), 6), np.nan)
     if ok.any() and not rigid_end:
         chart[ok] = shooting.chart_from_clamps(mech, m0[ok], n[ok])[0]
-    return Path(lambdas * nan[:, None], pose * nan[:, None], chart, ok, det_fk, det_ik)
+    return Path((lambdas * nan[:, None]).reshape(shape + (3,)),
+                (pose * nan[:, None]).reshape(shape + (3,)), chart.reshape(shape + (6,)),
+                converged, det_fk.reshape(shape), det_ik.reshape(shape))
 
 
 def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
@@ -250,14 +253,23 @@ def _outwards(n, start):
     return np.arange(start, n), np.arange(start, -1, -1)
 
 
-def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1)):
+def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
+                nodes=STUDY_NODES):
     """An equilibrium followed over the grid ``x`` by ``y`` of platform centres at the angle
     ``phi``: the inverse problem over the plane (the study's Ilustraciones 35 and 36).
 
     The equilibrium (at ``pose``, with sliders ``lambdas`` and rods ``z``) is first moved to
     the grid point nearest to it at the angle ``phi``, then followed along ``y`` both ways, then
-    every ``y`` at once along ``x`` both ways. Where the branch reaches the edge of its
-    workspace (``det_ik`` through zero) continuation stops and the map has NaN.
+    every ``y`` at once along ``x`` both ways. Continuation stops (the map has NaN) where the
+    branch folds back (``det_ik`` through zero: the edge of its workspace), and, with the closed
+    form, where it leaves the chart: a rod whose clamp moment vanishes (its mode changes) or
+    whose force turns through its clamped tangent (``psi`` through 0). Shooting (the study's
+    unknowns (111)) has no chart, and stops at folds only.
+
+    Parameters
+    ----------
+    method : {"elliptic", "shooting"}, optional
+        The closed form, or RK4 shooting with ``nodes`` nodes per rod.
 
     Returns
     -------
@@ -272,6 +284,7 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1)):
     >>> grid.lambdas.shape, bool(grid.converged.all())
     ((3, 2, 3), True)
     """
+    _validate.choice(method, ("elliptic", "shooting"), "method")
     modes = model._modes(modes)
     x, y = _validate.array(x, "x", ndim=1), _validate.array(y, "y", ndim=1)
     pose = _validate.array(pose, "pose", shape=(3,))
@@ -280,25 +293,39 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1)):
     start = inverse_path(mech, np.linspace(pose, [x[i0], y[j0], phi], 9), lambdas, z, modes)
     if not start.converged[-1]:
         raise ConvergenceError(f"the equilibrium could not be moved from the pose "
-                                      f"{pose.tolist()} to the grid at phi = {phi:g}", start)
+                               f"{pose.tolist()} to the grid at phi = {phi:g}", start)
     grid = np.stack(np.meshgrid(x, y, indexing="ij") + (np.full((len(x), len(y)), phi),), -1)
-    fun, jac = _closed_form(mech, modes, "lambdas")
-    inside = lambda u: model.in_chart(u[:, :6])    # noqa: E731
-    u0 = np.concatenate((start.chart[-1], start.lambdas[-1]))
-    column = np.full((len(y), 9), np.nan)
+    if method == "elliptic":
+        fun, jac = _closed_form(mech, modes, "lambdas")
+        u0 = np.concatenate((start.chart[-1], start.lambdas[-1]))
+        controls = dict(tol=PATH_TOL, maxiter=PATH_MAXITER,
+                        domain=lambda u: model.in_chart(u[:, :6]))
+
+        def keep(u0, u, ok):
+            return _on_branch(u0[..., :6], u[..., :6], ok)
+    else:
+        nodes = _validate.maxiter(nodes, "nodes", minimum=2)
+        fun, jac, _ = shooting._system(mech, nodes, "lambdas", 0.0)
+        u0 = shooting.shooting_guess(mech, start.lambdas[-1], start.chart[-1], modes,
+                                     unknown="lambdas")
+        controls = dict(tol=shooting.SHOOTING_TOL)
+
+        def keep(u0, u, ok):
+            return ok
+    column = np.full((len(y), len(u0)), np.nan)
     for js in _outwards(len(y), j0):
-        res = newton.solve_path(fun, grid[i0, js], u0, jac, tol=PATH_TOL, maxiter=PATH_MAXITER,
-                                domain=inside, resume=False)
-        column[js] = np.where(_on_branch(u0[:6], res.x[:, :6], res.converged)[:, None], res.x,
-                              np.nan)
+        res = newton.solve_path(fun, grid[i0, js], u0, jac, resume=False, **controls)
+        column[js] = np.where(keep(u0, res.x, res.converged)[:, None], res.x, np.nan)
     alive = ~np.isnan(column[:, 0])
-    u = np.full(grid.shape[:2] + (9,), np.nan)
+    u = np.full(grid.shape[:2] + (len(u0),), np.nan)
     for i_s in _outwards(len(x), i0):
-        res = newton.solve_path(fun, grid[i_s][:, alive], column[alive], jac, tol=PATH_TOL,
-                                maxiter=PATH_MAXITER, domain=inside, resume=False)
-        ok = _on_branch(column[alive, :6], res.x[..., :6], res.converged)
+        res = newton.solve_path(fun, grid[i_s][:, alive], column[alive], jac, resume=False,
+                                **controls)
+        ok = keep(column[alive], res.x, res.converged)
         u[i_s[:, None], alive] = np.where(ok[..., None], res.x, np.nan)
     converged = ~np.isnan(u[..., 0])
+    if method == "shooting":
+        return _shooting_path(mech, u, converged, grid, "lambdas", nodes, 0.0)
     return _finish(mech, modes, u[..., :6], u[..., 6:], grid, converged)
 
 

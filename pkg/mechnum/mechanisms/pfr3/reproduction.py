@@ -3,7 +3,7 @@
 import numpy as np
 
 from mechnum.mechanisms.pfr3 import model, shooting, study
-from mechnum.mechanisms.pfr3.equilibria import N_STARTS, forward_elliptic
+from mechnum.mechanisms.pfr3.equilibria import forward_elliptic
 from mechnum.mechanisms.rfr2 import STUDY_NODES, YOUNG
 
 NAMES = ("psi1", "k_rel1", "psi2", "k_rel2", "psi3", "k_rel3")
@@ -24,7 +24,7 @@ def table2_cells():
     return cells
 
 
-def reproduce():
+def reproduce(table8=None, table2=None, table2_mirrored=None):
     """The chapter's registry values, computed.
 
     Tabla 8 from the equilibria that :func:`forward_elliptic` finds (each printed solution
@@ -32,6 +32,14 @@ def reproduce():
     example's inputs from :func:`~mechnum.mechanisms.pfr3.study.recover_inputs`, the numbers
     of equilibria, the residuals of the study's equations (110) and (113) as printed, and the
     roots of the study's own system for Tabla 2's mechanism within the study's reach.
+
+    Parameters
+    ----------
+    table8, table2, table2_mirrored : Equilibria, optional
+        The mode-1 equilibria of :data:`~mechnum.mechanisms.pfr3.model.TABLE8`, of
+        :data:`~mechnum.mechanisms.pfr3.model.TABLE2` and of its mirrored platform, if already
+        computed (a chapter passes its own); by default :func:`forward_elliptic` with
+        ``rng=0``.
 
     Examples
     --------
@@ -41,7 +49,7 @@ def reproduce():
     """
     values = {}
     lambdas = model.TABLE8_LAMBDAS
-    eq = forward_elliptic(model.TABLE8, lambdas, rng=0)
+    eq = forward_elliptic(model.TABLE8, lambdas, rng=0) if table8 is None else table8
     matched = []
     for i, printed in enumerate(study.TABLE8_PUBLISHED, start=1):
         k = int(np.argmin(np.abs(eq.solutions - printed).max(axis=1)))
@@ -78,9 +86,10 @@ def reproduce():
     values["elliptic residual (114) at convergence (m, N, N m)"] = float(np.abs(
         study.thesis_residual(model.TABLE8, lambdas, eq.solutions[matched])).max())
     # Tabla 2: the roots of the study's system (real and mirror assemblies) within its reach
-    real = forward_elliptic(model.TABLE2, model.TABLE2_LAMBDAS, rng=0)
-    mirror = forward_elliptic(model.TABLE2.mirrored(), model.TABLE2_LAMBDAS, rng=0,
-                              n_starts=3 * N_STARTS)
+    real = (forward_elliptic(model.TABLE2, model.TABLE2_LAMBDAS, rng=0) if table2 is None
+            else table2)
+    mirror = (forward_elliptic(model.TABLE2.mirrored(), model.TABLE2_LAMBDAS, rng=0)
+              if table2_mirrored is None else table2_mirrored)
     reach = float(study.within_study_reach(real.chart).sum()
                   + study.within_study_reach(mirror.chart).sum())
     for name, _, _ in table2_cells():

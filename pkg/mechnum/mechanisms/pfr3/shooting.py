@@ -223,7 +223,8 @@ def chart_from_clamps(mech, clamp_moments, forces):
     Returns
     -------
     z : ndarray, shape (..., 6)
-        ``(psi_i, t_i)``.
+        ``(psi_i, t_i)``; ``t_i`` is NaN for a rod whose ``|k_rel|`` rounds to 0 or 1 from its
+        clamp state (a rod straight to rounding, or in tension beyond the study's chart).
     modes : ndarray of int, shape (..., 3)
 
     Examples
@@ -240,8 +241,10 @@ def chart_from_clamps(mech, clamp_moments, forces):
     local = np.stack((c * forces[..., 0] + s * forces[..., 1],
                       -s * forces[..., 0] + c * forces[..., 1]), axis=-1)
     psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
-    z = np.empty(psi.shape[:-1] + (6,))
-    z[..., 0::2], z[..., 1::2] = psi, regular.t_from_k_rel(psi, k_rel)
+    inside = (k_rel != 0) & (np.abs(k_rel) < 1)      # a rod straight to rounding has no chart
+    z = np.full(psi.shape[:-1] + (6,), np.nan)
+    z[..., 0::2] = psi
+    z[..., 1::2][inside] = regular.t_from_k_rel(psi[inside], k_rel[inside])
     return z, modes.astype(int)
 
 
