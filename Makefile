@@ -8,7 +8,8 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book test unit notebooks notebooks-other-machine html-check bench execute clean
+.PHONY: book book-student downloads pdf test unit notebooks notebooks-other-machine html-check bench execute lab \
+	clean
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,8 +17,27 @@ $(STAMP): environment.txt pkg/pyproject.toml
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
-book: $(STAMP)
+book: downloads
 	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
+
+# What the page "Run the chapters yourself" serves: the package's wheel and the chapters.
+DOWNLOADS := _build/downloads
+downloads: $(STAMP)
+	rm -rf $(DOWNLOADS) pkg/build
+	$(BIN)/python -m pip wheel --quiet --disable-pip-version-check --no-deps \
+		--wheel-dir $(DOWNLOADS) ./pkg
+	rm -rf pkg/build
+	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip *.ipynb *.csv
+
+# The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
+# It renders the committed outputs (the tests have checked them) instead of executing again.
+book-student: downloads
+	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
+		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
+		c['execute']['execute_notebooks'] = 'off'; \
+		yaml.safe_dump(c, open('$(DOWNLOADS)/student_config.yml', 'w'))"
+	$(NB_ENV) $(BIN)/jupyter-book build . --config $(DOWNLOADS)/student_config.yml \
+		--path-output _build/student -W -n --keep-going
 
 unit: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
@@ -33,10 +53,17 @@ notebooks-other-machine: $(STAMP)
 	$(NB_ENV) $(OTHER_MACHINE) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg \
 		-p no:cacheprovider book
 
+# The tests of the built books: offline pages, rendered TeX, the downloads run in a fresh
+# environment, the student edition hides every solution, and every page in headless Chromium
+# (Debian's package chromium; without it those tests are skipped, and said so).
 html-check: $(STAMP)
-	MECHNUM_BUILT_HTML=_build/html $(BIN)/pytest tests/test_built_html.py
+	@command -v chromium >/dev/null || echo "*** chromium is not installed: the browser tests" \
+		"(tests/test_browser.py) are skipped; Debian: apt-get install chromium ***"
+	MECHNUM_BUILT_HTML=_build/html MECHNUM_STUDENT_HTML=_build/student/_build/html \
+		$(BIN)/pytest -rs tests/test_built_html.py tests/test_downloads.py \
+		tests/test_student_edition.py tests/test_browser.py
 
-test: unit notebooks notebooks-other-machine book html-check
+test: unit notebooks notebooks-other-machine book book-student html-check
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
@@ -47,6 +74,23 @@ bench: $(STAMP)
 NB ?= $(wildcard book/*.ipynb)
 execute: $(STAMP)
 	$(NB_ENV) $(BIN)/python .ci/execute_notebooks.py $(NB)
+
+# The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf (not part of
+# make test). It needs XeLaTeX and its fonts, from Debian's packages: TEX_PACKAGES below.
+TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk fonts-freefont-otf
+pdf: $(STAMP)
+	@command -v xelatex >/dev/null && command -v latexmk >/dev/null || { echo "make pdf needs" \
+		"XeLaTeX: apt-get install $(TEX_PACKAGES)"; exit 1; }
+	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex
+
+# JupyterLab with jupyterlab-myst, installed once into .venv from requirements.txt, on the book.
+LAB_STAMP := $(VENV)/.lab-installed
+$(LAB_STAMP): requirements.txt $(STAMP)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r requirements.txt
+	touch $(LAB_STAMP)
+
+lab: $(LAB_STAMP)
+	cd book && $(NB_ENV) ../$(BIN)/jupyter lab
 
 clean:
 	rm -rf _build .pytest_cache .hypothesis .benchmarks

@@ -1,5 +1,8 @@
-"""Benchmarks of chapter 2 (seed 003): the study's whole SOR omega study, which it says took
-26 hours, in this package."""
+"""Benchmarks of Chapter 2 (the finger study): the study's whole SOR omega study, which it says
+took 26 hours, in this package.
+
+Run with ``make bench`` (or ``pytest bench/bench_finger.py -o python_files='bench_*.py'
+--benchmark-only``)."""
 
 import numpy as np
 
@@ -11,7 +14,7 @@ def omega_study(n_omegas=200):
     """The fits (QR, LU, SOR at the study's five omegas) and the spectral radius and iteration
     count of SOR for ``n_omegas`` relaxation factors in (0, 2)."""
     fits = [F.synthesize(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT, F.TABLE1_R4, m)
-            for m in ("qr", "normal")]
+            for m in ("qr", "lu")]
     fits += [F.synthesize(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT, F.TABLE1_R4, "sor", w,
                           tol=1e-10) for w in F.STUDY_OMEGAS]
     A, b = F.design_matrix(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT)

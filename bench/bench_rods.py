@@ -1,43 +1,223 @@
-"""Benchmarks of chapter 3 (seed 001): one cantilever under a tip load P L^2 / EI = 1, by the
-closed form, by RK4 shooting (41 nodes), and by scipy's collocation solver ``solve_bvp`` on the
-same problem (41-node initial mesh, tolerance chosen so that its tip error is no larger than
-the shooting's, about 2.5e-9 m); plus 100 cantilevers shot in one batch."""
+"""Benchmarks of Chapter 3 (study 001): one rod by shooting, by the closed form, and by peers.
+
+Each pair runs the package and a peer in the same process, at the same accuracy, and the
+module prints the ratios (package time over peer time, minimum over rounds) at its end:
+
+* **shooting against collocation**: a cantilever under a transverse tip load
+  ``P L^2 / EI = 0.1 ... 15`` and the pinned rod through that cantilever's tip, each from its
+  default start, on the fewest RK4 nodes that bring the tip within ``1e-10 L`` of the exact
+  rod; ``scipy.integrate.solve_bvp`` on the same problem with the loosest tolerance that does
+  the same (a pinned rod's error is backward: its ``(m0, n)`` integrated exactly, tip and
+  ``m(L)``). Target: ratio <= 1.
+* **the same shooting on plain floats**: ``shoot_cantilever`` (41 nodes) against twenty lines of
+  RK4 and Newton on Python floats (what is left is input checks, the closed-form start and
+  Newton's bookkeeping).
+* **the closed-form tip**: ``cantilever(..., nodes=2)`` against the textbook closed form of
+  Bisshopp and Drucker (Brent's method on ``K(k) - F(phi1, k) = sqrt(P L^2 / EI)``, then the
+  tip). Target: ratio <= 2.
+* **one rod's sweep**: ``rods.integrate`` of one rod (RK4 on Python floats) against the
+  package's vectorised sweep on a batch of one (numpy).
+
+Run with ``make bench``, or ``pytest bench/bench_rods.py -o python_files='bench_*.py'
+--benchmark-only``. Timings on a shared machine are noisy: compare ratios from one run.
+"""
+
+import math
 
 import numpy as np
+import pytest
 from scipy.integrate import solve_bvp
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 
 from mechnum import rods
 
-EI, L, FORCE = 1.0, 1.0, np.array([0.0, 1.0])
-EXACT_TIP = rods.cantilever(EI, L, FORCE, "elliptic").tip
+EI, L = 1.0, 1.0
+TOL = 1e-10                       # the accuracy every contender must reach (tip, over L)
+# per load: RK4 nodes of the cantilever and of the pinned rod, and solve_bvp's tolerances for
+# both, each the least that reaches TOL (asserted below, so a change cannot hide)
+CASES = {0.1: (33, 33, 1e-8, 1e-5), 1.0: (101, 105, 3e-8, 3e-8), 5.0: (197, 273, 3e-8, 3e-8),
+         10.0: (249, 441, 3e-7, 3e-8), 15.0: (289, 609, 3e-7, 1e-8)}
+RESULTS = {}
 
 
-def test_cantilever_closed_form(benchmark):
-    rod = benchmark(rods.cantilever, EI, L, FORCE, "elliptic")
-    assert np.allclose(rod.tip, [0.943566762, 0.301720774], atol=1e-9)
+@pytest.fixture(scope="module", autouse=True)
+def ratios(request):
+    """Print package time over peer time for every pair measured, at the module's end."""
+    yield
+    lines = ["", "bench_rods: time of mechnum / time of the peer (minimum over rounds)"]
+    for (what, case), times in sorted(RESULTS.items()):
+        if {"mechnum", "peer"} <= set(times):
+            ours, peer = times["mechnum"], times["peer"]
+            load = f"PL2/EI = {case:g}" if case else ""
+            lines.append(f"  {what:38} {load:>13}   {ours * 1e3:8.3f} ms / "
+                         f"{peer * 1e3:8.3f} ms = {ours / peer:.2f}")
+    with request.config.pluginmanager.getplugin("capturemanager").global_and_fixture_disabled():
+        print("\n".join(lines))
 
 
-def test_cantilever_shooting_41_nodes(benchmark):
-    rod = benchmark(rods.cantilever, EI, L, FORCE, "shooting", nodes=41)
-    assert np.abs(rod.tip - EXACT_TIP).max() < 3e-9
+def record(benchmark, what, case, who):
+    RESULTS.setdefault((what, case), {})[who] = benchmark.stats.stats.min
 
 
-def _bvp():
+def exact(alpha):
+    return rods.cantilever(EI, L, [0.0, alpha], nodes=2)
+
+
+def backward_error(m0, force, target):
+    """The tip's distance from the target and ``m(L)`` (scaled) of ``(m0, n)`` integrated
+    on 20000 RK4 steps (error below 1e-15): a pinned rod's backward error."""
+    rod = rods.integrate(EI, L, m0, force, nodes=20001)
+    return max(np.abs(rod.tip - target).max() / L,
+               abs(rod.m[-1]) / (np.hypot(*force) * L + EI / L))
+
+
+def linear_guess(s, P):
+    """Linear beam theory for a transverse tip load ``P``: ``(x, y, theta, m)`` on ``s``."""
+    return np.vstack((s, P * (s ** 2 / 2 - s ** 3 / 6), P * (s - s ** 2 / 2), P * (1 - s)))
+
+
+def bvp_cantilever(alpha, tol):
     def f(s, y):
-        return np.vstack((np.cos(y[2]), np.sin(y[2]), y[3] / EI,
-                          FORCE[0] * np.sin(y[2]) - FORCE[1] * np.cos(y[2])))
+        return np.vstack((np.cos(y[2]), np.sin(y[2]), y[3] / EI, -alpha * np.cos(y[2])))
 
     def bc(ya, yb):
         return np.array([ya[0], ya[1], ya[2], yb[3]])
 
     s = np.linspace(0.0, L, 41)
-    guess = np.vstack((s, s ** 2 / 2 - s ** 3 / 6, s - s ** 2 / 2, 1 - s))
-    return solve_bvp(f, bc, s, guess, tol=1e-6)
+    return solve_bvp(f, bc, s, linear_guess(s, alpha), tol=tol, max_nodes=100000)
 
 
-def test_cantilever_scipy_solve_bvp(benchmark):
-    res = benchmark(_bvp)
-    assert res.status == 0 and np.abs(res.y[:2, -1] - EXACT_TIP).max() < 3e-9
+def bvp_pinned(tip, tol):
+    def f(s, y, p):
+        return np.vstack((np.cos(y[2]), np.sin(y[2]), y[3] / EI,
+                          p[0] * np.sin(y[2]) - p[1] * np.cos(y[2])))
+
+    def bc(ya, yb, p):
+        return np.array([ya[0], ya[1], ya[2], yb[0] - tip[0], yb[1] - tip[1], yb[3]])
+
+    s, P = np.linspace(0.0, L, 41), 3.0 * EI * tip[1] / L ** 3
+    return solve_bvp(f, bc, s, linear_guess(s, P), p=[0.0, P], tol=tol, max_nodes=100000)
+
+
+@pytest.mark.parametrize("alpha", CASES)
+def test_cantilever_shooting(benchmark, alpha):
+    nodes = CASES[alpha][0]
+    res = benchmark(rods.shoot_cantilever, EI, L, [0.0, alpha], nodes=nodes)
+    assert np.abs(res.rod.tip - exact(alpha).tip).max() <= TOL
+    record(benchmark, "cantilever, tip to 1e-10", alpha, "mechnum")
+
+
+@pytest.mark.parametrize("alpha", CASES)
+def test_cantilever_solve_bvp(benchmark, alpha):
+    res = benchmark(bvp_cantilever, alpha, CASES[alpha][2])
+    assert res.status == 0 and np.abs(res.y[:2, -1] - exact(alpha).tip).max() <= TOL
+    record(benchmark, "cantilever, tip to 1e-10", alpha, "peer")
+
+
+@pytest.mark.parametrize("alpha", CASES)
+def test_pinned_shooting(benchmark, alpha):
+    tip = exact(alpha).tip
+    res = benchmark(rods.shoot_pinned, EI, L, tip, nodes=CASES[alpha][1])
+    assert backward_error(res.rod.clamp_moment, res.rod.force, tip) <= TOL
+    record(benchmark, "pinned rod, tip to 1e-10", alpha, "mechnum")
+
+
+@pytest.mark.parametrize("alpha", CASES)
+def test_pinned_solve_bvp(benchmark, alpha):
+    tip = exact(alpha).tip
+    res = benchmark(bvp_pinned, tip, CASES[alpha][3])
+    assert res.status == 0 and backward_error(res.y[3, 0], res.p, tip) <= TOL
+    record(benchmark, "pinned rod, tip to 1e-10", alpha, "peer")
+
+
+def plain_float_shooting(alpha, nodes):
+    """Shooting for a transverse tip load on Python floats: RK4 on ``(x, y, theta, m)`` and
+    the variational equations of ``d/d m0``, Newton from linear theory (``m0 = P L``)."""
+    h, P = L / (nodes - 1), alpha * EI / L ** 2
+
+    def f(t, m, dt, dm):
+        return math.cos(t), math.sin(t), m / EI, -P * math.cos(t), dm / EI, P * math.sin(t) * dt
+
+    m0 = P * L
+    for _ in range(50):
+        x = y = t = dt = 0.0
+        m, dm = m0, 1.0
+        for _ in range(nodes - 1):
+            k1 = f(t, m, dt, dm)
+            k2 = f(t + h / 2 * k1[2], m + h / 2 * k1[3], dt + h / 2 * k1[4], dm + h / 2 * k1[5])
+            k3 = f(t + h / 2 * k2[2], m + h / 2 * k2[3], dt + h / 2 * k2[4], dm + h / 2 * k2[5])
+            k4 = f(t + h * k3[2], m + h * k3[3], dt + h * k3[4], dm + h * k3[5])
+            x, y, t, m, dt, dm = (v + h / 6 * (a + 2 * b + 2 * c + d) for v, a, b, c, d in
+                                  zip((x, y, t, m, dt, dm), k1, k2, k3, k4))
+        if abs(m) < 1e-13 * P * L:
+            return x, y
+        m0 -= m / dm
+    raise RuntimeError("no convergence")
+
+
+def test_overhead_shoot_cantilever(benchmark):
+    res = benchmark(rods.shoot_cantilever, EI, L, [0.0, 1.0], nodes=41)
+    assert np.abs(res.rod.tip - plain_float_shooting(1.0, 41)).max() < 1e-12
+    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", 0, "mechnum")
+
+
+def test_overhead_plain_floats(benchmark):
+    tip = benchmark(plain_float_shooting, 1.0, 41)
+    assert abs(tip[1] - exact(1.0).tip[1]) < 3e-9
+    record(benchmark, "shooting, 41 nodes, PL2/EI = 1", 0, "peer")
+
+
+def textbook_tip(alpha):
+    """Bisshopp and Drucker's closed form of a cantilever under a transverse tip load:
+    ``K(k) - F(phi1, k) = sqrt(alpha)`` with ``sin(phi1) = 1 / (k sqrt 2)`` by Brent's method,
+    then ``x / L = 2 k cos(phi1) / sqrt(alpha)`` and ``y / L = 1 - 2 (E(k) - E(phi1, k)) /
+    sqrt(alpha)``."""
+    lam = math.sqrt(alpha)
+
+    def g(k):
+        return ellipk(k * k) - ellipkinc(math.asin(1 / (k * math.sqrt(2))), k * k) - lam
+
+    k = brentq(g, (1 + 1e-15) / math.sqrt(2), 1 - 1e-16, xtol=1e-16, rtol=8.9e-16)
+    phi1 = math.asin(1 / (k * math.sqrt(2)))
+    return (2 * k * math.cos(phi1) / lam,
+            1 - 2 * (ellipe(k * k) - ellipeinc(phi1, k * k)) / lam)
+
+
+@pytest.mark.parametrize("alpha", [0.1, 1.0, 5.0, 15.0])
+def test_tip_closed_form(benchmark, alpha):
+    rod = benchmark(rods.cantilever, EI, L, [0.0, alpha], nodes=2)
+    assert np.abs(rod.tip - textbook_tip(alpha)).max() < 1e-14
+    record(benchmark, "closed-form tip", alpha, "mechnum")
+
+
+@pytest.mark.parametrize("alpha", [0.1, 1.0, 5.0, 15.0])
+def test_tip_textbook(benchmark, alpha):
+    tip = benchmark(textbook_tip, alpha)
+    assert np.abs(np.array(tip) - exact(alpha).tip).max() < 1e-14
+    record(benchmark, "closed-form tip", alpha, "peer")
+
+
+def test_sweep_one_rod_on_floats(benchmark):
+    rod = benchmark(rods.integrate, EI, L, 2.0, [0.0, 5.0], nodes=201)
+    assert rod.x.shape == (201,)
+    record(benchmark, "one rod, 200 RK4 steps (peer: numpy)", 0, "mechnum")
+
+
+def test_sweep_one_rod_vectorised(benchmark):
+    # the package's own vectorised sweep on a batch of one: what a single rod cost before
+    from mechnum.rods.shooting import _sweep
+
+    args = (np.ones(1), np.ones(1), np.full(1, 2.0), np.array([[0.0, 5.0]]), np.zeros(1),
+            np.zeros((1, 2)), 201)
+    Y = benchmark(_sweep, *args)
+    assert np.abs(Y[0, :, 0] - rods.integrate(EI, L, 2.0, [0.0, 5.0], nodes=201).x).max() < 1e-13
+    record(benchmark, "one rod, 200 RK4 steps (peer: numpy)", 0, "peer")
+
+
+def test_closed_form_41_nodes(benchmark):
+    rod = benchmark(rods.cantilever, EI, L, [0.0, 1.0], nodes=41)
+    assert rod.x.shape == (41,)
 
 
 def test_hundred_cantilevers_shot_in_one_batch(benchmark):

@@ -1,9 +1,12 @@
-"""Tests of mechnum.linear: textbook systems, bad input, and properties."""
+"""Tests of mechnum.linear: textbook systems, every public function's bad input, and
+properties checked by hypothesis (200 examples each) over the valid domain and its edges."""
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from numpy.testing import assert_allclose
 
 from mechnum import linear
 from mechnum.errors import (ConvergenceError, DivergenceError, RelaxationFactorError,
@@ -15,7 +18,50 @@ BF_B = np.array([6.0, 25, -11, 15])
 # Burden and Faires, Example 7.4.3 (SOR): tridiagonal SPD, solution (3, 4, -5).
 TRI_A = np.array([[4.0, 3, 0], [3, 4, -1], [0, -1, 4]])
 TRI_B = np.array([24.0, 30, -24])
+A2, B2 = np.array([[4.0, 1.0], [1.0, 3.0]]), np.array([1.0, 2.0])
+X2 = np.linalg.solve(A2, B2)
+HYPOTHESIS = settings(max_examples=200, deadline=None)
 
+
+# --- strategies --------------------------------------------------------------------------------
+
+def _matrix(draw, n, low=-1.0, high=1.0):
+    values = draw(st.lists(st.floats(low, high), min_size=n * n, max_size=n * n))
+    return np.array(values).reshape(n, n)
+
+
+@st.composite
+def spd_systems(draw, max_n=5):
+    """A symmetric positive definite A (eigenvalues >= 0.5) and a right-hand side."""
+    n = draw(st.integers(1, max_n))
+    B = _matrix(draw, n)
+    b = np.array(draw(st.lists(st.floats(-10, 10), min_size=n, max_size=n)))
+    return B @ B.T + 0.5 * np.eye(n), b
+
+
+@st.composite
+def dominant_systems(draw, max_n=5):
+    """A strictly diagonally dominant A (Jacobi and Gauss-Seidel converge) and b."""
+    n = draw(st.integers(1, max_n))
+    A = _matrix(draw, n)
+    signs = np.where(np.array(draw(st.lists(st.booleans(), min_size=n, max_size=n))), 1, -1)
+    A[np.diag_indices(n)] = signs * (np.abs(A).sum(axis=1) + 0.5)
+    b = np.array(draw(st.lists(st.floats(-10, 10), min_size=n, max_size=n)))
+    return A, b
+
+
+@st.composite
+def tridiagonal_spd(draw):
+    n = draw(st.integers(2, 6))
+    off = np.array(draw(st.lists(st.floats(-1, 1), min_size=n - 1, max_size=n - 1)))
+    diag = np.array(draw(st.lists(st.floats(2.05, 4), min_size=n, max_size=n)))
+    return np.diag(diag) + np.diag(off, 1) + np.diag(off, -1)  # dominant, so SPD
+
+
+omegas = st.floats(0.05, 1.95)
+
+
+# --- textbook numbers --------------------------------------------------------------------------
 
 @pytest.mark.parametrize("method, iterations, last", [
     ("jacobi", 10, [1.0001, 1.9998, -0.9998, 0.9998]),
@@ -26,12 +72,14 @@ def test_burden_faires_iteration_counts(method, iterations, last):
     res = getattr(linear, method)(BF_A, BF_B, tol=1e-3, criterion="step")
     assert res.iterations == iterations
     assert res.x.round(4).tolist() == last
+    assert res.step_norms.shape == (iterations,)
+    assert res.step_norms[-1] < 1e-3 <= res.step_norms[-2]
 
 
 def test_sor_textbook_solution_and_speed_up():
     sor = linear.sor(TRI_A, TRI_B, 1.25, x0=np.ones(3), tol=1e-7)
     gs = linear.gauss_seidel(TRI_A, TRI_B, x0=np.ones(3), tol=1e-7)
-    assert np.allclose(sor.x, [3, 4, -5], atol=1e-6)
+    assert_allclose(sor.x, [3, 4, -5], atol=1e-6)
     assert sor.iterations < gs.iterations / 2
 
 
@@ -42,8 +90,8 @@ def test_optimal_omega_young_textbook_value():
     assert best.omega == pytest.approx(2 / (1 + np.sqrt(0.375)), rel=1e-12)
     assert best.spectral_radius == pytest.approx(best.omega - 1, rel=1e-12)
     fine = np.linspace(1.0, 1.5, 5001)
-    assert fine[np.argmin(linear.sor_spectral_radii(TRI_A, fine))] == pytest.approx(best.omega,
-                                                                                      abs=2e-3)
+    radii = linear.sor_spectral_radii(TRI_A, fine)
+    assert fine[np.argmin(radii)] == pytest.approx(best.omega, abs=2e-4)
 
 
 def test_optimal_omega_numerical_is_a_minimum():
@@ -53,7 +101,7 @@ def test_optimal_omega_numerical_is_a_minimum():
     grid = np.linspace(0.01, 1.99, 199)
     assert best.spectral_radius <= linear.sor_spectral_radii(A, grid).min() + 1e-12
     assert best.spectral_radius == pytest.approx(
-        linear.spectral_radius(linear.iteration_matrix(A, "sor", best.omega)))
+        linear.spectral_radius(linear.iteration_matrix(A, "sor", best.omega)), rel=1e-12)
 
 
 def test_condition_number_of_the_ill_conditioned_example():
@@ -63,6 +111,7 @@ def test_condition_number_of_the_ill_conditioned_example():
     for p in (1, 2, "fro"):
         assert linear.condition_number(A, p) == pytest.approx(np.linalg.cond(A, p))
     assert linear.condition_number([[1.0, 2.0], [2.0, 4.0]], 1) == np.inf
+    assert linear.condition_number([[1.0, 2.0], [2.0, 4.0]], 2) > 1 / np.finfo(float).eps
 
 
 def test_rectangular_condition_number_squares_in_normal_equations():
@@ -71,102 +120,522 @@ def test_rectangular_condition_number_squares_in_normal_equations():
                                                               rel=1e-8)
 
 
-def test_iterative_refinement_recovers_double_precision():
-    n = 5
-    hilbert = 1.0 / (np.arange(n)[:, None] + np.arange(n) + 1)
-    b = hilbert @ np.ones(n)
-    res = linear.iterative_refinement(hilbert, b)
-    single = res.history[0]
-    assert np.max(np.abs(single - 1)) > 1e-4  # a float32 solve alone is poor
-    assert np.max(np.abs(res.x - 1)) < 1e-9
-    assert res.converged and res.iterations >= 2
+# --- the step criterion, divergence, histories ---------------------------------------------------
 
-
-def test_iterative_refinement_stalls_on_too_ill_conditioned():
-    n = 9
-    hilbert = 1.0 / (np.arange(n)[:, None] + np.arange(n) + 1)
-    with pytest.raises(ConvergenceError, match="stalled"):
-        linear.iterative_refinement(hilbert, hilbert @ np.ones(n))
-
-
-@pytest.mark.parametrize("A, b, error", [
-    ([[1.0, 2.0, 3.0]], [1.0], ValueError),
-    ([[1.0, np.nan], [0.0, 1.0]], [1.0, 1.0], ValueError),
-    ([[1.0, 0.0], [0.0, 1.0]], [1.0, np.inf], ValueError),
-    ([[1.0, 0.0], [0.0, 1.0]], [1.0, 2.0, 3.0], ValueError),
-    ([[0.0, 1.0], [1.0, 0.0]], [1.0, 1.0], SingularJacobianError),
-    ([[1.0, 2.0], [2.0, 4.0]], [1.0, 2.0], SingularJacobianError),
-])
-def test_bad_systems(A, b, error):
-    with pytest.raises(error):
-        linear.sor(A, b, 1.0)
-
-
-@pytest.mark.parametrize("omega", [0.0, 2.0, -0.5, 2.5, np.nan])
-def test_omega_outside_open_interval(omega):
-    with pytest.raises(RelaxationFactorError, match="omega"):
-        linear.sor(TRI_A, TRI_B, omega)
-    with pytest.raises(RelaxationFactorError):
-        linear.iteration_matrix(TRI_A, "sor", omega)
+def test_a_small_omega_does_not_fake_convergence():
+    # The step of SOR is omega times a correction of the size of the residual: with
+    # omega = 1e-12 it is 1e-12 after one sweep, while the residual is still 2.
+    with pytest.raises(ConvergenceError, match="did not converge") as info:
+        linear.sor(A2, B2, 1e-12, maxiter=50)
+    assert info.value.result.residual_norms[-1] == pytest.approx(2.0, rel=1e-9)
+    sweep = linear.sor_sweep(A2, B2, [1e-12, 1.0], maxiter=50)
+    assert sweep.converged.tolist() == [False, True]
 
 
 def test_divergence_is_detected_not_looped_on():
     A = np.array([[1.0, 2.0], [2.0, 1.0]])  # rho(M_J) = 2
-    with pytest.raises(DivergenceError, match="diverges") as info:
+    with pytest.raises(DivergenceError, match="diverges.*spectral radius.*2") as info:
         linear.jacobi(A, [1.0, 1.0], maxiter=10_000)
-    assert info.value.result.iterations < 100
+    assert 20 < info.value.result.iterations < 100  # 2^27 > 1e8: about 27 sweeps
 
 
 def test_no_convergence_keeps_history():
-    with pytest.raises(ConvergenceError, match="did not converge") as info:
+    with pytest.raises(ConvergenceError, match="did not converge in 5 sweeps") as info:
         linear.sor(TRI_A, TRI_B, 0.1, maxiter=5)
-    assert info.value.result.history.shape == (6, 3)
-    assert not info.value.result.converged
+    result = info.value.result
+    assert result.history.shape == (6, 3) and result.residual_norms.shape == (6,)
+    assert result.step_norms.shape == (5,) and not result.converged
+    assert_allclose(np.abs(np.diff(result.history, axis=0)).max(axis=1), result.step_norms,
+                    rtol=1e-14)
 
 
-@pytest.mark.parametrize("kwargs", [dict(tol=0.0), dict(maxiter=0), dict(criterion="size"),
-                                    dict(x0=[1.0, 2.0])])
-def test_bad_controls(kwargs):
-    with pytest.raises(ValueError):
-        linear.gauss_seidel(TRI_A, TRI_B, **kwargs)
-
-
-def test_bad_method_and_norm():
-    with pytest.raises(ValueError, match="method"):
-        linear.iteration_matrix(TRI_A, "richardson")
-    with pytest.raises(ValueError, match="p must be"):
-        linear.condition_number(TRI_A, 3)
+def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
+    A = linear.poisson2d(4)
+    b = np.ones(16)
+    assert linear.gauss_seidel(A, b).history is None
+    kept = linear.gauss_seidel(A, b, keep_history=True)
+    assert kept.history.shape == (kept.iterations + 1, 16)
 
 
 def test_residual_criterion():
     res = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual")
     assert res.residual_norms[-1] < 1e-9 <= res.residual_norms[-2]
+    relative = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=True,
+                                   norm=2)
+    assert relative.residual_norms[-1] <= 1e-9 * np.linalg.norm(TRI_B)
+    assert_allclose(relative.residual_norms[-1], np.linalg.norm(TRI_B - TRI_A @ relative.x),
+                    rtol=1e-12)
 
+
+def test_long_runs_cross_the_compiled_chunks():
+    # More sweeps than one compiled chunk: the history is stitched without gaps.
+    res = linear.sor(TRI_A, TRI_B, 0.01, tol=1e-12, maxiter=linear.CHUNK * 3)
+    assert res.iterations > linear.CHUNK
+    assert res.history.shape == (res.iterations + 1, 3)
+    assert_allclose(res.residual_norms, np.abs(TRI_B - res.history @ TRI_A.T).max(axis=1),
+                    rtol=1e-9, atol=1e-12)
+
+
+def test_zero_right_hand_side_converges_at_once():
+    for relative in (False, True):
+        res = linear.gauss_seidel(TRI_A, np.zeros(3), relative=relative)
+        assert res.iterations == 1 and res.converged and not res.x.any()
+
+
+# --- sparse matrices and the sweep ---------------------------------------------------------------
+
+@pytest.mark.parametrize("method", linear.METHODS)
+def test_sparse_and_dense_give_the_same_iterates(method):
+    A = linear.poisson2d(5)
+    b = np.arange(25.0)
+    dense = getattr(linear, method)(A.toarray(), b, **({"omega": 1.5} if method == "sor" else {}))
+    sparse = getattr(linear, method)(A, b, **({"omega": 1.5} if method == "sor" else {}))
+    assert sparse.iterations == dense.iterations
+    assert_allclose(sparse.x, dense.x, rtol=0, atol=1e-12)
+    assert_allclose(A @ sparse.x, b, atol=1e-8)
+
+
+def test_poisson_sor_at_young_omega():
+    m = 30
+    A = linear.poisson2d(m)
+    omega = linear.young_omega(np.cos(np.pi / (m + 1)))
+    b = np.ones(m * m)
+    sor = linear.sor(A, b, omega, tol=1e-8, criterion="residual")
+    gs = linear.gauss_seidel(A, b, tol=1e-8, criterion="residual")
+    assert sor.iterations * 10 < gs.iterations  # O(m) sweeps against O(m^2)
+    cg = linear.conjugate_gradient(A, b, tol=1e-10)
+    assert cg.iterations < sor.iterations
+    assert_allclose(sor.x, cg.x, atol=1e-7)
+
+
+def test_poisson2d_structure():
+    A = linear.poisson2d(7)
+    assert A.shape == (49, 49) and A.nnz == 5 * 49 - 4 * 7
+    assert abs(A - A.T).max() == 0
+    rho_j = linear.spectral_radius(linear.iteration_matrix(A.toarray(), "jacobi"))
+    assert rho_j == pytest.approx(np.cos(np.pi / 8), rel=1e-12)
+
+
+def test_a_sparse_matrix_is_never_made_dense(monkeypatch):
+    A = linear.poisson2d(3)
+    monkeypatch.setattr(sp.csr_array, "toarray", lambda self, *a, **k: pytest.fail("dense"))
+    monkeypatch.setattr(sp.csr_array, "todense", lambda self, *a, **k: pytest.fail("dense"))
+    for call in (lambda: linear.sor(A, np.ones(9), 1.3), lambda: linear.jacobi(A, np.ones(9)),
+                 lambda: linear.sor_sweep(A, np.ones(9), [0.5, 1.5]),
+                 lambda: linear.conjugate_gradient(A, np.ones(9)),
+                 lambda: linear.splitting(A, "sor", 1.2).sweep(np.zeros(9), np.ones(9))):
+        call()
+    with pytest.raises(ValueError, match="dense"):
+        linear.iteration_matrix(A, "jacobi")
+
+
+@HYPOTHESIS
+@given(dominant_systems(), omegas, st.sampled_from(linear.METHODS))
+def test_compiled_sweep_is_the_textbook_sweep(system, omega, method):
+    A, b = system
+    x = np.linspace(-1, 1, b.size)
+    split = linear.splitting(A, method, omega)
+    if method == "jacobi":
+        expected = (b - (A - np.diag(np.diag(A))) @ x) / np.diag(A)
+    else:
+        expected = linear.sweep_by_components(A, b, x, split.omega)
+    assert_allclose(split.sweep(x, b), expected, rtol=1e-12, atol=1e-12)
+    # ... and the matrix form x <- M x + c, with c the sweep of x = 0
+    M = linear.iteration_matrix(A, method, omega)
+    assert_allclose(split.sweep(x, b), M @ x + split.sweep(np.zeros(b.size), b),
+                    rtol=1e-10, atol=1e-10)
+
+
+def test_sweep_by_components_by_hand():
+    # One Gauss-Seidel sweep from 0 on [[4, 1], [1, 3]] x = [1, 2]: x1 = 1/4, x2 = (2 - 1/4)/3.
+    assert_allclose(linear.sweep_by_components(A2, B2, [0.0, 0.0]), [0.25, 1.75 / 3],
+                    rtol=1e-15)
+    assert_allclose(linear.sweep_by_components(A2, B2, [0.0, 0.0], 0.5), [0.125, 1.875 / 6],
+                    rtol=1e-15)
+
+
+# --- bad input -----------------------------------------------------------------------------------
+
+BAD_SYSTEMS = [
+    ([[1.0, 2.0, 3.0]], [1.0], ValueError, "square"),
+    ([[1.0, np.nan], [0.0, 1.0]], [1.0, 1.0], ValueError, "finite"),
+    ([[1.0, 1j], [0.0, 1.0]], [1.0, 1.0], ValueError, "real"),
+    ([["a", "b"], ["c", "d"]], [1.0, 1.0], ValueError, "numeric"),
+    (np.zeros((0, 0)), [], ValueError, "non-empty"),
+    ([[1.0, 0.0], [0.0, 1.0]], [1.0, np.inf], ValueError, "b must be finite"),
+    ([[1.0, 0.0], [0.0, 1.0]], [1.0, 2.0, 3.0], ValueError, "b must have shape"),
+    ([[0.0, 1.0], [1.0, 0.0]], [1.0, 1.0], SingularJacobianError, "zero diagonal"),
+    ([[1.0, 2.0], [2.0, 4.0]], [1.0, 2.0], SingularJacobianError, "singular"),
+    (sp.csr_array([[1.0, np.nan], [0.0, 1.0]]), [1.0, 1.0], ValueError, "finite"),
+    (sp.csr_array([[1.0, 0.0], [1.0, 0.0]]), [1.0, 1.0], SingularJacobianError, "diagonal"),
+]
+
+
+@pytest.mark.parametrize("solver", ["sor", "gauss_seidel", "jacobi", "sor_sweep"])
+@pytest.mark.parametrize("A, b, error, message", BAD_SYSTEMS)
+def test_bad_systems(solver, A, b, error, message):
+    with pytest.raises(error, match=message):
+        if solver == "sor":
+            linear.sor(A, b, 1.0)
+        elif solver == "sor_sweep":
+            linear.sor_sweep(A, b, [1.0])
+        else:
+            getattr(linear, solver)(A, b)
+
+
+@pytest.mark.parametrize("omega", [0.0, 2.0, -0.5, 2.5, np.nan, np.inf, None, "1.2", 1j, [1.0]])
+def test_omega_outside_open_interval(omega):
+    for call in (lambda: linear.sor(TRI_A, TRI_B, omega),
+                 lambda: linear.iteration_matrix(TRI_A, "sor", omega),
+                 lambda: linear.splitting(TRI_A, "sor", omega),
+                 lambda: linear.sor_spectral_radii(TRI_A, [1.0, omega]),
+                 lambda: linear.sor_sweep(TRI_A, TRI_B, [omega]),
+                 lambda: linear.sweep_by_components(TRI_A, TRI_B, np.zeros(3), omega)):
+        with pytest.raises(RelaxationFactorError, match="omega"):
+            call()
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(tol=0.0), "tol"), (dict(tol=-1.0), "tol"), (dict(tol=np.nan), "tol"),
+    (dict(maxiter=0), "maxiter"), (dict(maxiter=np.inf), "maxiter"),
+    (dict(maxiter=2.5), "maxiter"), (dict(criterion="size"), "criterion"),
+    (dict(norm=3), "norm"), (dict(norm="fro"), "norm"), (dict(relative="yes"), "relative"),
+    (dict(x0=[1.0, 2.0]), "x0"), (dict(x0=[1, np.nan, 0]), "x0")])
+def test_bad_controls(kwargs, message):
+    for solver in (linear.gauss_seidel, linear.jacobi,
+                   lambda A, b, **k: linear.sor(A, b, 1.2, **k),
+                   lambda A, b, **k: linear.sor_sweep(A, b, [1.2], **k)):
+        with pytest.raises(ValueError, match=message):
+            solver(TRI_A, TRI_B, **kwargs)
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda: linear.iteration_matrix(TRI_A, "richardson"), ValueError, "method"),
+    (lambda: linear.splitting(TRI_A, "sor_sweep"), ValueError, "method"),
+    (lambda: linear.condition_number(TRI_A, 3), ValueError, "p must be"),
+    (lambda: linear.condition_number([[1.0, 2.0]], 1), ValueError, "square"),
+    (lambda: linear.condition_number(linear.poisson2d(2)), ValueError, "dense"),
+    (lambda: linear.spectral_radius([[1.0, 2.0]]), ValueError, "square"),
+    (lambda: linear.spectral_radius([[np.inf]]), ValueError, "finite"),
+    (lambda: linear.sor_spectral_radii(TRI_A, [[1.0]]), ValueError, "dimension"),
+    (lambda: linear.sor_spectral_radii(np.ones((2, 2)) - np.eye(2), [1.0]),
+     SingularJacobianError, "diagonal"),
+    (lambda: linear.young_omega(1.0), ValueError, "rho_jacobi < 1"),
+    (lambda: linear.young_omega(-0.1), ValueError, "non-negative"),
+    (lambda: linear.young_omega(np.nan), ValueError, "finite"),
+    (lambda: linear.optimal_omega([[1.0, 2.0]]), ValueError, "square"),
+    (lambda: linear.optimal_omega(linear.poisson2d(2)), ValueError, "dense"),
+    (lambda: linear.check_matrix([1.0, 2.0]), ValueError, "dimension"),
+    (lambda: linear.check_matrix(sp.csr_array(np.eye(2) * 1j)), ValueError, "real"),
+    (lambda: linear.splitting(TRI_A).sweep([0.0, 0.0], TRI_B), ValueError, "x must have"),
+    (lambda: linear.splitting(TRI_A).sweep(np.zeros(3), [1, 2, np.nan]), ValueError, "finite"),
+    (lambda: linear.sweep_by_components(linear.poisson2d(2), np.ones(4), np.zeros(4)),
+     ValueError, "dense"),
+    (lambda: linear.sweep_by_components(TRI_A, TRI_B, [0.0]), ValueError, "x must have"),
+    (lambda: linear.poisson2d(0), ValueError, "m must be"),
+    (lambda: linear.poisson2d(2.5), ValueError, "m must be"),
+    (lambda: linear.StoppingRule(maxiter=True), ValueError, "maxiter"),
+])
+def test_bad_input_of_the_other_functions(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+def test_empty_omega_sweeps_are_valid():
+    assert linear.sor_spectral_radii(TRI_A, []).shape == (0,)
+    empty = linear.sor_sweep(TRI_A, TRI_B, [])
+    assert empty.iterations.shape == (0,) and empty.spectral_radii.shape == (0,)
+
+
+# --- conjugate gradients -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("A, error, message", [
+    ([[1.0, 2.0], [0.0, 1.0]], ValueError, "symmetric"),
+    ([[1.0, 0.0], [0.0, -1.0]], SingularJacobianError, "positive definite"),
+    ([[1.0, np.nan], [np.nan, 1.0]], ValueError, "finite")])
+def test_conjugate_gradient_bad_matrices(A, error, message):
+    with pytest.raises(error, match=message):
+        linear.conjugate_gradient(A, [1.0, 1.0])
+
+
+def test_conjugate_gradient_maxiter():
+    with pytest.raises(ConvergenceError, match="did not converge in 1 steps") as info:
+        linear.conjugate_gradient(TRI_A @ TRI_A.T, TRI_B, maxiter=1)
+    assert info.value.result.iterations == 1
+    with pytest.raises(ValueError, match="maxiter"):
+        linear.conjugate_gradient(A2, B2, maxiter=0)
+
+
+@HYPOTHESIS
+@given(spd_systems(max_n=6))
+def test_conjugate_gradient_solves_spd_systems(system):
+    A, b = system
+    res = linear.conjugate_gradient(A, b, tol=1e-12)
+    assert res.converged and res.iterations <= 3 * b.size
+    assert np.linalg.norm(A @ res.x - b) <= 1e-9 * max(np.linalg.norm(b), 1e-300) + 1e-300
+    assert res.step_norms.shape == (res.iterations,)
+
+
+# --- least squares -------------------------------------------------------------------------------
 
 @st.composite
-def spd_systems(draw):
-    n = draw(st.integers(2, 5))
-    B = np.array(draw(st.lists(st.floats(-1, 1), min_size=n * n, max_size=n * n))).reshape(n, n)
-    b = np.array(draw(st.lists(st.floats(-10, 10), min_size=n, max_size=n)))
-    return B @ B.T + 0.5 * np.eye(n), b
+def full_rank_least_squares(draw):
+    n = draw(st.integers(1, 3))
+    m = draw(st.integers(n, 8))
+    t = np.array(draw(st.lists(st.floats(-1, 1), min_size=m, max_size=m, unique=True)))
+    A = np.vander(t, n)
+    b = np.array(draw(st.lists(st.floats(-5, 5), min_size=m, max_size=m)))
+    return A, b
 
 
-@settings(max_examples=40, deadline=None)
-@given(spd_systems(), st.floats(0.05, 1.95))
+@HYPOTHESIS
+@given(full_rank_least_squares())
+def test_least_squares_methods_meet_the_normal_equations(problem):
+    A, b = problem
+    s = np.linalg.svd(A, compute_uv=False)
+    if s[-1] < 1e-3 * s[0]:  # keep kappa^2 eps small enough for the normal equations
+        return
+    qr = linear.least_squares(A, b)
+    # optimality: the residual is orthogonal to the columns of A
+    assert np.abs(A.T @ (A @ qr.x - b)).max() <= 1e-10 * (1 + np.abs(b).max())
+    assert_allclose(qr.residuals, A @ qr.x - b, rtol=0, atol=1e-14 * (1 + np.abs(b).max()))
+    for method in ("svd", "cholesky", "lu"):
+        other = linear.least_squares(A, b, method)
+        assert_allclose(other.x, qr.x, rtol=1e-6, atol=1e-6 * (1 + np.abs(b).max()))
+    assert qr.rank == A.shape[1]
+
+
+@pytest.mark.parametrize("method, options", [
+    ("sor", dict(omega=1.3, tol=1e-13, maxiter=100_000)), ("gauss_seidel", dict(tol=1e-13)),
+    ("cg", dict(tol=1e-14))])
+def test_least_squares_iterative_methods(method, options):
+    A = np.vander(np.linspace(0, 1, 9), 3)
+    b = np.exp(np.linspace(0, 1, 9))
+    fit = linear.least_squares(A, b, method, **options)
+    assert_allclose(fit.x, linear.least_squares(A, b).x, rtol=1e-9)
+    assert fit.solver is not None and fit.solver.converged
+
+
+def test_least_squares_rank_deficiency():
+    A = np.column_stack([np.ones(5), np.arange(5.0), 2 * np.arange(5.0)])  # rank 2
+    b = np.arange(5.0) ** 2
+    for method in ("qr", "cholesky", "lu", "sor", "jacobi", "gauss_seidel", "cg"):
+        with pytest.raises(SingularJacobianError, match="rank 2 < 3"):
+            linear.least_squares(A, b, method, **({"omega": 1.0} if method == "sor" else {}))
+    fit = linear.least_squares(A, b, "svd")
+    assert fit.rank == 2
+    # the minimum-norm solution: no component along the null vector (0, 2, -1)
+    assert abs(fit.x @ [0.0, 2.0, -1.0]) < 1e-12
+    assert np.abs(A.T @ fit.residuals).max() < 1e-10
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda: linear.least_squares(np.ones((2, 3)), np.ones(2)), ValueError, "rows"),
+    (lambda: linear.least_squares(np.eye(3), np.ones(2)), ValueError, "b must have"),
+    (lambda: linear.least_squares(np.eye(3), np.ones(3), "lsqr"), ValueError, "method"),
+    (lambda: linear.least_squares(np.eye(3), np.ones(3), "qr", 1.2), ValueError, "omega"),
+    (lambda: linear.least_squares(np.eye(3), np.ones(3), "qr", tol=1), ValueError, "direct"),
+    (lambda: linear.least_squares(np.eye(3), np.ones(3), "sor"), RelaxationFactorError, "omega"),
+    (lambda: linear.least_squares(np.zeros((3, 2)), np.ones(3)), SingularJacobianError, "rank 0"),
+    (lambda: linear.least_squares(sp.eye_array(3), np.ones(3)), ValueError, "dense"),
+])
+def test_least_squares_bad_input(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+# --- iterative refinement ------------------------------------------------------------------------
+
+def _hilbert(n):
+    return 1.0 / (np.arange(n)[:, None] + np.arange(n) + 1)
+
+
+def test_iterative_refinement_recovers_double_precision():
+    n = 5
+    res = linear.iterative_refinement(_hilbert(n), _hilbert(n) @ np.ones(n))
+    assert np.max(np.abs(res.history[0] - 1)) > 1e-4  # a float32 solve alone is poor
+    assert np.max(np.abs(res.x - 1)) < 1e-9
+    assert res.converged and res.iterations >= 2
+    assert res.step_norms.shape == (res.iterations,)
+
+
+def test_iterative_refinement_stalls_on_too_ill_conditioned():
+    n = 9
+    with pytest.raises(ConvergenceError, match="stalled") as info:
+        linear.iterative_refinement(_hilbert(n), _hilbert(n) @ np.ones(n))
+    assert not info.value.result.converged
+
+
+def test_iterative_refinement_reaches_maxiter():
+    with pytest.raises(ConvergenceError, match="after 1 steps"):
+        linear.iterative_refinement(_hilbert(5), _hilbert(5) @ np.ones(5), maxiter=1)
+
+
+@pytest.mark.parametrize("scale", [1e-50, 1e-300, 1e30, 1e300])
+def test_iterative_refinement_is_scale_invariant(scale):
+    # float32 holds neither 1e-50 nor 1e300: the right-hand side is scaled before the solve.
+    res = linear.iterative_refinement(A2, scale * B2)
+    assert_allclose(res.x, scale * X2, rtol=1e-12)
+    res = linear.iterative_refinement(scale * A2, B2)
+    assert_allclose(res.x, X2 / scale, rtol=1e-12)
+
+
+def test_iterative_refinement_bad_input():
+    for kwargs, message in ((dict(maxiter=0), "maxiter"), (dict(tol=-1), "tol"),
+                            (dict(factor_dtype=np.int32), "factor_dtype")):
+        with pytest.raises(ValueError, match=message):
+            linear.iterative_refinement(A2, B2, **kwargs)
+    with pytest.raises(SingularJacobianError):
+        linear.iterative_refinement([[1.0, 2.0], [2.0, 4.0]], B2)
+    assert not linear.iterative_refinement(A2, [0.0, 0.0]).x.any()
+
+
+@HYPOTHESIS
+@given(dominant_systems(), st.floats(-300, 300))
+def test_iterative_refinement_accuracy(system, exponent):
+    A, b = system
+    b = b * 10.0 ** exponent
+    res = linear.iterative_refinement(A, b, tol=1e-13)
+    exact = np.linalg.solve(A, b)
+    assert np.abs(res.x - exact).max() <= 1e-12 * np.abs(exact).max()
+
+
+# --- properties of the stationary solvers --------------------------------------------------------
+
+@HYPOTHESIS
+@given(spd_systems(), omegas)
 def test_sor_converges_on_spd_for_every_omega(system, omega):
     A, b = system
     assert linear.spectral_radius(linear.iteration_matrix(A, "sor", omega)) < 1
     res = linear.sor(A, b, omega, tol=1e-12, maxiter=200_000)
     expected = np.linalg.solve(A, b)
-    assert np.allclose(res.x, expected, atol=1e-8 * linear.condition_number(A) *
-                       max(1.0, np.abs(expected).max()))
+    assert np.abs(res.x - expected).max() <= 1e-8 * linear.condition_number(A) * max(
+        1.0, np.abs(expected).max())
 
 
-def test_sweep_matches_single_runs():
-    omegas = [0.3, 1.0, 1.24, 1.8]
-    sweep = linear.sor_sweep(TRI_A, TRI_B, omegas, tol=1e-9, criterion="residual")
-    single = [linear.sor(TRI_A, TRI_B, w, tol=1e-9, criterion="residual").iterations
-              for w in omegas]
-    assert sweep.iterations.tolist() == single
-    assert np.allclose(sweep.spectral_radii, linear.sor_spectral_radii(TRI_A, omegas))
-    assert linear.sor_sweep(TRI_A, TRI_B, [0.01], maxiter=20).converged.tolist() == [False]
+@HYPOTHESIS
+@given(dominant_systems(), st.sampled_from(["jacobi", "gauss_seidel"]),
+       st.sampled_from(linear.NORMS), st.booleans())
+def test_jacobi_and_gauss_seidel_converge_on_dominant_systems(system, method, norm, relative):
+    A, b = system
+    res = getattr(linear, method)(A, b, tol=1e-11, norm=norm, relative=relative,
+                                  criterion="residual")
+    assert res.converged
+    limit = 1e-11 * (np.linalg.norm(b, norm) if relative else 1.0)
+    assert np.linalg.norm(b - A @ res.x, norm) <= limit * (1 + 1e-9) + 1e-300
+
+
+@HYPOTHESIS
+@given(spd_systems(max_n=4), st.lists(omegas, min_size=1, max_size=4))
+def test_sweep_matches_single_runs(system, ws):
+    A, b = system
+    sweep = linear.sor_sweep(A, b, ws, tol=1e-9, criterion="residual", maxiter=50_000)
+    single = [linear.sor(A, b, w, tol=1e-9, criterion="residual", maxiter=50_000).iterations
+              for w in ws]
+    assert sweep.iterations.tolist() == single and sweep.converged.all()
+    assert_allclose(sweep.spectral_radii, linear.sor_spectral_radii(A, ws), rtol=1e-12)
+
+
+# --- properties of the other functions -----------------------------------------------------------
+
+@HYPOTHESIS
+@given(dominant_systems(), st.booleans())
+def test_check_matrix_keeps_values(system, sparse):
+    A, _ = system
+    checked = linear.check_matrix(sp.csr_array(A) if sparse else A.tolist())
+    assert_allclose(checked.toarray() if sparse else checked, A, rtol=0, atol=0)
+
+
+@HYPOTHESIS
+@given(dominant_systems(), omegas, st.sampled_from(linear.METHODS))
+def test_iteration_matrix_is_p_inverse_n(system, omega, method):
+    A, _ = system
+    D, L = np.diag(np.diag(A)), np.tril(A, -1)
+    P = {"jacobi": D, "gauss_seidel": D + L, "sor": D / omega + L}[method]
+    M = linear.iteration_matrix(A, method, omega)
+    assert_allclose(P @ M, P - A, rtol=1e-9, atol=1e-9 * np.abs(A).max())
+
+
+@HYPOTHESIS
+@given(st.integers(1, 5).flatmap(lambda n: st.lists(st.floats(-1e3, 1e3), min_size=n * n,
+                                                     max_size=n * n)), st.floats(-10, 10))
+def test_spectral_radius_is_homogeneous_and_below_the_norm(values, c):
+    n = int(round(np.sqrt(len(values))))
+    M = np.array(values).reshape(n, n)
+    rho = linear.spectral_radius(M)
+    assert 0 <= rho <= np.linalg.norm(M, 2) * (1 + 1e-9) + 1e-300
+    assert linear.spectral_radius(c * M) == pytest.approx(abs(c) * rho, rel=1e-6, abs=1e-9)
+
+
+@HYPOTHESIS
+@given(spd_systems(max_n=4), st.lists(omegas, min_size=0, max_size=5))
+def test_sor_spectral_radii_match_the_iteration_matrices(system, ws):
+    A, _ = system
+    radii = linear.sor_spectral_radii(A, ws)
+    expected = [linear.spectral_radius(linear.iteration_matrix(A, "sor", w)) for w in ws]
+    assert_allclose(radii, expected, rtol=1e-10, atol=1e-12)
+    assert np.all(radii < 1)  # Ostrowski-Reich: SPD, omega in (0, 2)
+
+
+@HYPOTHESIS
+@given(tridiagonal_spd())
+def test_young_omega_is_the_optimum_of_tridiagonal_spd(T):
+    rho_j = linear.spectral_radius(linear.iteration_matrix(T, "jacobi"))
+    omega = linear.young_omega(rho_j)
+    best = linear.optimal_omega(T)
+    assert best.how == "young" and best.omega == omega
+    rho = linear.sor_spectral_radii(T, [omega, max(omega - 0.01, 0.01), min(omega + 0.01, 1.99)])
+    # rho(omega*) = omega* - 1 (eigenvalues of modulus omega* - 1, so up to sqrt(eps) digits)
+    assert rho[0] == pytest.approx(omega - 1, abs=1e-6)
+    assert rho[0] <= rho[1:].min() + 1e-6
+
+
+@HYPOTHESIS
+@given(st.floats(0, 1, exclude_max=True))
+def test_young_omega_range(rho):
+    omega = linear.young_omega(rho)
+    assert 1 <= omega < 2
+    assert omega == pytest.approx(2 / (1 + np.sqrt(1 - rho ** 2)), rel=1e-15)
+
+
+@HYPOTHESIS
+@given(spd_systems(max_n=4))
+def test_optimal_omega_beats_the_grid(system):
+    A, _ = system
+    if A.shape[0] > 1 and np.any(np.abs(np.diag(A)) < 1e-3):
+        return
+    best = linear.optimal_omega(A)
+    assert 0 < best.omega < 2
+    grid = linear.sor_spectral_radii(A, linear.OMEGA_GRID)
+    assert best.spectral_radius <= grid.min() + 1e-12
+
+
+@HYPOTHESIS
+@given(dominant_systems(), st.sampled_from([1, 2, np.inf, "fro"]))
+def test_condition_number_matches_numpy(system, p):
+    A, _ = system
+    cond = linear.condition_number(A, p)
+    assert cond >= 1 - 1e-12 or p == "fro"
+    assert cond == pytest.approx(np.linalg.cond(A, p), rel=1e-8)
+
+
+@HYPOTHESIS
+@given(st.integers(1, 12))
+def test_poisson2d_is_spd_with_known_jacobi_radius(m):
+    A = linear.poisson2d(m)
+    assert A.shape == (m * m, m * m) and abs(A - A.T).max() == 0
+    assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0])
+    if m <= 6:
+        eig = np.linalg.eigvalsh(A.toarray())
+        assert eig.min() > 0
+        assert eig.max() / 4 - 1 == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
+
+
+@HYPOTHESIS
+@given(st.floats(1e-300, 1e300), st.integers(1, 10**7), st.sampled_from(linear.CRITERIA),
+       st.sampled_from(linear.NORMS), st.booleans())
+def test_stopping_rule_accepts_its_domain(tol, maxiter, criterion, norm, relative):
+    rule = linear.StoppingRule(tol, maxiter, criterion, norm, relative)
+    assert (rule.tol, rule.maxiter) == (tol, maxiter)
+    with pytest.raises(ValueError, match="tol"):
+        linear.StoppingRule(-tol, maxiter)

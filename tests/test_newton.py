@@ -6,7 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import STATUSES, fd_jacobian, solve, solve_all, solve_batch, solve_path
+from mechnum.newton import (STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch,
+                            solve_path)
 
 
 def circle_line(x):
@@ -300,6 +301,145 @@ def test_solve_all_with_no_root_returns_an_empty_set():
     assert found.status_counts["stagnated"] + found.status_counts["singular"] == 20
 
 
+# --- the valid domain and just outside it (issue 13) -------------------------------------------
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(1e-6, 1e6), start=st.floats(-50.0, 50.0).filter(lambda s: abs(s) > 1e-3))
+def test_damped_newton_finds_the_cube_root_from_far_away(a, start):
+    # plain Newton on x**3 = a can leap far from a bad start; damped Newton converges to the
+    # one real root from any nonzero start, or says why it stopped
+    try:
+        res = solve(lambda x: x ** 3 - a, [start * np.cbrt(a)], lambda x: np.diag(3 * x ** 2),
+                    tol=1e-13, maxiter=200, damping=True)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result is not None and str(error)
+        return
+    np.testing.assert_allclose(res.x[0], np.cbrt(a), rtol=1e-12)
+    assert res.history.shape == (res.iterations + 1, 1)
+
+
+@settings(max_examples=200, deadline=None)
+@given(c=st.lists(st.floats(-1e3, 1e3), min_size=0, max_size=6),
+       damping=st.booleans())
+def test_batch_statuses_are_consistent_with_the_roots(c, damping):
+    c = np.array(c, dtype=float)
+    res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((len(c), 1)),
+                      lambda x: 2 * x[:, :, None], damping=damping, tol=1e-12,
+                      raise_on_failure=False)
+    assert res.x.shape == (len(c), 1) and res.status.shape == (len(c),)
+    assert set(res.status) <= set(STATUSES)
+    ok = res.converged
+    residual = np.abs(res.x[ok, 0] ** 2 - c[ok])
+    assert np.all(residual <= 1e-9 * np.maximum(1.0, np.abs(c[ok])))  # the defining property
+    assert not np.any(ok[c < -1e-6])  # no convergence where no real root is near
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"tol": -1.0}, "tol must be positive"), ({"tol": np.inf}, "tol must be finite"),
+    ({"maxiter": np.inf}, "maxiter"), ({"criterion": "size"}, "criterion"),
+    ({"norm": 3}, "norm"), ({"x0": np.ones((2, 2, 1))}, "x0 must have 2"),
+    ({"x0": [[1.0], [np.nan]]}, "x0 must be finite"), ({"x0": np.ones((2, 0))}, "n >= 1"),
+    ({"x0": [[1j]]}, "x0 must be real")])
+def test_batch_bad_inputs_name_the_argument(kwargs, match):
+    args = {"x0": np.ones((2, 1))} | kwargs
+    with pytest.raises(ValueError, match=match):
+        solve_batch(lambda x: x ** 2 - 2, args.pop("x0"), lambda x: 2 * x[:, :, None], **args)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"n_starts": 0}, "n_starts"), ({"check": -1}, "check"), ({"same": 0.0}, "same"),
+    ({"starts": [[np.nan, 0.0]]}, "starts must be finite"), ({"starts": [1.0, 2.0]}, "starts")])
+def test_solve_all_bad_inputs_name_the_argument(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac, **kwargs)
+
+
+def test_fd_jacobian_refuses_non_finite_points():
+    with pytest.raises(ValueError, match="x must be finite"):
+        fd_jacobian(circle_line, [np.nan, 1.0])
+
+
+def test_damping_calls_a_single_system_with_vectors_only():
+    def fun(x):
+        assert x.shape == (1,), f"fun was called with shape {x.shape}"
+        return np.arctan(x)
+
+    res = solve(fun, [1.5], lambda x: np.diag(1 / (1 + x ** 2)), damping=True, tol=1e-14)
+    assert res.converged and abs(res.x[0]) < 1e-14
+# --- Broyden's method -------------------------------------------------------------------------
+
+def test_broyden_converges_superlinearly_with_one_jacobian():
+    calls = {"jac": 0}
+
+    def jac(x):
+        calls["jac"] += 1
+        return circle_line_jac(x)
+
+    res = broyden(circle_line, [1.0, 0.5], jac, tol=1e-14)
+    newton = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
+    np.testing.assert_allclose(res.x, newton.x, rtol=0, atol=1e-15)
+    assert calls["jac"] == 1 and res.iterations > newton.iterations
+    e = np.linalg.norm(res.history[:-1] - res.x, axis=1)
+    ratios = e[1:] / e[:-1]
+    assert ratios[-3:].max() < 0.1 and ratios[-1] < ratios[1]  # faster than linear at the end
+
+
+def test_broyden_keeps_an_exact_jacobian_of_a_linear_system():
+    # y = A s for every step: the update vanishes, so Broyden is Newton (one step, one check)
+    A, b = np.array([[3.0, 1.0], [1.0, 2.0]]), np.array([1.0, 1.0])
+    res = broyden(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8)
+    assert res.iterations == 2
+    np.testing.assert_allclose(res.x, np.linalg.solve(A, b), atol=1e-14)
+
+
+def test_broyden_without_a_jacobian_uses_differences():
+    res = broyden(circle_line, [1.0, 0.5], tol=1e-13)
+    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12)
+
+
+@pytest.mark.parametrize("x0, kwargs, error, match", [
+    ([np.nan, 1.0], {}, ValueError, "x0 must be finite"),
+    ([1.0, 0.5], {"tol": -1.0}, ValueError, "tol must be positive"),
+    ([1.0, 0.5], {"maxiter": 0}, ValueError, "maxiter"),
+    ([1.0, 0.5], {"criterion": "size"}, ValueError, "criterion"),
+    ([0.0, 0.0], {}, SingularJacobianError, "singular Broyden matrix at iteration 0"),
+    ([1.0, 0.5], {"maxiter": 2}, ConvergenceError, "Broyden's method did not converge in 2"),
+])
+def test_broyden_rejects_bad_input_with_named_errors(x0, kwargs, error, match):
+    with pytest.raises(error, match=match):
+        broyden(circle_line, x0, circle_line_jac, **kwargs)
+
+
+def test_broyden_refuses_a_complex_residual():
+    with pytest.raises(ValueError, match="complex"):
+        broyden(lambda x: x ** 2 - 2 + 1j, [1.0])
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(1e-3, 1e3), b=st.floats(1e-3, 1e3), start=st.floats(0.8, 1.25))
+def test_broyden_finds_cube_roots_from_nearby(a, b, start):
+    roots = np.cbrt([a, b])
+    fun = lambda x: np.array([x[0] ** 3 - a, x[1] ** 3 + x[0] - b - roots[0]])  # noqa: E731
+    jac = lambda x: np.array([[3 * x[0] ** 2, 0.0], [1.0, 3 * x[1] ** 2]])  # noqa: E731
+    x0 = start * roots
+    try:
+        res = broyden(fun, x0, jac, tol=1e-12 * roots.max())
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result is not None  # a named failure carries the partial result
+        return
+    assert res.x.shape == (2,) and res.converged
+    np.testing.assert_allclose(res.x, roots, rtol=1e-9)
+
+
+def test_max_step_bounds_every_step():
+    res = solve(atan_system, [1.5], atan_jac, max_step=0.5, tol=1e-14)
+    assert res.converged and abs(res.x[0]) < 1e-14
+    assert np.all(res.step_norms <= 0.5 + 1e-15) and res.step_norms[0] == pytest.approx(0.5)
+    batch = solve_batch(lambda x: np.arctan(x), [[1.5], [-3.0]],
+                        lambda x: (1 / (1 + x ** 2))[:, :, None], max_step=0.5, tol=1e-14)
+    assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
+    with pytest.raises(ValueError, match="max_step must be positive"):
+        solve(atan_system, [1.5], atan_jac, max_step=0.0)
 # --- independent systems, stacked backtracking, path following ------------------------------
 
 def test_independent_batch_gives_the_same_iterates_with_fewer_calls():

@@ -1,62 +1,227 @@
-"""Tests of mechnum.mechanisms.prr3: the study's Tables 3 to 6, round trips, bad input."""
+"""Tests of mechnum.mechanisms.prr3: every public function on valid, extreme and bad input.
+
+The study's printed numbers are checked by tests/test_published_values.py through the registry;
+here every function is checked by a defining property (a round trip, a residual, a derivative),
+with hypothesis over the valid domain and just outside it.
+"""
+
+import sys
 
 import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from numpy.testing import assert_allclose
+from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import prr3
 from mechnum.mechanisms.prr3 import EXAMPLES, Geometry
 from mechnum.newton import fd_jacobian
 
-TABLE_3 = [(1.5165, 0.48348, -0.18254), (1.5165, 0.48348, 1.6505), (1.5165, 2.3165, -0.18254),
-           (1.5165, 2.3165, 1.6505), (-0.31652, 0.48348, -0.18254), (-0.31652, 0.48348, 1.6505),
-           (-0.31652, 2.3165, -0.18254), (-0.31652, 2.3165, 1.6505)]
-TABLE_4 = [(3.9539, -1.071, 1.4132), (3.9539, -1.071, 3.4072), (3.9539, 0.64677, 1.4132),
-           (3.9539, 0.64677, 3.4072), (2.0461, -1.071, 1.4132), (2.0461, -1.071, 3.4072),
-           (2.0461, 0.64677, 1.4132), (2.0461, 0.64677, 3.4072)]
-TABLE_5 = [(1.5162, 0.87519, 7.1679), (2.2171, 0.97615, 345.6206)]  # sorted by psi
-TABLE_6 = [(1.2312, 0.55593, 9.9967), (1.0535, 0.7569, 341.5164)]
+DIRECT = sys.modules["mechnum.mechanisms.prr3.direct"]
+MANY = settings(max_examples=200, deadline=None,
+                suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+TABLE_5 = EXAMPLES["Tabla 5"][0]
+# |det J| above this (dimensionless) is a regular pose: round-off moves it by about
+# eps / |det J|, and its neighbouring assembly modes are far enough to be told apart.
+REGULAR = 1e-2
+SIGNS = [(s1, s2, s3) for s1 in (1, -1) for s2 in (1, -1) for s3 in (1, -1)]
+
+geometries = st.builds(Geometry, L=st.floats(0.5, 2.0), a=st.floats(0.3, 2.0),
+                       B2=st.floats(1.0, 4.0), B3=st.floats(0.5, 3.0), H3=st.floats(0.5, 3.0))
+scales = st.sampled_from([1e-6, 1.0, 1e6])
 
 
-def half_unit(value):
-    """Half a unit in the last of the 5 significant digits Matlab's num2str prints."""
-    text = f"{value:.5g}"
-    decimals = len(text.split(".")[1]) if "." in text else 0
-    return 0.5 * 10.0 ** -decimals * (1 + 1e-9)
+def angle_gap(a, b):
+    return np.abs(np.mod(np.asarray(a) - b + np.pi, 2 * np.pi) - np.pi)
 
 
-@pytest.mark.parametrize("table, published", [("Tabla 3", TABLE_3), ("Tabla 4", TABLE_4)])
-def test_inverse_reproduces_tables_3_and_4(table, published):
-    geometry, pose = EXAMPLES[table]
+def pose_gap(poses, pose, L=1.0):
+    """Distance of each of ``poses`` to ``pose``: position relative to L plus angle."""
+    poses = np.asarray(poses).reshape(-1, 3)
+    return (np.hypot(*(poses[:, :2] - pose[:2]).T) / L + angle_gap(poses[:, 2], pose[2]))
+
+
+@st.composite
+def reachable(draw, geometry=None, margin=1e-3):
+    """A geometry and a pose where every leg reaches its guide with radicands >= margin L^2."""
+    g = geometry or draw(geometries)
+    psi = draw(st.floats(-np.pi, np.pi))
+    u, v = draw(st.floats(-0.99, 0.99)), draw(st.floats(-0.99, 0.99))
+    x = g.B3 - g.a * np.cos(psi + np.pi / 3) + u * g.L  # leg 3 reaches its guide
+    pose = np.array([x, v * g.L, psi])
+    assume(np.all(prr3.radicands(pose, g) > margin * g.L ** 2))
+    return g, pose
+
+
+def singular_pose(geometry=TABLE_5, mode=(1, -1, -1), y=0.3, psi=0.5):
+    """A pose of working mode ``mode`` at a direct singularity (det J = 0 on a line)."""
+    def det(x):
+        pose = [x, y, psi]
+        return prr3.jacobian_dets(pose, prr3.branch_inputs(pose, geometry, mode), geometry)[1]
+    x = brentq(det, 3.0, 3.4, xtol=1e-15)
+    pose = np.array([x, y, psi])
+    return pose, prr3.branch_inputs(pose, geometry, mode)
+
+
+# --- Geometry -----------------------------------------------------------------------------
+
+@MANY
+@given(L=st.floats(-1e120, 1e120), a=st.floats(-1e120, 1e120), B=st.floats(-1e120, 1e120))
+def test_geometry_accepts_what_it_can_resolve_and_names_the_rest(L, a, B):
+    try:
+        g = Geometry(L=L, a=a, B2=B, B3=1.0, H3=1.0)
+    except GeometryError as error:
+        assert any(name in str(error) for name in ("geometry L", "geometry a", "geometry B2"))
+        assert not (1e-100 <= L <= 1e100 and 1e-100 <= a <= 1e100 and abs(B) <= 1e100
+                    and max(L, a) <= 1e6 * min(L, a))
+    else:
+        assert (g.L, g.a, g.B2) == (L, a, B)
+
+
+@pytest.mark.parametrize("kwargs, error, name", [
+    (dict(L=0.0), GeometryError, "L"), (dict(a=-1.0), GeometryError, "a"),
+    (dict(L=np.nan), ValueError, "L"), (dict(B2=np.inf), ValueError, "B2"),
+    (dict(H3=1j), ValueError, "H3"), (dict(B3=[1.0, 2.0]), ValueError, "B3"),
+    (dict(L=1e200, a=1e200), GeometryError, "L"), (dict(B2=1e101), GeometryError, "B2"),
+    (dict(a=1e-7), GeometryError, "a"),
+])
+def test_bad_geometry_is_refused_by_name(kwargs, error, name):
+    with pytest.raises(error, match=name):
+        Geometry(**(dict(L=1, a=1, B2=3, B3=2, H3=3) | kwargs))
+
+
+# --- geometry functions -------------------------------------------------------------------
+
+@MANY
+@given(g=geometries, poses=st.lists(st.tuples(*[st.floats(-1e3, 1e3)] * 3), max_size=4))
+def test_vertices_form_the_platform_triangle(g, poses):
+    v = prr3.vertices(np.reshape(poses, (-1, 3)), g)
+    assert v.shape == (len(poses), 3, 2)
+    sides = np.linalg.norm(v - np.roll(v, 1, axis=1), axis=-1)
+    assert_allclose(sides, g.a, rtol=1e-9, atol=1e-12 * (1 + np.abs(v).max(initial=0)))
+    assert_allclose(v[:, 0], np.reshape(poses, (-1, 3))[:, :2])
+    if len(poses):  # counter-clockwise: P3 to the left of P1 P2
+        e1, e2 = v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]
+        assert np.all(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0] > 0)
+
+
+@MANY
+@given(g=geometries, lam=st.tuples(*[st.floats(-1e6, 1e6)] * 3))
+def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
+    c = prr3.sliders(lam, g)
+    assert c[0, 1] == c[1, 1] == 0 and c[2, 0] == g.B3
+    assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, atol=1e-9 * (1 + abs(g.B2)
+                                                                                 + abs(g.H3)))
+
+
+@MANY
+@given(case=reachable())
+def test_every_inverse_solution_closes_the_loops_and_the_radicands_say_so(case):
+    g, pose = case
+    lam = prr3.inverse(pose, g)
+    assert lam.shape == (8, 3)  # no leg tangent: radicands >= 1e-3 L^2
+    assert_allclose(prr3.loop_residuals(pose, lam, g), 0, atol=1e-12 * g.L ** 2)
+    bars = prr3.bars(pose, lam, g)
+    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, prr3.loop_residuals(pose, lam, g),
+                    atol=1e-13)
+    rad = prr3.radicands(pose, g)  # the bar's component across its guide is sqrt(L^2 - rad)
+    across = np.abs([bars[0, 0, 1], bars[0, 1, 1], bars[0, 2, 0]])
+    assert_allclose(across ** 2, g.L ** 2 - rad, atol=1e-12)
+    assert len({tuple(np.round(row, 9)) for row in lam}) == 8
+
+
+@MANY
+@given(case=reachable(margin=-1.0), signs=st.sampled_from(SIGNS))
+def test_branch_inputs_close_the_loops_where_the_legs_reach(case, signs):
+    g, pose = case
+    poses = np.stack([pose, pose + [0.0, 3 * g.L, 0.0]])  # the second: leg 1 cannot reach
+    lam = prr3.branch_inputs(poses, g, signs)
+    reach = prr3.radicands(poses, g) >= 0
+    assert np.array_equal(np.isfinite(lam), reach)
+    if reach[0].all():
+        assert_allclose(prr3.loop_residuals(pose, lam[0], g), 0, atol=1e-12)
+        assert any(np.allclose(lam[0], row, atol=1e-12) for row in prr3.inverse(pose, g))
+
+
+def test_a_tangent_leg_gives_one_value_of_its_input():
+    geometry, _ = EXAMPLES["Tabla 3"]
+    pose = [0.6, 1.0, 0.0]  # y_P = L: legs 1 and 2 tangent (psi = 0 puts P2 at the same y)
     lam = prr3.inverse(pose, geometry)
-    assert lam.shape == (8, 3)
-    for row, pub in zip(lam, published):  # same order as the study's rows
-        for value, p in zip(row, pub):
-            assert abs(value - p) <= half_unit(p)
+    assert lam.shape == (2, 3)
+    assert_allclose(lam[:, :2], [[0.6, 1.4], [0.6, 1.4]], atol=1e-15)
+    assert_allclose(prr3.radicands(pose, geometry)[:2], 0.0, atol=1e-15)
+    assert prr3.inverse([0.6, 1.4, 0.0], geometry).shape == (0, 3)
 
 
-@pytest.mark.parametrize("table, published", [("Tabla 5", TABLE_5), ("Tabla 6", TABLE_6)])
-def test_direct_reproduces_tables_5_and_6(table, published):
-    geometry, lam = EXAMPLES[table]
-    poses = prr3.direct(lam, geometry)
-    assert poses.shape == (2, 3)
-    for (x, y, psi), (px, py, ppsi) in zip(poses, published):
-        assert abs(x - px) <= half_unit(px) and abs(y - py) <= half_unit(py)
-        assert abs(np.degrees(psi) - ppsi) <= 0.5e-4 * (1 + 1e-9)
-    assert np.abs(prr3.loop_residuals(poses, lam, geometry)).max() < 1e-13
+@MANY
+@given(case=reachable(margin=-1.0), k=st.integers(0, 7))
+def test_jacobians_match_finite_differences(case, k):
+    g, pose = case
+    lam = prr3.branch_inputs(pose, g, SIGNS[k])
+    assume(np.all(np.isfinite(lam)))
+    J = prr3.direct_jacobian(pose, lam, g)
+    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(p, lam, g), pose), atol=1e-6)
+    Ji = prr3.inverse_jacobian(pose, lam, g)
+    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(pose, q, g), lam), atol=1e-6)
+    assert np.count_nonzero(Ji - np.diag(np.diag(Ji))) == 0
 
 
-@pytest.mark.parametrize("table", ["Tabla 3", "Tabla 4"])
-def test_every_inverse_solution_round_trips_through_the_direct_problem(table):
-    geometry, pose = EXAMPLES[table]
-    for lam in prr3.inverse(pose, geometry):
-        poses = prr3.direct(lam, geometry)
-        gap = np.abs(poses - pose)
-        gap[:, 2] = np.abs(np.mod(gap[:, 2] + np.pi, 2 * np.pi) - np.pi)
-        assert gap.max(axis=1).min() < 1e-10
+@MANY
+@given(case=reachable(margin=-1.0), k=st.integers(0, 7), scale=scales)
+def test_jacobian_dets_are_dimensionless(case, k, scale):
+    g, pose = case
+    lam = prr3.branch_inputs(pose, g, SIGNS[k])
+    assume(np.all(np.isfinite(lam)))
+    big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
+                   H3=g.H3 * scale)
+    pose_big = np.r_[pose[:2] * scale, pose[2]]
+    assert_allclose(prr3.jacobian_dets(pose_big, lam * scale, big),
+                    prr3.jacobian_dets(pose, lam, g), atol=1e-9)
+    inverse_det, direct_det = prr3.jacobian_dets(pose, lam, g)
+    assert_allclose(inverse_det * (2 * g.L) ** 3, np.linalg.det(prr3.inverse_jacobian(pose, lam,
+                                                                                      g)),
+                    rtol=1e-9, atol=1e-12)
+
+
+@MANY
+@given(x=st.floats(-1e300, 1e300), y=st.floats(-1e300, 1e300), psi=st.floats(-1e6, 1e6))
+def test_workspace_agrees_with_inverse_even_far_away(x, y, psi):
+    g = TABLE_5
+    reach = prr3.workspace(x, y, psi, g)
+    assert reach.shape == () and reach == (len(prr3.inverse([x, y, psi], g)) > 0)
+
+
+def test_workspace_is_vectorised_and_takes_empty_grids():
+    g = TABLE_5
+    x, y, psi = np.meshgrid(np.linspace(-1, 4, 11), np.linspace(-1, 2, 7), [0.0, 1.0],
+                            indexing="ij")
+    reach = prr3.workspace(x, y, psi, g)
+    assert reach.shape == (11, 7, 2) and reach.any() and not reach.all()
+    expected = [len(prr3.inverse(p, g)) > 0 for p in np.stack([x, y, psi], -1).reshape(-1, 3)]
+    assert np.array_equal(reach.ravel(), expected)
+    assert prr3.workspace([], [], [], g).shape == (0,)
+
+
+# --- the polynomial -----------------------------------------------------------------------
+
+@MANY
+@given(case=reachable(), k=st.integers(0, 7))
+def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
+    g, pose = case
+    lam = prr3.inverse(pose, g)[k]
+    C = prr3.polynomial(lam, g)
+    scale = np.abs(C).max()
+    assume(abs(np.cos(pose[2] / 2)) > 0.05)  # t = tan(psi/2) of order 1
+    t = np.tan(pose[2] / 2)
+    size = np.polynomial.polynomial.polyval(abs(t), np.abs(C))  # sum |C_k| |t|^k
+    # round-off of the coefficients themselves: eps times the largest
+    assert abs(np.polynomial.polynomial.polyval(t, C)) <= 1e-10 * size + 1e-13 * scale
+    assert abs(np.polynomial.polynomial.polyval(1j, C)) < 1e-13 * np.abs(C).sum()
+    q = prr3.deflate(C)  # (1 + t^2) q is C again
+    assert_allclose(np.convolve([1, 0, 1], q), C, atol=1e-12 * scale)
 
 
 def test_polynomial_equals_equation_148_times_one_plus_t_squared_to_the_fourth():
@@ -93,120 +258,296 @@ def test_one_plus_t_squared_divides_the_polynomial_symbolically():
     D = f2 * g1 - f1 * g2
     assert sp.expand((f3 * g2 - f2 * g3 - l1 * D) ** 2 + (f1 * g3 - f3 * g1) ** 2
                      - L ** 2 * D ** 2) == 0
-    geometry, lam = EXAMPLES["Tabla 6"]
-    assert abs(prr3.polynomial(lam, geometry)[8]) > 1  # but the degree is 8
 
 
-def test_direct_jacobian_matches_finite_differences():
-    geometry, lam = EXAMPLES["Tabla 5"]
-    for pose in prr3.direct(lam, geometry):
-        J = prr3.direct_jacobian(pose, lam, geometry)
-        fd = fd_jacobian(lambda p: prr3.loop_residuals(p, lam, geometry), pose)
-        assert np.allclose(J, fd, atol=1e-6)
+@MANY
+@given(case=reachable(), k=st.integers(0, 7))
+def test_equations_vanish_at_the_true_pose_and_map_back(case, k):
+    g, pose = case
+    lam = prr3.inverse(pose, g)[k]
+    system = prr3.equations(lam, g)
+    point = [pose[0] / g.L, pose[1] / g.L, np.cos(pose[2]), np.sin(pose[2])]
+    assert np.abs(system(point)).max() < 1e-11
+    back = prr3.solutions_from_equations([point], g)[0]
+    assert pose_gap(back, pose, g.L)[0] < 1e-12
 
 
-def test_unreachable_pose_has_no_inverse_solution():
-    geometry, _ = EXAMPLES["Tabla 3"]
-    assert prr3.inverse([0.6, 1.4, 0.0], geometry).shape == (0, 3)
-    assert not prr3.workspace(0.6, 1.4, 0.0, geometry)
+# --- the direct problem -------------------------------------------------------------------
+
+@MANY
+@given(case=reachable())
+def test_direct_returns_the_pose_of_every_inverse_solution(case):
+    g, pose = case
+    lam = prr3.inverse(pose, g)
+    sol = prr3.direct(lam, g)
+    assert np.array_equal(sol.counts, np.bincount(sol.input_index, minlength=8))
+    assert np.all(sol.counts <= 6)
+    assert np.all(sol.residuals <= 1e-6)
+    assert_allclose(prr3.loop_residuals(sol.poses, lam[sol.input_index], g), 0, atol=1e-6)
+    assert np.all((sol.poses[:, 2] >= 0) & (sol.poses[:, 2] < 2 * np.pi))
+    for k in range(8):  # the pose itself, unless it is near a direct singularity, where two
+        if abs(prr3.jacobian_dets(pose, lam[k], g)[1]) > REGULAR:  # roots nearly merge
+            assert pose_gap(sol.poses[sol.input_index == k], pose, g.L).min() < 1e-9
 
 
-def test_tangent_leg_is_an_inverse_singularity_with_one_value():
-    geometry, _ = EXAMPLES["Tabla 3"]
-    pose = [0.6, 1.0, 0.0]  # y_P = L: leg 1 tangent to its guide, P2 too (psi = 0)
-    lam = prr3.inverse(pose, geometry)
-    assert lam.shape == (2, 3)
-    assert np.allclose(lam[:, 0], 0.6) and np.allclose(lam[:, 1], 3 - 1.6)
-    assert np.allclose(prr3.radicands(pose, geometry)[:2], 0.0)
+@MANY
+@given(lam=st.lists(st.tuples(*[st.floats(-2, 5)] * 3), min_size=0, max_size=5))
+def test_direct_on_a_batch_equals_direct_on_each_input(lam):
+    g = TABLE_5
+    batch = np.reshape(lam, (-1, 3))
+    sol = prr3.direct(batch, g)
+    assert sol.poses.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
+    for k, one in enumerate(batch):
+        alone = prr3.direct(one, g)
+        assert alone.counts.shape == () and alone.counts == sol.counts[k]
+        assert_allclose(alone.poses, sol.poses[sol.input_index == k], atol=1e-12)
+        assert np.all(alone.residuals <= 1e-6)
 
 
-def test_pose_at_psi_pi_is_found_from_the_reversed_polynomial():
-    geometry, _ = EXAMPLES["Tabla 5"]
-    pose = np.array([2.1, -0.9, np.pi])
-    for lam in prr3.inverse(pose, geometry):
-        sol = prr3.solve_direct(lam, geometry)
-        hit = np.flatnonzero(np.abs(sol.poses - pose).max(axis=1) < 1e-10)
-        assert hit.size == 1 and sol.from_reversed[hit[0]]
+@pytest.mark.parametrize("k", range(4))
+def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
+    # an independent count: every finite solution of the four quadratics, by continuation
+    from mechnum import homotopy
+    rng = np.random.default_rng(k)
+    g = TABLE_5
+    while True:
+        pose = np.array([rng.uniform(0, 4), rng.uniform(-1, 1), rng.uniform(0, 2 * np.pi)])
+        if np.all(prr3.radicands(pose, g) > 1e-2):
+            break
+    lam = prr3.inverse(pose, g)[rng.integers(8)]
+    found = homotopy.solve(prr3.equations(lam, g), rng=k)
+    real = prr3.solutions_from_equations(found.real(1e-7), g)
+    poses = prr3.direct(lam, g).poses
+    assert len(poses) == len(real) >= 2
+    for p in real:
+        assert pose_gap(poses, p).min() < 1e-7
+
+
+def test_far_apart_sliders_have_no_pose_even_at_1e300():
+    g = EXAMPLES["Tabla 6"][0]
+    sol = prr3.direct([[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]], g)
+    assert sol.counts.tolist() == [0, 0, 2]
+    c = prr3.sliders([1e100, 0.0, 0.0], g)  # no pose: sliders 1 and 2 are 1e100 apart
+    assert np.linalg.norm(c[0] - c[1]) > 2 * g.L + g.a
+
+
+@pytest.mark.parametrize("scale", [1e-90, 1e-3, 1e3, 1e90])
+def test_direct_does_not_depend_on_the_unit_of_length(scale):
+    g, lam = EXAMPLES["Tabla 6"]
+    big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
+                   H3=g.H3 * scale)
+    base = prr3.direct(lam, g).poses
+    poses = prr3.direct(np.multiply(lam, scale), big).poses
+    assert_allclose(poses[:, :2] / scale, base[:, :2], atol=1e-12)
+    assert_allclose(poses[:, 2], base[:, 2], atol=1e-12)
+
+
+def test_pose_at_psi_pi_is_found_whatever_the_leading_coefficient():
+    g = EXAMPLES["Tabla 3"][0]
+    pose = np.array([1.25, -0.75, np.pi])
+    for lam in prr3.inverse(pose, g):
+        assert pose_gap(prr3.direct(lam, g).poses, pose).min() < 1e-12
 
 
 def test_pose_where_the_elimination_is_singular_is_still_found():
-    geometry, _ = EXAMPLES["Tabla 5"]
+    g = TABLE_5
     pose = np.array([1.0, 0.6, 0.0])  # lambda1 + lambda2 = B2 - a: circles 1 and 2 coincide
-    lam = prr3.inverse(pose, geometry)[0]
-    assert lam[0] + lam[1] == pytest.approx(geometry.B2 - geometry.a)
-    sol = prr3.solve_direct(lam, geometry)
-    gap = np.abs(sol.poses[:, :2] - pose[:2]).max(axis=1)
-    gap += np.abs(np.mod(sol.poses[:, 2] + np.pi, 2 * np.pi) - np.pi)
-    hit = np.argmin(gap)
-    assert gap[hit] < 1e-9
+    lam = prr3.inverse(pose, g)[0]
+    assert lam[0] + lam[1] == pytest.approx(g.B2 - g.a)
+    sol = prr3.direct(lam, g)
+    hit = np.argmin(pose_gap(sol.poses, pose))
+    assert pose_gap(sol.poses, pose)[hit] < 1e-9
     assert sol.elimination_singular[hit] and not sol.singular[hit]
 
 
-def test_newton_finds_no_solution_the_polynomial_misses():
-    rng = np.random.default_rng(3)
-    geometry, lam = EXAMPLES["Tabla 6"]
-    starts = np.column_stack([rng.uniform(-1, 3, 200), rng.uniform(-1, 3, 200),
-                              rng.uniform(0, 2 * np.pi, 200)])
-    newton = prr3.direct_by_newton(lam, geometry, starts)
-    poly = prr3.direct(lam, geometry)
-    assert len(newton) >= 1
-    for pose in newton:
-        assert np.abs(poly - pose).max(axis=1).min() < 1e-8
+def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
+    pose, lam = singular_pose()
+    sol = prr3.direct(lam, TABLE_5)
+    hit = np.argmin(pose_gap(sol.poses, pose))
+    assert pose_gap(sol.poses, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
+    assert sol.singular[hit]
 
 
-def test_workspace_is_vectorised_and_agrees_with_inverse():
-    geometry, _ = EXAMPLES["Tabla 3"]
-    x, y, psi = np.meshgrid(np.linspace(-1, 3, 9), np.linspace(-1, 2, 7), [0.0, 1.0],
-                            indexing="ij")
-    reach = prr3.workspace(x, y, psi, geometry)
-    assert reach.shape == (9, 7, 2) and reach.any() and not reach.all()
-    for index in np.ndindex(reach.shape):
-        pose = [x[index], y[index], psi[index]]
-        assert reach[index] == (len(prr3.inverse(pose, geometry)) > 0)
+def test_a_self_motion_is_reported_as_a_continuum():
+    g = TABLE_5
+    lam = [3.5, 0.5, 2.8]  # C2 = C3 = (2.5, 0): the platform turns about P = (2.5, 0)
+    assert np.abs(prr3.polynomial(lam, g)).max() < 1e-12 * np.abs(prr3.polynomial(
+        [2.0, 0.5, 0.2], g)).max()  # zero but for round-off
+    for psi in (0.3, 2.0, 4.0):
+        assert_allclose(prr3.loop_residuals([2.5, 0.0, psi], lam, g), 0, atol=1e-14)
+    sol = prr3.direct([lam, [2.0, 0.5, 0.2]], g)
+    assert sol.continuum.tolist() == [True, False] and sol.counts.tolist() == [0, 2]
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
-@given(u=st.floats(-0.99, 0.99), y=st.floats(-0.99, 0.99), psi=st.floats(-np.pi, np.pi))
-def test_round_trip_random_reachable_poses(u, y, psi):
-    geometry, _ = EXAMPLES["Tabla 5"]
-    x = geometry.B3 - geometry.a * np.cos(psi + np.pi / 3) + u * geometry.L  # leg 3 reaches
-    pose = np.array([x, y, psi])
-    assume(np.all(prr3.radicands(pose, geometry) > 1e-3))
-    for lam in prr3.inverse(pose, geometry):
-        if abs(np.linalg.det(prr3.direct_jacobian(pose, lam, geometry))) < 1e-3:
-            continue  # near a direct singularity the pose is only accurate to ~1e-8
-        poses = prr3.direct(lam, geometry)
-        gap = np.abs(poses[:, :2] - pose[:2]).max(axis=1)
-        gap += np.abs(np.mod(poses[:, 2] - psi + np.pi, 2 * np.pi) - np.pi)
-        assert gap.min() < 1e-9
-        assert np.abs(prr3.loop_residuals(poses, lam, geometry)).max() < 1e-6
+def test_polish_leaves_a_singular_pose_and_far_jumps_alone():
+    pose, lam = singular_pose()
+    out = DIRECT._polish(pose[None], lam, TABLE_5)
+    assert_allclose(out, pose[None], atol=1e-15)  # J singular: no step taken, no NaN
+    start = pose + [0.0, 0.0, 0.2]  # far from any pose: Newton would run elsewhere
+    moved = DIRECT._polish(start[None], lam, TABLE_5)
+    step = np.hypot(*(moved - start)[0, :2]) + abs(moved - start)[0, 2]
+    assert step == 0.0 or step <= 1e-2
 
 
-@settings(max_examples=40, deadline=None)
-@given(lam=st.tuples(st.floats(-1, 4), st.floats(-1, 4), st.floats(-1, 4)))
-def test_every_direct_solution_closes_the_loops(lam):
-    geometry, _ = EXAMPLES["Tabla 6"]
-    sol = prr3.solve_direct(lam, geometry)
-    assert sol.poses.shape[0] <= 6
-    assert np.all(sol.residuals <= 1e-6)
-    assert np.all((sol.poses[:, 2] >= 0) & (sol.poses[:, 2] <= 2 * np.pi))
-
-
-@pytest.mark.parametrize("field, value", [("L", 0.0), ("a", -1.0)])
-def test_degenerate_geometry_raises_geometry_error(field, value):
-    kwargs = dict(L=1, a=1, B2=3, B3=2, H3=3) | {field: value}
-    with pytest.raises(GeometryError, match=field):
-        Geometry(**kwargs)
+@MANY
+@given(case=reachable(geometry=TABLE_5), seed=st.integers(0, 2 ** 32 - 1))
+def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
+    g, pose = case
+    lam = prr3.inverse(pose, g)[seed % 8]
+    rng = np.random.default_rng(seed)
+    starts = np.vstack([pose + rng.normal(0, 1e-3, 3), np.column_stack(
+        [rng.uniform(-1, 5, 20), rng.uniform(-2, 3, 20), rng.uniform(0, 2 * np.pi, 20)])])
+    newton = prr3.direct_by_newton(lam, g, starts)
+    poly = prr3.direct(lam, g).poses
+    assume(abs(prr3.jacobian_dets(pose, lam, g)[1]) > REGULAR)  # else Newton is only linear
+    assert pose_gap(newton, pose).min() < 1e-8  # the start next to the pose converges to it
+    for p in newton:
+        if abs(prr3.jacobian_dets(p, lam, g)[1]) > REGULAR:
+            assert pose_gap(poly, p).min() < 1e-8
 
 
 @pytest.mark.parametrize("call", [
-    lambda g: Geometry(L=np.nan, a=1, B2=3, B3=2, H3=3),
     lambda g: prr3.inverse([0.0, np.inf, 0.0], g),
     lambda g: prr3.inverse([[0.0, 0.0, 0.0]], g),
+    lambda g: prr3.inverse([0.6, 0.4, 0.0], g, tol=-1),
+    lambda g: prr3.inverse([0.6, 0.4, 0.0], g, tol=np.nan),
+    lambda g: prr3.branch_inputs([0.6, 0.4, 0.0], g, (1, 0, 1)),
+    lambda g: prr3.branch_inputs([0.6, 0.4], g),
+    lambda g: prr3.workspace([0.0, 1.0], [0.0, 1.0, 2.0], 0.0, g),
+    lambda g: prr3.workspace(0.0, np.nan, 0.0, g),
+    lambda g: prr3.workspace(0.0, 0.0, 0.0, g, tol=0.0),
+    lambda g: prr3.vertices([1.0, 2.0], g),
+    lambda g: prr3.sliders([1.0, 2.0j, 3.0], g),
+    lambda g: prr3.radicands("pose", g),
+    lambda g: prr3.loop_residuals([0.0, 0.0, 0.0], [[1.0, 2.0]], g),
+    lambda g: prr3.direct_jacobian([0.0, 0.0, np.nan], [0.0, 0.0, 0.0], g),
+    lambda g: prr3.inverse_jacobian([0.0, 0.0, 0.0], [0.0, 0.0], g),
+    lambda g: prr3.jacobian_dets([0.0, 0.0, 0.0], [np.inf, 0.0, 0.0], g),
+    lambda g: prr3.polynomial([1.0, 2.0], g),
+    lambda g: prr3.polynomial([1e300, 0.0, 0.0], g),
+    lambda g: prr3.deflate([1.0, 2.0, 3.0]),
+    lambda g: prr3.equations([[0.4, 0.1, 0.6]] * 2, g),
     lambda g: prr3.direct([1.0, 2.0], g),
     lambda g: prr3.direct([1.0, np.nan, 0.0], g),
-    lambda g: prr3.workspace([0.0, 1.0], [0.0, 1.0, 2.0], 0.0, g),
+    lambda g: prr3.direct([[[0.4, 0.1, 0.6]]], g),
+    lambda g: prr3.direct([0.4, 0.1, 0.6], g, imag_tol=-1),
+    lambda g: prr3.direct([0.4, 0.1, 0.6], g, residual_tol=np.nan),
+    lambda g: prr3.direct_by_newton([0.4, 0.1, 0.6], g, [0.0, 0.0, 0.0]),
+    lambda g: prr3.direct_by_newton([0.4, 0.1, 0.6], g, [[0.0, 0.0, 0.0]], tol=-1),
+    lambda g: prr3.draw(None, [[0.6, 0.4, 0.0]] * 2, [1.5, 0.5, 0.2], g),
 ])
-def test_bad_input_raises_value_error(call):
-    with pytest.raises(ValueError):
+def test_bad_input_raises_a_value_error_that_names_it(call):
+    with pytest.raises(ValueError, match="pose|lambdas|tol|signs|x, y|psi|y must|overflow|"
+                                         "c must|starts|takes one|shape"):
         call(EXAMPLES["Tabla 6"][0])
+
+
+def test_an_empty_batch_is_valid_everywhere():
+    g = TABLE_5
+    empty = np.empty((0, 3))
+    sol = prr3.direct(empty, g)
+    assert sol.poses.shape == (0, 3) and sol.counts.shape == (0,)
+    assert prr3.branch_inputs(empty, g).shape == (0, 3)
+    assert prr3.radicands(empty, g).shape == (0, 3)
+    assert prr3.loop_residuals(empty, empty, g).shape == (0, 3)
+    assert prr3.direct_jacobian(empty, empty, g).shape == (0, 3, 3)
+    assert prr3.jacobian_dets(empty, empty, g)[1].shape == (0,)
+    assert prr3.polynomial(empty, g).shape == (0, 9)
+    assert prr3.direct_by_newton([0.4, 0.1, 0.6], g, empty).shape == (0, 3)
+
+
+def test_draw_draws_the_guides_bars_sliders_and_platform():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    g, pose = EXAMPLES["Tabla 3"]
+    lam = prr3.inverse(pose, g)[0]
+    fig, ax = plt.subplots()
+    assert len(prr3.draw(ax, pose, lam, g)) == len(prr3.draw(ax, pose, lam, g, guides=False)) + 3
+    artists = prr3.draw(ax, pose, lam, g, guides=False)
+    lines = [a for a in artists if hasattr(a, "get_xdata")]
+    bars = [np.column_stack([a.get_xdata(), a.get_ydata()]) for a in lines
+            if len(a.get_xdata()) == 2]
+    assert len(bars) == 3  # one segment C_i P_i per leg, each of length L
+    assert_allclose([np.linalg.norm(b[1] - b[0]) for b in bars], g.L, atol=1e-12)
+    plt.close(fig)
+
+
+def test_reproduce_gives_every_quantity_of_the_chapter():
+    values = prr3.reproduce()
+    assert all(np.isfinite(v) for v in values.values())
+    assert values["Tabla 3 number of solutions"] == 8 == values["Tabla 4 number of solutions"]
+
+
+# --- singularity-free paths ---------------------------------------------------------------
+
+def _assert_singularity_free(path, g, signs):
+    dense = np.concatenate([a + np.linspace(0, 1, 50)[:, None] * (b - a)
+                            for a, b in zip(path[:-1], path[1:])])
+    lam = prr3.branch_inputs(dense, g, signs)
+    assert np.all(prr3.radicands(dense, g) > 0)
+    dets = prr3.jacobian_dets(dense, lam, g)[1]
+    assert np.all(np.sign(dets) == np.sign(dets[0])) and np.all(np.abs(dets) > 0)
+
+
+def test_mode_change_path_joins_two_assembly_modes_of_one_input():
+    g, signs = TABLE_5, (1, 1, 1)
+    lam0 = np.array([3.1266, 1.8887, 3.6427])
+    sol = prr3.direct(lam0, g)
+    start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
+    assert_allclose(prr3.branch_inputs(sol.poses[[1, 3]], g, signs), [lam0, lam0], atol=1e-9)
+    path = prr3.mode_change_path(start, end, g, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
+    assert_allclose(path[[0, -1]], [start, end], atol=1e-12)
+    _assert_singularity_free(path, g, signs)
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)),
+       b=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)))
+def test_mode_change_path_is_singularity_free_or_none(a, b):
+    g, signs = TABLE_5, (1, 1, 1)
+    a, b = np.array(a), np.array(b)
+    lam = prr3.branch_inputs(np.stack([a, b]), g, signs)
+    assume(np.all(np.isfinite(lam)))
+    dets = prr3.jacobian_dets(np.stack([a, b]), lam, g)[1]
+    assume(dets[0] * dets[1] > 0)
+    path = prr3.mode_change_path(a, b, g, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
+                                 shape=(12, 6, 24))
+    if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
+        assert pose_gap(path[0], a)[0] < 1e-12 and pose_gap(path[-1], b)[0] < 1e-12
+        _assert_singularity_free(path, g, signs)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(start=[2.4, 0.81, 2.97], end=[2.5, -0.79, 1.99]), "one sign"),
+    (dict(bounds=[[0.0, 1.0], [0.0, 1.0]]), "outside bounds"),
+    (dict(bounds=[[0.0, 1.0]]), "bounds"),
+    (dict(shape=(10, 10)), "shape"),
+    (dict(start=[np.nan, 0.8, 3.0]), "start"),
+    (dict(signs=(1, 2, 1)), "signs"),
+])
+def test_mode_change_path_refuses_bad_input(kwargs, message):
+    args = dict(start=[2.5338, 0.8053, 3.0427], end=[2.4711, 0.7552, 4.3283],
+                geometry=TABLE_5, signs=(1, 1, 1), bounds=[[-0.5, 4.5], [-1.0, 1.0]]) | kwargs
+    with pytest.raises(ValueError, match=message):
+        prr3.mode_change_path(**args)
+
+
+def test_a_root_at_infinity_is_the_pose_psi_pi():
+    # (t - 1)(t + 2)(t - 3)(t + 4)(t - 5) with a zero t^6 coefficient: the sixth root is t = inf
+    quintic = np.polynomial.polynomial.polyfromroots([1, -2, 3, -4, 5])
+    psi = DIRECT._angles(np.r_[quintic, 0.0][None])[0]
+    assert np.all(np.isfinite(psi))
+    assert angle_gap(psi.real, np.pi).min() < 1e-15
+    expected = 2 * np.arctan([1, -2, 3, -4, 5])
+    for value in expected:
+        assert angle_gap(psi.real, value).min() < 1e-12
+
+
+def test_direct_emits_no_overflow_far_away():
+    import warnings
+    g = EXAMPLES["Tabla 6"][0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow in the polynomial of far-apart sliders
+        assert prr3.direct([[1e100, 0.0, 0.0], [1e300, 0.0, -1e300]], g).counts.tolist() == [0, 0]

@@ -1,9 +1,14 @@
-"""Tests of mechnum.published: the printed-digits rule and the registry reader."""
+"""Tests of mechnum.published: the printed-digits rules, the registry and its one table."""
+
+from decimal import Decimal
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, read_registry,
+from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
+                              read_findings, read_published, read_registry,
                               reproduction_table)
 
 
@@ -21,8 +26,8 @@ def test_half_unit_rejects_text():
 @pytest.mark.parametrize("published, value, ok", [
     ("1.942", 1.94163, True), ("1.942", 1.94149, False), ("-0.099672", -0.0996725, True),
     ("<1e-13", 9.9e-14, True), ("<1e-13", 1.1e-13, False), ("<1e-13", -2e-13, False),
-    ("~1e-12", 9e-12, True), ("~1e-12", 1e-12, True), ("~1e-12", -3e-12, True),
-    ("~1e-12", 2e-11, False), ("~1e-12", 9e-13, False), ("~1e-12", 1e-14, False),
+    ("~1e-12", 3.1e-12, True), ("~1e-12", 1e-12, True), ("~1e-12", -4e-13, True),
+    ("~1e-12", 3.2e-12, False), ("~1e-12", 3.1e-13, False), ("~1e-12", 1e-14, False),
     ("0", 3e-17, True), ("0", -9e-13, True), ("0", 0.3, False), ("0", 2e-12, False),
     ("0.000", 4e-4, True), ("0.000", 6e-4, False)])
 def test_agrees(published, value, ok):
@@ -92,3 +97,50 @@ def test_reproduction_table_renders_and_checks(tmp_path):
         reproduction_table("ch1", {"T": 1.9416259, "q": 1e-3}, path)
     with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
         reproduction_table("ch9", {}, path)
+
+
+# --- the valid domain and just outside it (issue 13) -------------------------------------------
+
+@settings(max_examples=300, deadline=None)
+@given(value=st.floats(-1e6, 1e6, allow_nan=False), digits=st.integers(0, 8))
+def test_a_value_agrees_with_its_own_rounding_and_not_with_a_unit_off(value, digits):
+    printed = f"{value:.{digits}f}"
+    half = half_unit(printed)
+    assert half == 0.5 * 10.0 ** -digits
+    if abs(Decimal(printed)) > 0 or digits:  # a bare "0" is the exact-zero rule
+        assert agrees(printed, value)
+        assert not agrees(printed, float(Decimal(printed)) + 3 * half)
+
+
+@settings(max_examples=200, deadline=None)
+@given(value=st.floats(0, 1e3, allow_nan=False), exponent=st.integers(-30, 3))
+def test_below_prints_exactly_the_bounds_that_hold(value, exponent):
+    bound = 10.0 ** exponent
+    if value < bound:
+        assert below(value, bound).startswith("< ") and float(below(value, bound)[2:]) == bound
+    else:
+        with pytest.raises(AssertionError, match="is not below"):
+            below(value, bound)
+
+
+@pytest.mark.parametrize("text", ["", "abc", "inf", "nan", "1.2.3", "n_y cos(theta)", "<", "~x"])
+def test_texts_that_are_no_numbers_are_named(text):
+    assert not is_claim(text)
+    with pytest.raises(ValueError, match="not a printed number"):
+        agrees(text, 1.0)
+    with pytest.raises(ValueError, match="not a printed number"):
+        half_unit(text)
+
+
+def test_findings_file_with_the_wrong_columns_is_named(tmp_path):
+    path = tmp_path / "findings.csv"
+    path.write_text("finding,what\nx,y\n")
+    with pytest.raises(ValueError, match="columns"):
+        read_findings(path)
+
+
+def test_read_published_gives_the_printed_text_by_quantity(tmp_path):
+    path = tmp_path / "registry.csv"
+    path.write_text(",".join(COLUMNS) + "\n000,a,q1,1.50,s,1.5,reproduced,01,,\n"
+                    "000,a,q2,7,s,7,reproduced,02,,\n")
+    assert read_published(path, "01") == {"q1": "1.50"}

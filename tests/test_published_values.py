@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from mechnum.published import VERDICTS, check_row, read_registry
+from mechnum.published import VERDICTS, check_row, read_findings, read_registry
 
 BOOK = Path(__file__).resolve().parents[1] / "book"
 REGISTRY = BOOK / "published_values.csv"
@@ -32,6 +32,7 @@ MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 BOUND = re.compile(r"^<\d(\.\d*)?[eE]-\d+$")  # a round-off-level value: "<1e-13"
 ROWS = read_registry(REGISTRY)
+FINDINGS = read_findings(BOOK / "findings.csv")
 
 
 @cache
@@ -48,6 +49,18 @@ def test_registry_is_well_formed():
         assert (BOOK / f"{r['chapter']}.ipynb").exists(), r
         assert r["note"].strip() or r["verdict"] == "reproduced", f"a verdict needs a note: {r}"
         assert not r["computed"] or NUMBER.match(r["computed"]) or BOUND.match(r["computed"]), r
+
+
+def test_findings_and_rows_refer_to_each_other():
+    ids = [f["finding"] for f in FINDINGS]
+    assert len(ids) == len(set(ids)), "a finding id is listed twice"
+    used = {r["finding"] for r in ROWS if r["finding"]}
+    assert used <= set(ids), f"rows name findings that findings.csv lacks: {used - set(ids)}"
+    assert set(ids) <= used, f"findings that no row names: {set(ids) - used}"
+    for f in FINDINGS:
+        assert f["chapter"] in MODULES and all(f[k].strip() for k in ("what", "where", "proof")), f
+        chapters = {r["chapter"] for r in ROWS if r["finding"] == f["finding"]}
+        assert chapters == {f["chapter"]}, f"{f['finding']} is named by rows of {chapters}"
 
 
 @pytest.mark.parametrize("row", ROWS, ids=lambda r: f"{r['chapter']}:{r['quantity']}")

@@ -77,14 +77,14 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
     if raw.dtype.kind not in "biuf":
         raise ValueError(f"{name} must be numeric, got {_shown(value)} (dtype {raw.dtype})")
     out = raw.astype(float)
-    if ndim is not None and out.ndim not in np.atleast_1d(ndim):
+    if ndim is not None and out.ndim not in ((ndim,) if isinstance(ndim, int) else ndim):
         raise ValueError(f"{name} must have {ndim} dimension(s), got shape {out.shape}")
     if shape is not None and (out.ndim != len(shape) or any(
             want is not None and got != want for got, want in zip(out.shape, shape))):
         wanted = "(" + ", ".join("n" if s is None else str(s) for s in shape) + \
                  ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name} must have shape {wanted}, got shape {out.shape}")
-    if finite and not np.all(np.isfinite(out)):
+    if finite and not np.isfinite(out).all():   # the method: some microseconds cheaper
         raise ValueError(f"{name} must be finite, got {_shown(out)}")
     return out
 

@@ -1,6 +1,6 @@
 """Newton-Raphson for systems of nonlinear equations, one, many, and all solutions.
 
-Four forms share one step rule:
+Five forms share one step rule:
 
 * :func:`solve` solves one system ``f(x) = 0`` of ``n`` equations in ``n`` unknowns and keeps
   its whole history;
@@ -10,6 +10,8 @@ Four forms share one step rule:
 * :func:`solve_all` looks for every root of one system: :func:`solve_batch` from many starts,
   the roots deduplicated and counted, and a completeness check (ten times more starts that find
   no new root);
+* :func:`broyden` replaces the Jacobian of :func:`solve` after the first by rank-one updates
+  (Broyden's method): no Jacobian evaluations, superlinear instead of quadratic convergence;
 * :func:`solve_path` follows a root while a parameter changes (continuation), one path or a
   batch of paths.
 
@@ -238,6 +240,24 @@ def _jacobian(jac, fun, x):
     return J
 
 
+def _largest(a):
+    """The largest entry along the last axis. (NumPy reduces a short last axis slowly, one row
+    at a time: reduce the transposed copy along its first axis, many rows at once.)"""
+    return np.ascontiguousarray(a.reshape(-1, a.shape[-1]).T).max(axis=0).reshape(a.shape[:-1])
+
+
+def _norms(v, norm):
+    """``np.linalg.norm(v, norm, axis=-1)`` for a stack of short vectors, several times faster
+    (the sums over the short last axis are products with a vector of ones)."""
+    if v.ndim == 1:
+        return np.linalg.norm(v, norm)
+    a = np.abs(v)
+    if norm == np.inf:
+        return _largest(a)
+    ones = np.ones(v.shape[-1])
+    return a @ ones if norm == 1 else np.sqrt((a * a) @ ones)
+
+
 def _newton_step(jac, fx):
     """Solve ``J dx = -f`` for one system or a stack; flag the (numerically) singular ``J``.
 
@@ -268,8 +288,8 @@ def _newton_step(jac, fx):
                 dx[i] = np.linalg.solve(jac[i], -fx[i])
             except np.linalg.LinAlgError:
                 exact[i] = True
-    fsize = np.abs(fx).sum(axis=-1)
-    growth = np.abs(jac).max(axis=(-2, -1)) * np.abs(dx).sum(axis=-1)
+    fsize = _norms(fx, 1)
+    growth = _largest(np.abs(jac).reshape(jac.shape[:-2] + (-1,))) * _norms(dx, 1)
     trusted = growth <= _MAX_COND * fsize  # False where growth is inf or NaN
     if trusted.all() and not exact.any():
         return dx, exact, None
@@ -289,7 +309,7 @@ def _line_search(call, x, fx, dx, moving, rnorm, tol, norm, domain, stacked=Fals
     status of the systems that found no such ``alpha`` ("stagnated" or "left-domain", ""
     elsewhere) and the calls of ``fun``."""
     alpha = np.ones(len(x))
-    size = np.linalg.norm(dx, norm, axis=-1)
+    size = _norms(dx, norm)
     x_new, fx_new = x.copy(), fx.copy()
     pending, outside = moving.copy(), np.zeros(len(x), dtype=bool)
     for calls in range(1, halvings + 2):
@@ -300,7 +320,7 @@ def _line_search(call, x, fx, dx, moving, rnorm, tol, norm, domain, stacked=Fals
         inside = np.ones(len(x), dtype=bool) if domain is None else np.asarray(domain(trial), bool)
         # fun is never evaluated outside the domain (where it may be undefined or raise)
         f_trial = call(np.where(inside[:, None], trial, x_new), pending & inside)
-        t_norm = np.linalg.norm(f_trial, norm, axis=-1)
+        t_norm = _norms(f_trial, norm)
         ok = pending & inside & np.isfinite(t_norm) & (
             (t_norm <= (1 - _ARMIJO * alpha) * rnorm) | (alpha * size < tol))
         x_new[ok], fx_new[ok] = trial[ok], f_trial[ok]
@@ -327,7 +347,7 @@ def _all_halvings(call, x, dx, x_new, fx_new, pending, rnorm, size, tol, norm, d
     f_flat = np.full(flat.shape, np.nan)
     if inside.any():
         f_flat[inside] = call(flat[inside], np.ones(inside.sum(), dtype=bool))
-    t_norm = np.linalg.norm(f_flat, norm, axis=-1).reshape(len(rows), -1)
+    t_norm = _norms(f_flat, norm).reshape(len(rows), -1)
     ok = inside.reshape(len(rows), -1) & np.isfinite(t_norm) & (
         (t_norm <= (1 - _ARMIJO * alpha) * rnorm[rows, None])
         | (alpha * size[rows, None] < tol))
@@ -342,7 +362,8 @@ def _all_halvings(call, x, dx, x_new, fx_new, pending, rnorm, size, tol, norm, d
     return x_new, fx_new, status, 2
 
 
-def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False):
+def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2, damping=False,
+          max_step=None):
     """Solve ``fun(x) = 0`` by Newton-Raphson.
 
     Parameters
@@ -364,6 +385,10 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
     damping : bool, optional
         Backtrack along each step until ``||f||`` decreases (see the module's description);
         raise :class:`~mechnum.errors.ConvergenceError` if no step length decreases it.
+    max_step : float, optional
+        Shorten every Newton step to at most this size (largest component) before anything
+        else: a start far from the root then moves towards it in bounded strides, where a full
+        step could leap across a periodic or unbounded variable to a far, wrong basin.
 
     Returns
     -------
@@ -395,10 +420,29 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
     >>> res.converged, abs(float(res.x[0])) < 1e-12
     (True, True)
     """
+    return _iterate(fun, x0, lambda x, fx: _jacobian(jac, fun, x), tol, maxiter, criterion, norm,
+                    damping, "Newton", "Jacobian", max_step)
+
+
+def _bounded(dx, max_step):
+    """The steps ``dx`` (one per row), each shortened to at most ``max_step`` in its largest
+    component; all of them if ``max_step`` is None."""
+    if max_step is None:
+        return dx
+    largest = np.max(np.abs(dx), axis=-1, keepdims=True)
+    return dx * np.minimum(1.0, max_step / np.maximum(largest, _TINY))
+
+
+def _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, damping, method, what,
+             max_step=None):
+    """The iteration of :func:`solve` and :func:`broyden`: step ``dx`` solves
+    ``matrix(x, fx) dx = -fx``, where ``matrix`` is the Jacobian (Newton) or its update
+    (Broyden), the ``what`` of the error messages."""
     x = _validate.array(x0, "x0", ndim=1)
     if x.size == 0:
         raise ValueError("x0 must have shape (n,) with n >= 1, got shape (0,)")
     tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
+    max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     history, residuals, steps = [x], [], []
     converged = singular = stagnated = False
     fx = _evaluate(fun, x, "fun")
@@ -412,13 +456,14 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
             break
         if len(steps) == maxiter:
             break
-        dx, singular, cond = _newton_step(_jacobian(jac, fun, x), fx)
+        dx, singular, cond = _newton_step(matrix(x, fx), fx)
         if singular:
             break
-        if damping:
-            new, f_new, failed, _ = _line_search(lambda z, _: _evaluate(fun, z, "fun"),
-                                                 x[None], fx[None], dx[None], np.ones(1, bool),
-                                                 residuals[-1:], tol, norm, None)
+        dx = _bounded(dx, max_step)
+        if damping:  # the batched line search, on a batch of this one system
+            new, f_new, failed, _ = _line_search(
+                lambda z, _: _evaluate(fun, z[0], "fun")[None], x[None], fx[None], dx[None],
+                np.ones(1, bool), residuals[-1:], tol, norm, None)
             if failed[0]:
                 stagnated = True
                 break
@@ -433,24 +478,87 @@ def solve(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
                           np.array(steps))
     if singular:
         raise SingularJacobianError(
-            f"singular Jacobian at iteration {len(steps)}: condition number >= {cond:.3g}, "
+            f"singular {what} at iteration {len(steps)}: condition number >= {cond:.3g}, "
             f"residual norm {residuals[-1]:.3g}", result)
     if stagnated:
         raise ConvergenceError(
             f"the line search stagnated at iteration {len(steps)}: no step shorter than "
-            f"2**-{_MAX_HALVINGS} of Newton's decreases the residual norm {residuals[-1]:.3g} "
+            f"2**-{_MAX_HALVINGS} of {method}'s decreases the residual norm {residuals[-1]:.3g} "
             f"(a local minimum of ||f|| that is no root?)", result)
     if not converged:
         raise ConvergenceError(
-            f"Newton did not converge in {len(steps)} iterations: last step norm "
+            f"{method} did not converge in {len(steps)} iterations: last step norm "
             f"{steps[-1] if steps else float('nan'):.3g}, residual norm {residuals[-1]:.3g} "
             f"(criterion {criterion!r}, tol {tol:g})", result)
     return result
 
 
+def broyden(fun, x0, jac=None, *, tol=1e-10, maxiter=100, criterion="step", norm=2):
+    """Solve ``fun(x) = 0`` by Broyden's method: Newton's step with an updated Jacobian.
+
+    The Jacobian is evaluated once, at ``x0`` (``B_0 = J(x0)``); after every step
+    ``s = x_{k+1} - x_k``, with ``y = f(x_{k+1}) - f(x_k)``, it is replaced by the closest
+    matrix (in the Frobenius norm) that maps ``s`` to ``y`` (the secant condition
+    ``B_{k+1} s = y``), a rank-one update::
+
+        B_{k+1} = B_k + (y - B_k s) s^T / (s^T s)
+
+    (Broyden's "good" update). Each iteration costs one evaluation of ``fun`` and no Jacobian;
+    the convergence is superlinear instead of quadratic, so it takes more iterations than
+    Newton: worth it when the Jacobian is expensive. Step, criteria and errors as in
+    :func:`solve` (no damping).
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(x) -> ndarray (n,)``, the residual (real).
+    x0 : array_like, shape (n,)
+        Initial guess; must be finite and real.
+    jac : callable, optional
+        ``jac(x) -> ndarray (n, n)``, evaluated at ``x0`` only. Default: :func:`fd_jacobian`.
+    tol, maxiter, criterion, norm
+        As in :func:`solve`.
+
+    Returns
+    -------
+    NewtonResult
+        ``iterations`` is the number of Broyden steps (each one call of ``fun``).
+
+    Raises
+    ------
+    ValueError, SingularJacobianError, ConvergenceError
+        As :func:`solve` (a singular update is a :class:`SingularJacobianError`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> fun = lambda x: np.array([x[0] ** 2 + x[1] ** 2 - 1.0, x[0] - x[1]])
+    >>> jac = lambda x: np.array([[2 * x[0], 2 * x[1]], [1.0, -1.0]])
+    >>> res = broyden(fun, [1.0, 0.5], jac, tol=1e-12)
+    >>> res.iterations, solve(fun, [1.0, 0.5], jac, tol=1e-12).iterations
+    (7, 6)
+    >>> np.round(res.x, 12).tolist()
+    [0.707106781187, 0.707106781187]
+    """
+    last = {}
+
+    def matrix(x, fx):
+        if not last:
+            B = _jacobian(jac, fun, x)
+        else:
+            B, s, y = last["B"], x - last["x"], fx - last["f"]
+            if s @ s > 0:
+                B = B + np.outer(y - B @ s, s) / (s @ s)
+        last.update(B=B, x=x, f=fx)
+        return B
+
+    return _iterate(fun, x0, matrix, tol, maxiter, criterion, norm, False, "Broyden's method",
+                    "Broyden matrix")
+
+
 def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", norm=2,
-                damping=False, domain=None, raise_on_failure=True, independent=False,
-                halvings=_MAX_HALVINGS):
+                damping=False, domain=None, raise_on_failure=True, max_step=None,
+                independent=False, halvings=_MAX_HALVINGS):
     """Solve ``batch`` independent systems ``fun(x)[b] = 0`` at once by Newton-Raphson.
 
     Every system takes the step of :func:`solve`; a system that meets the criterion (or fails)
@@ -467,7 +575,7 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
         Initial guesses; must be finite and real. An empty batch is valid.
     jac : callable, optional
         ``jac(x) -> ndarray (batch, n, n)``. Default: :func:`fd_jacobian`.
-    tol, maxiter, criterion, norm, damping
+    tol, maxiter, criterion, norm, damping, max_step
         As in :func:`solve`, applied to each system; with damping, a system whose line search
         stagnates gets the status "stagnated".
     domain : callable, optional
@@ -520,15 +628,14 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
     if x.shape[1] == 0:
         raise ValueError(f"x0 must have shape (batch, n) with n >= 1, got shape {x.shape}")
     tol, maxiter, criterion, norm = _controls(tol, maxiter, criterion, norm)
+    max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     halvings = _validate.maxiter(halvings, "halvings")
     batch = len(x)
     iterations = np.zeros(batch, dtype=int)
     status = np.full(batch, "", dtype="<U11")  # "" while a system is running
-    steps = []
-    fx, nfev, njev = _evaluate(fun, x, "fun"), 1, 0
-    rnorm = np.linalg.norm(fx, norm, axis=-1)
+    running = np.ones(batch, dtype=bool)  # status == "", kept up to date (cheaper to test)
 
-    def call(points, rows):
+    def call(points, rows):  # the residual at points, at least of the systems rows
         if not independent:
             return _evaluate(fun, points, "fun")
         out = np.full(points.shape, np.nan)
@@ -536,38 +643,57 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
             out[rows] = _evaluate(fun, points[rows], "fun")
         return out
 
+    def stop(which, why):  # end the systems ``which`` (a mask) with the status ``why``
+        if which.any():
+            status[which] = why
+            running[which] = False
+
+    steps = []
+    fx, nfev, njev = _evaluate(fun, x, "fun"), 1, 0
+    rnorm = _norms(fx, norm)
     for k in range(maxiter + 1):
-        status[(status == "") & ~np.isfinite(rnorm)] = "non-finite"
+        stop(running & ~np.isfinite(rnorm), "non-finite")
         met = rnorm < tol if criterion == "residual" else (steps[-1] < tol if steps else False)
-        status[(status == "") & met] = "converged"
-        active = status == ""
+        stop(running & met, "converged")
+        active = running.copy()
         if not active.any() or k == maxiter:
             break
-        J = _jacobian(jac, fun, x[active] if independent else x)
+        subset = independent and not active.all()  # then jac is called on the active rows only
+        J = _jacobian(jac, fun, x[active] if subset else x)
         nfev, njev = (nfev + x.shape[1], njev) if jac is None else (nfev, njev + 1)
-        dx = np.zeros_like(x)
-        dx[active], stuck, _ = _newton_step(J if independent else J[active], fx[active])
-        status[np.flatnonzero(active)[stuck]] = "singular"
-        moving = status == ""
+        if active.all():  # the usual case: no copies of J and f
+            dx, stuck, _ = _newton_step(J, fx)
+        else:
+            dx = np.zeros_like(x)
+            dx[active], stuck, _ = _newton_step(J if subset else J[active], fx[active])
+        if stuck.any():
+            singular = active.copy()
+            singular[active] = stuck
+            stop(singular, "singular")
+        dx = _bounded(dx, max_step)
         if damping:
-            x_new, fx_new, failed, calls = _line_search(call, x, fx, dx, moving, rnorm, tol,
+            x_new, fx_new, failed, calls = _line_search(call, x, fx, dx, running, rnorm, tol,
                                                         norm, domain, independent, halvings)
-            status[failed != ""] = failed[failed != ""]
+            stop(failed != "", failed[failed != ""])
             nfev += calls
         else:
-            x_new = np.where(moving[:, None], x + dx, x)
+            x_new = x + dx  # dx is zero for the systems that are not moving
             if domain is not None:  # a step out of the domain is not taken, nor evaluated
-                outside = moving & ~np.asarray(domain(x_new), bool)
-                status[outside] = "left-domain"
+                outside = running & ~np.asarray(domain(x_new), bool)
+                stop(outside, "left-domain")
                 x_new[outside] = x[outside]
-            fx_new, nfev = call(x_new, status == ""), nfev + 1
-        moving = status == ""
-        iterations += moving
-        steps.append(np.where(moving, np.linalg.norm(x_new - x, norm, axis=-1), np.nan))
-        x = np.where(moving[:, None], x_new, x)
-        fx = np.where(moving[:, None], fx_new, fx)
-        rnorm = np.linalg.norm(fx, norm, axis=-1)
-    status[status == ""] = "maxiter"
+            fx_new, nfev = call(x_new, running), nfev + 1
+        iterations += running
+        size = _norms(x_new - x, norm)
+        if running.all():
+            steps.append(size)
+            x, fx = x_new, fx_new
+        else:
+            steps.append(np.where(running, size, np.nan))
+            x = np.where(running[:, None], x_new, x)
+            fx = np.where(running[:, None], fx_new, fx)
+        rnorm = _norms(fx, norm)
+    stop(running, "maxiter")
     result = BatchNewtonResult(x, iterations, status, np.array(steps).reshape(len(steps), batch), rnorm,
                                nfev, njev)
     if raise_on_failure:
@@ -577,6 +703,8 @@ def solve_batch(fun, x0, jac=None, *, tol=1e-10, maxiter=50, criterion="step", n
 
 def _raise_for(result, criterion, tol, maxiter):
     """Raise the error that the worst status of a batch calls for, if any system failed."""
+    if result.converged.all():
+        return
     singular = np.flatnonzero(result.singular)
     if singular.size:
         raise SingularJacobianError(

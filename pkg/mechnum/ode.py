@@ -1,12 +1,56 @@
-"""Fixed-step integration of ordinary differential equations.
+"""Ordinary differential equations: fixed-step RK4, and two-point boundary value problems.
 
-:func:`rk4` is the classical fourth-order Runge-Kutta method on a given grid of nodes,
-the integrator of the flexible-rod study (its equations (81) to (85)). It is vectorised: the
-state may carry any leading batch shape, so many initial-value problems (many rods, many
-Newton perturbations) advance together in one sweep over the grid.
+:func:`rk4` is the classical fourth-order Runge-Kutta method on a given grid of nodes, the
+integrator of the flexible-rod study (its equations (81) to (85)). It is vectorised: the state
+may carry any leading batch shape, so many initial-value problems (many rods, many Newton
+perturbations) advance together in one sweep over the grid.
+
+:func:`multiple_shooting` solves a two-point boundary value problem ``y' = f(s, y)``,
+``bc(y(s_0), y(s_N)) = 0``. Plain shooting guesses the missing initial values, integrates to the
+far end and corrects the guess by Newton's method; its residual depends on the guess through the
+whole interval, so it is as nonlinear as the problem (a small change at the start can move the
+far end a long way: the rod's tip, or another buckling mode). Multiple shooting cuts the grid
+into segments, takes the state at the start of every segment as unknowns, and adds the
+continuity of the state between segments to the equations: each segment is short, hence
+nearly linear, and a guess of the whole solution (a shape, not only its start) steers Newton.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
+
+from mechnum import _validate, newton
+
+_STEP = 1e-30  # complex step: f(x + i h) = f(x) + i h f'(x) + O(h^2), with no cancellation
+
+
+def _rk4(f, y, s):
+    """The RK4 sweep of :func:`rk4`, without its checks (``s`` a list of floats)."""
+    out = np.empty((len(s),) + y.shape, dtype=y.dtype)
+    out[0] = y
+    k1 = f(s[0], y)
+    for i in range(len(s) - 1):
+        h = s[i + 1] - s[i]
+        half = 0.5 * h
+        k2 = f(s[i] + half, y + half * k1)
+        k3 = f(s[i] + half, y + half * k2)
+        k4 = f(s[i + 1], y + h * k3)
+        y = y + (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
+        out[i + 1] = y
+        if i + 2 < len(s):
+            k1 = f(s[i + 1], y)
+    return out
+
+
+def _nodes(s):
+    """The nodes ``s`` checked: finite, 1-D, at least two, strictly monotone; a list of floats."""
+    s = _validate.array(s, "s", ndim=1)
+    if s.size < 2:
+        raise ValueError(f"s must have at least 2 nodes, got {s.size}")
+    h = np.diff(s)
+    if not (np.all(h > 0) or np.all(h < 0)):
+        raise ValueError("the nodes s must be strictly increasing or strictly decreasing")
+    return s.tolist()  # Python floats: cheaper than numpy scalars in the loop
 
 
 def rk4(f, y0, s):
@@ -42,7 +86,7 @@ def rk4(f, y0, s):
     Raises
     ------
     ValueError
-        If ``y0`` or ``s`` are not finite, ``s`` has fewer than two nodes or is not
+        If ``y0`` is not numeric or not finite, ``s`` has fewer than two nodes or is not
         strictly monotone, or ``f`` returns the wrong shape.
 
     Examples
@@ -52,30 +96,144 @@ def rk4(f, y0, s):
     >>> y.shape, np.round(y[-1] / np.exp(-1.0), 6).tolist()    # exact: [1, 2]
     ((11, 2), [1.000001, 2.000002])
     """
-    y = np.array(y0)
-    y = y.astype(np.result_type(y.dtype, float))     # real or complex
-    s = np.asarray(s, dtype=float)
+    y = np.asarray(y0)
+    if y.dtype.kind not in "biufc":
+        raise ValueError(f"y0 must be a real or complex numeric array, got dtype {y.dtype}")
+    y = y.astype(np.result_type(y.dtype, float))
     if not np.all(np.isfinite(y)):
         raise ValueError(f"y0 must be finite, got {y0!r}")
-    if s.ndim != 1 or s.size < 2 or not np.all(np.isfinite(s)):
-        raise ValueError(f"s must be a finite 1-D array of at least 2 nodes, got {s!r}")
-    h = np.diff(s)
-    if not (np.all(h > 0) or np.all(h < 0)):
-        raise ValueError("the nodes s must be strictly increasing or strictly decreasing")
-    out = np.empty((s.size,) + y.shape, dtype=y.dtype)
-    out[0] = y
+    s = _nodes(s)
     k1 = np.asarray(f(s[0], y))
     if k1.shape != y.shape:
         raise ValueError(f"f returned shape {k1.shape}, expected {y.shape}")
-    nodes = s.tolist()  # Python floats: cheaper than numpy scalars in this loop
-    for i in range(len(nodes) - 1):
-        si, hi = nodes[i], nodes[i + 1] - nodes[i]
-        half = 0.5 * hi
-        k2 = f(si + half, y + half * k1)
-        k3 = f(si + half, y + half * k2)
-        k4 = f(nodes[i + 1], y + hi * k3)
-        y = y + (hi / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
-        out[i + 1] = y
-        if i + 2 < len(nodes):
-            k1 = f(nodes[i + 1], y)
-    return out
+    return _rk4(f, y, s)
+
+
+@dataclass(frozen=True)
+class BVPSolution:
+    """The outcome of :func:`multiple_shooting`.
+
+    Attributes
+    ----------
+    s : ndarray, shape (N,)
+        The nodes.
+    y : ndarray, shape (N, n)
+        The solution at every node.
+    starts : ndarray of int, shape (segments,)
+        Index in ``s`` of each segment's first node.
+    newton : NewtonResult
+        The Newton iteration on the segments' initial states.
+    """
+
+    s: np.ndarray
+    y: np.ndarray
+    starts: np.ndarray
+    newton: newton.NewtonResult
+
+
+def multiple_shooting(f, bc, s, y_guess, *, segments=4, tol=1e-10, maxiter=50):
+    """Solve ``y' = f(s, y)``, ``bc(y(s[0]), y(s[-1])) = 0`` by multiple shooting with RK4.
+
+    The nodes are cut into ``segments`` runs of (nearly) equal numbers of steps. The unknowns
+    are the states ``Y_j`` at the first node of every segment; the equations are the boundary
+    conditions ``bc(Y_0, phi_last(Y_last)) = 0`` and the continuity ``phi_j(Y_j) - Y_{j+1} = 0``,
+    where ``phi_j`` is the RK4 sweep over segment ``j``. Damped Newton
+    (:func:`mechnum.newton.solve`) solves them, with the exact Jacobian of the discrete
+    sweeps (complex step: ``f`` and ``bc`` must accept complex states, as a formula of
+    numpy's functions does). With ``segments=1`` this is plain shooting.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(s, y) -> ndarray`` for ``y`` of shape ``(..., n)`` (a batch), as in :func:`rk4`.
+    bc : callable
+        ``bc(ya, yb) -> ndarray (n,)``, the ``n`` boundary conditions.
+    s : array_like, shape (N,)
+        The RK4 nodes, strictly monotone.
+    y_guess : array_like, shape (N, n)
+        A guess of the solution at every node (only the segments' first nodes are used).
+    segments : int, optional
+        Number of segments, ``1 <= segments <= N - 1``.
+    tol, maxiter
+        Newton stops when the residual norm is below ``tol``; most iterations.
+
+    Returns
+    -------
+    BVPSolution
+
+    Raises
+    ------
+    ValueError
+        If an input is malformed (shapes, non-finite values, ``segments`` out of range).
+    ConvergenceError, SingularJacobianError
+        If Newton fails (:func:`mechnum.newton.solve`); ``result`` holds its partial result.
+
+    Examples
+    --------
+    ``y'' = -y`` with ``y(0) = 0`` and ``y(pi/2) = 1`` is ``sin(s)``; from a zero guess:
+
+    >>> s = np.linspace(0.0, np.pi / 2, 41)
+    >>> sol = multiple_shooting(lambda s, y: np.stack((y[..., 1], -y[..., 0]), -1),
+    ...                         lambda ya, yb: np.array([ya[0], yb[0] - 1.0]),
+    ...                         s, np.zeros((41, 2)), segments=4)
+    >>> bool(np.abs(sol.y[:, 0] - np.sin(s)).max() < 1e-7), sol.newton.iterations
+    (True, 1)
+    """
+    nodes = _nodes(s)
+    guess = _validate.array(y_guess, "y_guess", shape=(len(nodes), None))
+    n = guess.shape[1]
+    segments = _validate.maxiter(segments, "segments")
+    if segments > len(nodes) - 1:
+        raise ValueError(f"segments must be at most the number of steps, {len(nodes) - 1}, "
+                         f"got {segments}")
+    tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
+    starts = np.linspace(0, len(nodes) - 1, segments + 1).round().astype(int)
+    grids = [nodes[i:j + 1] for i, j in zip(starts[:-1], starts[1:])]
+    memo = {}
+
+    def sweeps(Y):
+        """Every segment from its start, with ``n`` complex-step copies: (states, Phi)."""
+        key = Y.tobytes()
+        if key not in memo:
+            memo.clear()
+            Y = Y.reshape(segments, n)
+            copies = Y[:, None, :] + 1j * _STEP * np.eye(n)        # (segments, n, n)
+            with np.errstate(over="ignore", invalid="ignore"):      # Newton reads non-finite
+                ends = [_rk4(f, c, g) for c, g in zip(copies, grids)]
+            memo[key] = ends
+        return memo[key]
+
+    def bc_value(ya, yb):
+        out = np.asarray(bc(ya, yb))
+        if out.shape != (n,):
+            raise ValueError(f"bc returned shape {out.shape}, expected ({n},)")
+        return out
+
+    def fun(Y):  # Y of shape (segments * n,), or (1, segments * n) in the line search
+        last = [e[-1, 0].real for e in sweeps(Y)]                      # phi_j(Y_j)
+        Z = Y.reshape(segments, n)
+        defects = [bc_value(Z[0], last[-1]).real] + [last[j] - Z[j + 1]
+                                                     for j in range(segments - 1)]
+        return np.concatenate(defects).reshape(Y.shape)
+
+    def jac(Y):
+        ends = sweeps(Y)
+        Phi = [e[-1].imag.T / _STEP for e in ends]               # d phi_j / d Y_j, (n, n)
+        Y = Y.reshape(segments, n)
+        ya, yb, step = Y[0], ends[-1][-1, 0].real, 1j * _STEP * np.eye(n)
+        Ba = np.column_stack([bc_value(ya + e, yb).imag for e in step]) / _STEP
+        Bb = np.column_stack([bc_value(ya, yb + e).imag for e in step]) / _STEP
+        J = np.zeros((segments * n, segments * n))
+        J[:n, :n] += Ba
+        J[:n, -n:] += Bb @ Phi[-1]
+        for j in range(segments - 1):
+            J[(j + 1) * n:(j + 2) * n, j * n:(j + 1) * n] = Phi[j]
+            J[(j + 1) * n:(j + 2) * n, (j + 1) * n:(j + 2) * n] -= np.eye(n)
+        return J
+
+    x0 = guess[starts[:-1]].ravel()
+    result = newton.solve(fun, x0, jac, tol=tol, maxiter=maxiter, criterion="residual",
+                          damping=True)
+    ends = sweeps(result.x)
+    y = np.concatenate([ends[0][:, 0].real] + [e[1:, 0].real for e in ends[1:]])
+    return BVPSolution(np.array(nodes), y, starts[:-1], result)

@@ -7,8 +7,9 @@ last printed digit. :func:`agrees` applies that rule, and its variants for claim
 * ``"0"``: an exact zero, which a computation meets to round-off (``|value| < 1e-12``); a zero
   printed with decimals (``"0.000"``) follows the half-unit rule;
 * ``"<1e-13"``: an upper bound, ``|value| < 1e-13``;
-* ``"~1e-12"``: an order of magnitude, "of the order of ``10^-12``": ``value`` written in
-  scientific notation has the exponent ``-12``, ``1e-12 <= |value| < 1e-11``.
+* ``"~1e-12"``: an order of magnitude, "of the order of ``10^-12``": the power of ten nearest
+  to ``|value|`` on a logarithmic scale is ``10^-12``, ``10^-12.5 <= |value| < 10^-11.5``
+  (from ``3.2e-13`` to ``3.2e-12``).
 
 The registry ``book/published_values.csv`` has one row per number a study publishes, with the
 columns :data:`COLUMNS`: where the study prints it, the package's value (``computed``), a verdict
@@ -45,7 +46,13 @@ VERDICTS = ("reproduced", "within-input-rounding", "reproduced-after-correction"
 * ``claim-refuted``: a claim (a ranking, an optimum, a cause) that the computation contradicts.
 """
 AGREEING = ("reproduced", "within-input-rounding")
+FINDING_COLUMNS = ("finding", "chapter", "seeds", "what", "where", "proof")
+"""The columns of ``book/findings.csv``: one line per finding, its id (the registry's
+``finding``), its chapter, the studies it concerns, what it is, where the study prints it, and
+how the chapter proves it (one sentence each)."""
 _EXACT_ZERO = 1e-12  # a printed "0" is met by round-off of unit-sized quantities
+_EPS = float(np.finfo(float).eps)
+_ROOT_10 = 10 ** 0.5  # an order of magnitude spans a factor sqrt(10) either way of its power
 
 
 def half_unit(printed):
@@ -57,10 +64,20 @@ def half_unit(printed):
     (0.0005, 0.5, 5e-05)
     """
     try:
-        exponent = Decimal(printed.strip()).as_tuple().exponent
+        number = Decimal(printed.strip())
     except (InvalidOperation, AttributeError):
-        raise ValueError(f"not a printed number: {printed!r}") from None
-    return 0.5 * 10.0 ** exponent
+        number = None
+    if number is None or not number.is_finite():
+        raise ValueError(f"not a printed number: {printed!r}")
+    return 0.5 * 10.0 ** number.as_tuple().exponent
+
+
+def _within_half_unit(value, printed):
+    """``|value - printed| <= half a unit of its last digit``, allowing for the binary rounding
+    of both numbers (the printed decimal is itself a float)."""
+    number = float(printed)
+    slack = 4 * _EPS * max(abs(value), abs(number))
+    return bool(abs(value - number) <= half_unit(printed) + slack)
 
 
 def is_claim(published):
@@ -85,17 +102,19 @@ def agrees(published, value):
     --------
     >>> agrees("1.942", 1.9416), agrees("62", 61.4), agrees("0", 3e-17), agrees("0", 0.3)
     (True, False, True, False)
-    >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 2e-11)
+    >>> agrees("<1e-13", 2e-14), agrees("~1e-12", 2e-12), agrees("~1e-12", 5e-12)
     (True, True, False)
     """
+    if not is_claim(published):
+        raise ValueError(f"not a printed number or numeric claim: {published!r}")
     if published.startswith("<"):
-        return abs(value) < float(published[1:])
+        return bool(abs(value) < float(published[1:]))
     if published.startswith("~"):
         magnitude = float(published[1:])
-        return magnitude <= abs(value) < 10 * magnitude
+        return bool(magnitude / _ROOT_10 <= abs(value) < magnitude * _ROOT_10)
     if published.strip() in ("0", "-0", "+0"):
-        return abs(value) < _EXACT_ZERO
-    return abs(value - float(published)) <= half_unit(published) * (1 + 1e-9)
+        return bool(abs(value) < _EXACT_ZERO)
+    return _within_half_unit(value, published)
 
 
 def below(value, bound):
@@ -127,6 +146,28 @@ def below(value, bound):
     return f"< {mantissa}" + (f"e{int(exponent)}" if exponent else "")
 
 
+def _read(path, columns):
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        if tuple(reader.fieldnames or ()) != columns:
+            raise ValueError(f"{path}: columns {reader.fieldnames}, expected {list(columns)}")
+        return list(reader)
+
+
+def read_findings(path):
+    """The findings (dicts keyed by :data:`FINDING_COLUMNS`), in the file's order.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "findings.csv"
+    >>> _ = path.write_text(",".join(FINDING_COLUMNS) + "\\nch1-t,ch1,002,T is 2T,slide 3,sympy\\n")
+    >>> [f["what"] for f in read_findings(path)]
+    ['T is 2T']
+    """
+    return _read(path, FINDING_COLUMNS)
+
+
 def read_registry(path, chapter=None):
     """The registry's rows (dicts keyed by :data:`COLUMNS`), optionally of one chapter only.
 
@@ -138,11 +179,24 @@ def read_registry(path, chapter=None):
     >>> [row["published"] for row in read_registry(path, chapter="01")]
     ['1.942']
     """
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        if tuple(reader.fieldnames or ()) != COLUMNS:
-            raise ValueError(f"{path}: columns {reader.fieldnames}, expected {list(COLUMNS)}")
-        return [row for row in reader if chapter is None or row["chapter"] == chapter]
+    return [row for row in _read(path, COLUMNS) if chapter is None or row["chapter"] == chapter]
+
+
+def read_published(path, chapter):
+    """The numbers a chapter's study publishes, as printed: ``{quantity: published text}``.
+
+    For a chapter that works with the study's printed numbers (a table it audits, a value it
+    quotes), so that no published number is typed into a notebook or a test.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> read_published(path, "01")
+    {'T': '1.942'}
+    """
+    return {row["quantity"]: row["published"] for row in read_registry(path, chapter)}
 
 
 def check_row(row, value):
@@ -178,7 +232,7 @@ def check_row(row, value):
         if not abs(value) < float(computed[1:]):
             raise AssertionError(f"{name}: the registry bounds it by {computed}, "
                                  f"the package gives {value!r}")
-    elif abs(value - float(computed)) > half_unit(computed) * (1 + 1e-9):
+    elif not _within_half_unit(value, computed):
         raise AssertionError(f"{name}: the registry says {computed}, the package gives {value!r}")
     if row["verdict"] in AGREEING:
         if value is None or not agrees(published, value):

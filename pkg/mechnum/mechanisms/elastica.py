@@ -1,11 +1,11 @@
-"""One flexible rod of the flexible-mechanisms thesis (seed 001): its data and its example.
+"""One flexible rod of the flexible-mechanisms thesis (study 001): its data and its example.
 
 The thesis's first program (its Annex II, 1.1 and 1.2) solves a rod clamped at the origin
 along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) of length
 1 m and circular section of diameter 2 mm, 61 RK4 nodes, initial guesses
 ``m0 = 0.1`` N m and ``n0 = (0.1, 0.1)`` N, tolerance ``1e-7``. Its Newton loop is not the
-plain one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences with
-a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
+one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
+with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
 loop, on the package's RK4 rod (:func:`mechnum.rods.shooting.integrate`).
 """
@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechnum import rods
-from mechnum.errors import ConvergenceError
+from mechnum import _validate, rods
+from mechnum.errors import ConvergenceError, SingularJacobianError
 
 LENGTH = 1.0                                  # m
 YOUNG = 210e9                                 # Pa
@@ -26,6 +26,19 @@ TARGET = np.array([0.8, 0.1])                 # m, the pinned tip
 GUESS = np.array([0.1, 0.1, 0.1])             # (m0 [N m], n_x [N], n_y [N]), the study's
 TOL = 1e-7
 FD_STEP = 1e-10
+HALVING_FLOOR = 1e-3                          # the study's: halve a step while |delta| > 1e-3 tol
+_MAX_COND = 1.0 / np.finfo(float).eps         # a Jacobian past this condition has no digit left
+
+# The thesis's budget (its Section 14 and Tabla 9), as its text states it: two annual Matlab
+# licences of 800 EUR (the student's charged in full, the professor's at 2 EUR/h over 400 h a
+# year); two computers of 600 EUR (6 years of 400 h); 250 h of junior and 50 h of senior
+# engineering at "25 and 40 EUR/h, respectively".
+LICENCE = 800.0                               # EUR, each
+LICENCE_HOURS = 400.0                         # h a year of the professor's licence
+COMPUTER = 600.0                              # EUR, each
+COMPUTER_YEARS, COMPUTER_HOURS = 6.0, 400.0   # years of life, h of use a year
+HOURS = {"junior": 250.0, "senior": 50.0}     # h
+RATES = {"junior": 25.0, "senior": 40.0}      # EUR/h
 
 
 @dataclass(frozen=True)
@@ -82,6 +95,11 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
 
     Raises
     ------
+    ValueError
+        If an input is malformed (shapes, non-finite values, non-positive sizes).
+    SingularJacobianError
+        If the forward-difference Jacobian is singular (the straight rod of a zero guess:
+        MATLAB's ``J\\resid0`` would warn and return infinities).
     ConvergenceError
         If the loop stops with a residual above ``tol`` (the study's ``OUT.solution = 0``).
 
@@ -91,10 +109,12 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
     >>> res.iterations, round(float(res.rod.clamp_moment), 4), np.round(res.rod.force, 3).tolist()
     (6, -0.6076, [-3.231, -1.163])
     """
-    p = np.array(guess, dtype=float)
-    if p.shape != (3,) or not np.all(np.isfinite(p)):
-        raise ValueError(f"guess must be 3 finite numbers (m0, n_x, n_y), got {guess!r}")
-    target = np.asarray(target, dtype=float)
+    p = _validate.array(guess, "guess", shape=(3,))
+    target = _validate.array(target, "target", shape=(2,))
+    ei = _validate.scalar(ei, "ei", positive=True)
+    length = _validate.scalar(length, "length", positive=True)
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
+    tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
     resid = _residual(p[None], target, ei, length, nodes)[0][0]
     resid0 = np.zeros(3)
     history, halvings = [p.copy()], 0
@@ -104,10 +124,18 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
         perturbed = p + np.vstack((np.zeros(3), FD_STEP * np.eye(3)))
         values = _residual(perturbed, target, ei, length, nodes)[0]
         jac = (values[1:] - values[0]).T / FD_STEP
+        if not np.linalg.cond(jac) < _MAX_COND:   # also inf and NaN: the study's J\r fails
+            rod = rods.integrate(ei, length, p[0], p[1:], nodes=nodes)
+            raise SingularJacobianError(
+                f"the study's shooting loop met a singular Jacobian at iteration "
+                f"{len(history) - 1}, (m0, n_x, n_y) = {p.tolist()} (a straight rod: no "
+                f"small change of m0 or n moves its tip sideways to first order)",
+                StudyShooting(rod, np.array(history), halvings, float(np.max(np.abs(resid)))))
         delta = -np.linalg.solve(jac, resid0)
         p = p + delta
         resid = _residual(p[None], target, ei, length, nodes)[0][0]
-        while np.max(np.abs(resid)) > np.max(np.abs(resid0)) and np.max(np.abs(delta)) > tol * 1e-3:
+        while (np.max(np.abs(resid)) > np.max(np.abs(resid0))
+               and np.max(np.abs(delta)) > tol * HALVING_FLOOR):
             delta = 0.5 * delta
             p = p - delta
             resid = _residual(p[None], target, ei, length, nodes)[0][0]
@@ -127,12 +155,41 @@ def _q(rod):
     return 2.0 / np.pi * rods.elliptic_parameters(EI, LENGTH, rod.clamp_moment, rod.force)[3]
 
 
+def budget():
+    """The thesis's budget (Section 14, Tabla 9), recomputed from the hours and rates it states.
+
+    Returns
+    -------
+    dict
+        ``"licence rate"`` and ``"computer rate"`` (EUR/h, the two amortisations the text
+        derives), and the table's rows ``"Matlab"``, ``"computers"``, ``"senior"``,
+        ``"junior"`` and ``"total"`` (EUR): the student's licence in full plus the
+        professor's at its rate for his hours; each engineer's computer for his hours;
+        hours times rate.
+
+    Examples
+    --------
+    >>> {name: round(value, 2) for name, value in budget().items()}
+    ... # doctest: +NORMALIZE_WHITESPACE
+    {'licence rate': 2.0, 'computer rate': 0.25, 'Matlab': 900.0, 'computers': 75.0,
+     'senior': 2000.0, 'junior': 6250.0, 'total': 9225.0}
+    """
+    licence_rate = LICENCE / LICENCE_HOURS
+    computer_rate = COMPUTER / (COMPUTER_YEARS * COMPUTER_HOURS)
+    rows = {"Matlab": LICENCE + licence_rate * HOURS["senior"],
+            "computers": computer_rate * (HOURS["junior"] + HOURS["senior"]),
+            "senior": HOURS["senior"] * RATES["senior"],
+            "junior": HOURS["junior"] * RATES["junior"]}
+    return {"licence rate": licence_rate, "computer rate": computer_rate, **rows,
+            "total": sum(rows.values())}
+
+
 def reproduce():
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
     ``q`` of the study's (43) is recovered from rods found by RK4 shooting (61 nodes, as in
     the study): the study's own example (mode 2), a cantilever (mode 1) and the mode-3
-    equilibrium through the same pinned point.
+    equilibrium through the same pinned point; the budget rows come from :func:`budget`.
 
     Examples
     --------
@@ -146,6 +203,14 @@ def reproduce():
     guess = rods.clamped_pinned(EI, LENGTH, psi, k_rel, mode)
     mode3 = rods.shoot_pinned(EI, LENGTH, TARGET, [guess.clamp_moment, *guess.force],
                               nodes=NODES).rod
+    costs = budget()
     return {"q of mode 1 (cantilever, P L^2/EI = 1)": float(_q(cantilever)),
             "q of mode 2 (the Annex II 1.1 example)": float(_q(example)),
-            "q of mode 3 (same pinned point)": float(_q(mode3))}
+            "q of mode 3 (same pinned point)": float(_q(mode3)),
+            "hourly cost of the professor's Matlab licence": costs["licence rate"],
+            "hourly cost of a computer": costs["computer rate"],
+            "Tabla 9: Matlab": costs["Matlab"],
+            "Tabla 9: computers (Ordenadores)": costs["computers"],
+            "Tabla 9: senior engineering": costs["senior"],
+            "Tabla 9: junior engineering": costs["junior"],
+            "Tabla 9: total": costs["total"]}

@@ -33,19 +33,25 @@ parameter ``m = k**2``. To place a closed-form rod clamped at ``(x0, y0)`` at an
 force direction relative to the clamped tangent.
 
 Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_jacobian`,
-the shooting solvers) and :mod:`mechnum.rods.elliptic` (the closed form, its inverse maps and
-:func:`pinned_equilibria`); everything is importable from :mod:`mechnum.rods`. In a Newton
-loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of all rods:
-one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little more than
-one rod (the cost of a sweep is per numpy call, not per rod).
+the shooting solvers, single and multiple) and :mod:`mechnum.rods.elliptic` (the closed form
+as the study prints it, its inverse maps, :func:`pinned_equilibria`, and the growing branch in
+a chart that holds every digit, behind :func:`cantilever`); everything is importable from
+:mod:`mechnum.rods`. In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian`
+once on the batch of all rods: one sweep gives every tip and every
+``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per
+numpy call, not per rod).
 """
 
 import numpy as np
 
+from mechnum import _validate
 from mechnum.rods.elliptic import (
+    CLOSED_FORM_MAXITER,
+    CLOSED_FORM_TOL,
     TWO_PI,
     EllipticRod,
     NoEquilibriumError,
+    _cantilever,
     clamped_pinned,
     elliptic_k,
     elliptic_parameters,
@@ -55,44 +61,58 @@ from mechnum.rods.elliptic import (
 from mechnum.rods.shooting import (
     Rod,
     Shooting,
-    _finite,
-    _positive,
     integrate,
     shoot_cantilever,
     shoot_pinned,
+    shoot_pinned_multiple,
     tip_jacobian,
 )
 
 __all__ = ["EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
            "clamped_pinned", "elliptic_k", "elliptic_parameters", "integrate",
            "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
-           "tip_jacobian"]
+           "shoot_pinned_multiple", "tip_jacobian"]
+
+METHODS = ("elliptic", "shooting")
 
 
 def cantilever(EI, L, force, method="elliptic", *, nodes=41):
     """A cantilever (clamped at the origin along +x) under a tip force, by either method.
 
     The equilibrium returned is the one that grows continuously from the unloaded rod (mode 1,
-    bending towards the force). A purely axial force (``n_y = 0``) gives the straight rod,
-    the only equilibrium below the Euler load (``pi**2 EI / (4 L**2)`` in compression);
-    buckled ones are :func:`clamped_pinned` with ``psi = pi``.
+    bending towards the force), by both methods. A purely axial force (``n_y = 0``) gives the
+    straight rod, the only equilibrium below the Euler load (``pi**2 EI / (4 L**2)`` in
+    compression); buckled ones are :func:`clamped_pinned` with ``psi = pi``.
+
+    The closed form is evaluated in a chart that holds every digit at every load, from
+    ``1e-200`` (linear beam theory, ``v = P L**3 / (3 EI)`` to rounding) to ``P L**2 / EI``
+    near ``1e5`` (see :mod:`mechnum.rods.elliptic`); ``nodes=2`` asks for the clamp and the
+    tip only, the fastest call.
 
     Parameters
     ----------
     EI, L : float
-        Bending stiffness (N m^2) and length (m).
+        Bending stiffness (N m^2) and length (m), positive.
     force : array_like, shape (2,)
         Tip force ``(n_x, n_y)`` (N).
     method : {"elliptic", "shooting"}
-        Closed form (:func:`k_rel_for_force` then :func:`clamped_pinned`) or RK4 shooting
-        (:func:`shoot_cantilever`).
+        Closed form (in Carlson's symmetric integrals) or RK4 shooting
+        (:func:`shoot_cantilever`, from the closed form's clamp moment).
     nodes : int, optional
-        Nodes of the returned shape (and RK4 nodes for shooting).
+        Nodes of the returned shape (and RK4 nodes for shooting), ``>= 2``.
 
     Returns
     -------
     Rod
         Its ``tip`` and ``tip_angle`` are the tip position and angle.
+
+    Raises
+    ------
+    ValueError
+        If an input is not finite or out of range, or the load is beyond the closed form's
+        range in double precision.
+    ConvergenceError
+        If shooting fails (see :func:`shoot_cantilever`).
 
     Examples
     --------
@@ -100,17 +120,16 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
     >>> b = cantilever(2.0, 1.5, [-0.3, 1.0], "shooting", nodes=801)
     >>> bool(np.abs(a.tip - b.tip).max() < 1e-11), round(float(a.tip_angle), 6)
     (True, 0.57334)
+    >>> tip = cantilever(1.0, 1.0, [0.0, 1e-12], nodes=2).tip   # linear theory: P L^3 / 3 EI
+    >>> bool(abs(tip[1] / (1e-12 / 3) - 1) < 1e-12)
+    True
     """
-    force = _finite("force", force, 2)
-    EI, L = float(_positive("EI", EI)), float(_positive("L", L))
-    if force.shape != (2,):
-        raise ValueError(f"force must have shape (2,), got {force.shape}")
-    if method not in ("elliptic", "shooting"):
-        raise ValueError(f"method must be 'elliptic' or 'shooting', got {method!r}")
+    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    force = _validate.array(force, "force", shape=(2,))
+    method = _validate.choice(method, METHODS, "method")
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
     if force[1] == 0:
         return integrate(EI, L, 0.0, force, nodes=nodes)
     if method == "shooting":
         return shoot_cantilever(EI, L, force, nodes=nodes).rod
-    psi = np.mod(np.arctan2(force[1], force[0]), TWO_PI)
-    k_rel = k_rel_for_force(EI, L, psi, np.hypot(*force))
-    return clamped_pinned(EI, L, psi, k_rel, nodes=nodes).rod
+    return _cantilever(EI, L, force, nodes, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER)

@@ -24,7 +24,7 @@ from scipy.integrate import solve_ivp
 
 from mechnum import _validate, newton
 from mechnum.mechanisms.pfr3 import model
-from mechnum.mechanisms.rfr2 import SHAPE_NODES
+from mechnum.mechanisms.rfr2.analysis import SHAPE_NODES
 from mechnum.rods import crossing, profile, regular
 from mechnum.rods.bodies import constrained_index_with_body
 from mechnum.rods.stability import rod_block

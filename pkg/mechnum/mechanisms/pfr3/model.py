@@ -35,7 +35,7 @@ import numpy as np
 
 from mechnum import _validate
 from mechnum.errors import GeometryError, UnreachablePoseError
-from mechnum.mechanisms.rfr2 import EI, LENGTH
+from mechnum.mechanisms.rfr2.model import EI, LENGTH
 from mechnum.rods import regular
 
 VERTEX_ANGLES = np.radians([-150.0, -30.0, 90.0])

@@ -22,7 +22,7 @@ import numpy as np
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError
 from mechnum.mechanisms.pfr3 import model, shooting
-from mechnum.mechanisms.rfr2 import STUDY_NODES, _memoised
+from mechnum.mechanisms.rfr2.shooting import STUDY_NODES, _memoised
 
 _Z, _LAMBDA, _POSE = list(range(6)), [6, 7, 8], [9, 10, 11]
 _FK, _IK = _Z + _POSE, _Z + _LAMBDA

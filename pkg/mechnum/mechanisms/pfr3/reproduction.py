@@ -4,7 +4,8 @@ import numpy as np
 
 from mechnum.mechanisms.pfr3 import model, shooting, study
 from mechnum.mechanisms.pfr3.equilibria import forward_elliptic
-from mechnum.mechanisms.rfr2 import STUDY_NODES, YOUNG
+from mechnum.mechanisms.rfr2.model import YOUNG
+from mechnum.mechanisms.rfr2.shooting import STUDY_NODES
 
 NAMES = ("psi1", "k_rel1", "psi2", "k_rel2", "psi3", "k_rel3")
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from mechnum import _validate, newton, rods
 from mechnum.mechanisms.pfr3 import model
-from mechnum.mechanisms.rfr2 import STUDY_NODES, _memoised
+from mechnum.mechanisms.rfr2.shooting import STUDY_NODES, _memoised
 from mechnum.rods import regular
 
 # Shooting converges when the dimensionless residual is below this: round-off of the O(1)

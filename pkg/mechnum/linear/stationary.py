@@ -1,0 +1,361 @@
+"""Jacobi, Gauss-Seidel and SOR: the solvers, when they stop, and a sweep over ``omega``.
+
+Each solver sweeps a :class:`~mechnum.linear.Splitting` until its
+:class:`~mechnum.linear.StoppingRule` is met. The criterion is explicit, because iteration counts
+depend on it:
+
+* ``criterion="step"``: stop when ``||x_{k+1} - x_k|| / omega <= tol`` (times ``||x_{k+1}||``
+  if ``relative``). The step of SOR is ``omega`` times the Gauss-Seidel-like correction
+  ``(D - omega L)^{-1} r_k``; dividing by ``omega`` tests that correction, a preconditioned
+  residual, and not a step made small by a small ``omega``. For Jacobi and Gauss-Seidel this is
+  the rule of Burden and Faires' algorithms 7.1 and 7.2;
+* ``criterion="residual"``: stop when ``||b - A x_k|| <= tol`` (times ``||b||`` if
+  ``relative``).
+
+An iteration whose residual grows beyond :data:`DIVERGENCE_GROWTH` times its start, or
+overflows, is reported as diverging (:class:`~mechnum.errors.DivergenceError`). The compiled
+loop runs :data:`CHUNK` sweeps per call and records the norm of every step and residual.
+"""
+
+import dataclasses
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+import scipy.sparse as sp
+
+from mechnum import _validate
+from mechnum.errors import ConvergenceError, DivergenceError
+from mechnum.linear.checks import _check_system, _relaxation_factors
+from mechnum.linear.spectra import iteration_matrix, sor_spectral_radii, spectral_radius
+from mechnum.linear.sweeps import _sweep, splitting
+
+CRITERIA = ("step", "residual")
+NORMS = (np.inf, 1, 2)
+#: A residual this many times larger than at the start (or than ``||b||``) means divergence: a
+#: convergent iteration can grow transiently, but not by eight orders of magnitude.
+DIVERGENCE_GROWTH = 1e8
+#: Sweeps run per call of the compiled loop: the Python overhead is paid once per chunk, and the
+#: norms of a chunk (two arrays of this length) cost nothing next to the sweeps.
+CHUNK = 4096
+#: Error messages of the stationary solvers quote rho(M) for matrices up to this order, where
+#: the dense eigenvalue problem costs milliseconds.
+DIAGNOSTIC_ORDER = 200
+
+_NORM_CODES = {np.inf: 0, 1: 1, 2: 2}
+_RUNNING, _CONVERGED, _DIVERGED = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class StoppingRule:
+    """When an iteration stops: the options that every iterative solver of the module takes.
+
+    Attributes
+    ----------
+    tol : float
+        Tolerance of the criterion, positive.
+    maxiter : int
+        Most sweeps (or steps), at least 1.
+    criterion : {"step", "residual"}
+        Stop on the step (divided by ``omega``) or on the residual ``||b - A x_k||``.
+    norm : {inf, 1, 2}
+        The vector norm of the criterion and of the recorded norms.
+    relative : bool
+        Divide the step by ``||x_{k+1}||`` (the residual by ``||b||``) before comparing.
+
+    Examples
+    --------
+    >>> StoppingRule(tol=1e-8).criterion
+    'step'
+    >>> StoppingRule(tol=-1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol must be positive, got -1.0
+    """
+
+    tol: float = 1e-10
+    maxiter: int = 10_000
+    criterion: str = "step"
+    norm: float = np.inf
+    relative: bool = False
+
+    def __post_init__(self):
+        set_ = object.__setattr__  # the dataclass is frozen: store the checked values
+        set_(self, "tol", _validate.tolerance(self.tol))
+        set_(self, "maxiter", _validate.maxiter(self.maxiter))
+        _validate.choice(self.criterion, CRITERIA, "criterion")
+        _validate.choice(self.norm, NORMS, "norm")
+        if not isinstance(self.relative, (bool, np.bool_)):
+            raise ValueError(f"relative must be True or False, got {self.relative!r}")
+
+
+@dataclass(frozen=True)
+class IterationResult:
+    """The outcome of an iterative linear solver.
+
+    Attributes
+    ----------
+    x : ndarray, shape (n,)
+        The last iterate.
+    iterations : int
+        Sweeps (or refinement steps) taken.
+    converged : bool
+        Whether the stopping criterion was met.
+    history : ndarray, shape (iterations + 1, n), or None
+        Every iterate, the initial guess first (None when it was not kept).
+    residual_norms : ndarray, shape (iterations + 1,)
+        ``||b - A x_k||`` for every iterate, in the norm of the criterion.
+    step_norms : ndarray, shape (iterations,)
+        ``||x_{k+1} - x_k||`` of every sweep (of every correction, for refinement).
+    """
+
+    x: np.ndarray
+    iterations: int
+    converged: bool
+    history: np.ndarray | None
+    residual_norms: np.ndarray
+    step_norms: np.ndarray
+
+
+@dataclass(frozen=True)
+class SorSweep:
+    """The outcome of :func:`sor_sweep`: one entry per relaxation factor.
+
+    Attributes
+    ----------
+    omegas : ndarray, shape (k,)
+    spectral_radii : ndarray, shape (k,), or None
+        ``rho(M_SOR(omega))`` (None for a sparse matrix, whose iteration matrix is not formed).
+    iterations : ndarray of int, shape (k,)
+        Sweeps taken (``maxiter`` where it did not converge).
+    converged : ndarray of bool, shape (k,)
+    """
+
+    omegas: np.ndarray
+    spectral_radii: np.ndarray | None
+    iterations: np.ndarray
+    converged: np.ndarray
+
+
+def _initial_guess(x0, b):
+    """The checked initial guess, a new array (zero by default)."""
+    return np.zeros(b.size) if x0 is None else _validate.array(x0, "x0", shape=b.shape)
+
+
+def _keeps_history(A, keep_history):
+    """Whether to keep every iterate: as asked, else for a dense ``A`` only."""
+    return not sp.issparse(A) if keep_history is None else bool(keep_history)
+
+
+@numba.njit(cache=True)
+def _norm(v, p):
+    """The inf- (p = 0), 1- or 2-norm of a vector, in plain loops (a BLAS call would pay its
+    threads' overhead at every sweep)."""
+    total = 0.0
+    for value in v:
+        if p == 0:
+            total = max(total, abs(value))
+        elif p == 1:
+            total += abs(value)
+        else:
+            total += value * value
+    return np.sqrt(total) if p == 2 else total
+
+
+@numba.njit(cache=True)
+def _run(csr, diagonal, b, x, omega, jacobi, rule, residuals, steps, history):
+    """Up to ``steps.size`` sweeps in place; fills the norms (and ``history`` if it has rows).
+
+    ``rule = (norm code, stop on step, relative, tol, residual limit, divergence limit)``.
+    Returns ``(sweeps taken, state)``, the state being running, converged or diverged.
+    """
+    indptr, indices, data = csr
+    p, by_step, relative, tol, limit, blow_up = rule
+    n = b.size
+    old, work = np.empty(n), np.empty(n)
+    for k in range(steps.size):
+        old[:] = x
+        _sweep(indptr, indices, data, diagonal, b, x, omega, jacobi, work)
+        steps[k] = _norm(x - old, p)
+        for i in range(n):  # the residual b - A x
+            work[i] = b[i]
+            for m in range(indptr[i], indptr[i + 1]):
+                work[i] -= data[m] * x[indices[m]]
+        residuals[k] = _norm(work, p)
+        if history.shape[0]:
+            history[k] = x
+        if by_step:
+            done = steps[k] / omega <= tol * (_norm(x, p) if relative else 1.0)
+        else:
+            done = residuals[k] <= limit
+        if done:
+            return k + 1, 1
+        if not residuals[k] <= blow_up:  # growth, overflow or NaN
+            return k + 1, 2
+    return steps.size, 0
+
+
+def _vector_norm(v, norm):
+    return float(np.linalg.norm(v, norm)) if v.size else 0.0
+
+
+def _iterate(split, b, x, rule, keep_history):
+    """Sweep ``split`` from ``x`` until ``rule`` stops it; ``(IterationResult, state)``."""
+    A, n = split.A, b.size
+    residual0, b_norm = _vector_norm(b - A @ x, rule.norm), _vector_norm(b, rule.norm)
+    limit = rule.tol * b_norm if rule.relative else rule.tol
+    blow_up = DIVERGENCE_GROWTH * max(residual0, b_norm, np.finfo(float).tiny)
+    compiled_rule = (_NORM_CODES[rule.norm], rule.criterion == "step", bool(rule.relative),
+                     rule.tol, limit, blow_up)
+    x = x.copy()
+    residuals, steps, history = [np.array([residual0])], [], [x[None].copy()]
+    done, state = 0, _RUNNING
+    with np.errstate(over="ignore", invalid="ignore"):
+        while state == _RUNNING and done < rule.maxiter:
+            count = min(CHUNK, rule.maxiter - done)
+            chunk = np.empty(count), np.empty(count), np.empty((count * keep_history, n))
+            taken, state = _run(split.rows, split.diagonal, b, x,
+                                split.omega, split.method == "jacobi", compiled_rule, *chunk)
+            residuals.append(chunk[0][:taken])
+            steps.append(chunk[1][:taken])
+            history.append(chunk[2][:taken])
+            done += taken
+    result = IterationResult(x, done, state == _CONVERGED,
+                             np.concatenate(history) if keep_history else None,
+                             np.concatenate(residuals), np.concatenate(steps or [np.empty(0)]))
+    return result, state
+
+
+def _solve(A, b, method, omega, x0, rule, keep_history):
+    A, b = _check_system(A, b)
+    split = splitting(A, method, omega)
+    x, keep = _initial_guess(x0, b), _keeps_history(A, keep_history)
+    result, state = _iterate(split, b, x, rule, keep)
+    if state == _CONVERGED:
+        return result
+    name = method if method != "sor" else f"SOR (omega={split.omega:g})"
+    rho = ""
+    if not sp.issparse(A) and b.size <= DIAGNOSTIC_ORDER:
+        rho = f"; spectral radius of the iteration matrix " \
+              f"{spectral_radius(iteration_matrix(A, method, split.omega)):.4g}"
+    r = result.residual_norms
+    if state == _DIVERGED:
+        raise DivergenceError(f"{name} diverges: residual norm {r[-1]:.3g} after "
+                              f"{result.iterations} sweeps, from {r[0]:.3g}{rho}", result)
+    raise ConvergenceError(f"{name} did not converge in {rule.maxiter} sweeps: residual norm "
+                           f"{r[-1]:.3g} (criterion {rule.criterion!r}, tol {rule.tol:g}){rho}",
+                           result)
+
+
+def sor(A, b, omega, x0=None, *, tol=1e-10, maxiter=10_000, criterion="step", norm=np.inf,
+        relative=False, keep_history=None):
+    """Solve ``A x = b`` by successive over-relaxation.
+
+    Parameters
+    ----------
+    A : array_like or scipy.sparse matrix, shape (n, n)
+        Finite, non-singular, with a non-zero diagonal. A sparse matrix is swept over its
+        non-zeros and never made dense.
+    b : array_like, shape (n,)
+    omega : float
+        Relaxation factor in ``(0, 2)``: under-relaxation below 1, over-relaxation above.
+    x0 : array_like, shape (n,), optional
+        Initial guess (default zero).
+    tol, maxiter, criterion, norm, relative
+        The stopping rule (:class:`StoppingRule`).
+    keep_history : bool, optional
+        Keep every iterate in ``history`` (default: for a dense ``A`` only).
+
+    Returns
+    -------
+    IterationResult
+
+    Raises
+    ------
+    ValueError
+        Ill-shaped or non-finite input, an unknown option.
+    SingularJacobianError
+        A dense ``A`` singular to working precision, or a zero diagonal entry.
+    RelaxationFactorError
+        ``omega`` missing or outside ``(0, 2)``.
+    DivergenceError
+        The residual grows beyond :data:`~mechnum.linear.stationary.DIVERGENCE_GROWTH`
+        times its start, or overflows.
+    ConvergenceError
+        ``maxiter`` sweeps without meeting the criterion; ``result`` holds the history.
+
+    Examples
+    --------
+    >>> res = sor([[4.0, 1.0], [1.0, 3.0]], [1.0, 2.0], omega=1.1, tol=1e-12)
+    >>> res.x.round(10).tolist(), res.converged
+    ([0.0909090909, 0.6363636364], True)
+    """
+    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
+    return _solve(A, b, "sor", omega, x0, rule, keep_history)
+
+
+def gauss_seidel(A, b, x0=None, *, tol=1e-10, maxiter=10_000, criterion="step", norm=np.inf,
+                 relative=False, keep_history=None):
+    """Solve ``A x = b`` by Gauss-Seidel (SOR with ``omega = 1``); arguments as :func:`sor`.
+
+    Examples
+    --------
+    >>> res = gauss_seidel([[4.0, 1.0], [1.0, 3.0]], [1.0, 2.0], tol=1e-12)
+    >>> res.x.round(10).tolist()
+    [0.0909090909, 0.6363636364]
+    """
+    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
+    return _solve(A, b, "gauss_seidel", 1.0, x0, rule, keep_history)
+
+
+def jacobi(A, b, x0=None, *, tol=1e-10, maxiter=10_000, criterion="step", norm=np.inf,
+           relative=False, keep_history=None):
+    """Solve ``A x = b`` by Jacobi's method; arguments as :func:`sor`.
+
+    Examples
+    --------
+    >>> res = jacobi([[4.0, 1.0], [1.0, 3.0]], [1.0, 2.0], tol=1e-12)
+    >>> res.x.round(10).tolist()
+    [0.0909090909, 0.6363636364]
+    """
+    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
+    return _solve(A, b, "jacobi", 1.0, x0, rule, keep_history)
+
+
+def sor_sweep(A, b, omegas, x0=None, *, tol=1e-10, maxiter=100_000, criterion="step",
+              norm=np.inf, relative=False):
+    """Run SOR for many relaxation factors: spectral radius and iteration count of each.
+
+    Each ``omega`` runs its own iteration with the options of :func:`sor`; nothing is raised
+    for one that does not converge, its ``converged`` entry is ``False``.
+
+    Parameters
+    ----------
+    A, b, x0, tol, maxiter, criterion, norm, relative
+        As in :func:`sor`.
+    omegas : array_like, shape (k,)
+        Relaxation factors, each in ``(0, 2)``.
+
+    Returns
+    -------
+    SorSweep
+
+    Examples
+    --------
+    >>> A = [[4.0, 3.0, 0.0], [3.0, 4.0, -1.0], [0.0, -1.0, 4.0]]
+    >>> sweep = sor_sweep(A, [24.0, 30.0, -24.0], [1.0, 1.24, 1.9], tol=1e-8)
+    >>> sweep.iterations.tolist(), sweep.converged.tolist()
+    ([40, 17, 193], [True, True, True])
+    """
+    A, b = _check_system(A, b)
+    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
+    omegas = _relaxation_factors(omegas)
+    x = _initial_guess(x0, b)
+    split = splitting(A, "gauss_seidel")
+    iterations, converged = np.zeros(omegas.size, int), np.zeros(omegas.size, bool)
+    for i, omega in enumerate(omegas):
+        with_omega = dataclasses.replace(split, method="sor", omega=float(omega))
+        result, _ = _iterate(with_omega, b, x, rule, False)
+        iterations[i], converged[i] = result.iterations, result.converged
+    radii = None if sp.issparse(A) else sor_spectral_radii(A, omegas)
+    return SorSweep(omegas, radii, iterations, converged)

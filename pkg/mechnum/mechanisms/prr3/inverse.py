@@ -1,0 +1,155 @@
+"""The 3PRR's inverse problem (pose -> inputs) and its workspace: one line-circle cut per leg."""
+
+from itertools import product
+
+import numpy as np
+
+from mechnum import _validate
+from mechnum.mechanisms.prr3.geometry import radicands, vectors, vertices
+
+# A radicand within 1e-12 L^2 of zero is a tangent leg: the two values of its input then
+# differ by 2 sqrt(1e-12) L = 2e-6 L, the study's own merging distance (1e-6 L) in size,
+# and far above the round-off (~1e-16 L^2) of a radicand computed from unit-sized lengths.
+TANGENT_TOL = 1e-12
+STUDY_ORDER = (1, -1, -1)
+"""The signs of the study's first solution (equations 53, 57, 61): ``+`` for ``lambda1``."""
+
+
+def _tangent_roots(rad, tol, L):
+    """``sqrt(rad)``, 0 where ``|rad| <= tol L^2`` (tangent), NaN where ``rad < -tol L^2``."""
+    band = tol * L ** 2
+    with np.errstate(invalid="ignore"):
+        return np.where(np.abs(rad) <= band, 0.0, np.where(rad < -band, np.nan, np.sqrt(rad)))
+
+
+def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
+    """The inputs of one working mode (one branch of each leg), vectorised over poses.
+
+    ``lambda1 = x_P + s1 r1``, ``lambda2 = B2 - x_P2 + s2 r2``, ``lambda3 = H3 - y_P3 + s3 r3``
+    with ``r_i`` the square roots of :func:`radicands` (zero for a tangent leg): equations 53,
+    57 and 61 of the study, whose first solution is ``signs = (1, -1, -1)``. A working mode is
+    a continuous function of the pose inside the workspace, as a path or a singularity map needs.
+
+    Parameters
+    ----------
+    poses : array_like, shape (..., 3)
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
+    signs : array_like of +-1, shape (3,)
+        The branch of each leg.
+    tol : float, optional
+        A radicand down to ``-tol * L**2`` counts as zero (:data:`TANGENT_TOL`).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        NaN for the legs that cannot reach their guide.
+
+    Raises
+    ------
+    ValueError
+        If ``poses`` is ill-shaped or not finite, ``signs`` are not three values +-1, or ``tol``
+        is not a positive number.
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.prr3 import Geometry
+    >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
+    >>> branch_inputs([[0.6, 0.4, 0.0], [0.6, 1.4, 0.0]], g).round(4).tolist()
+    [[1.5165, 0.4835, -0.1825], [nan, nan, -1.1825]]
+    """
+    signs = _validate.array(signs, "signs", shape=(3,))
+    if not np.all(np.abs(signs) == 1):
+        raise ValueError(f"signs must be three values +1 or -1, got {signs.tolist()}")
+    tol = _validate.tolerance(tol)
+    poses = vectors(poses, "poses")
+    root = _tangent_roots(radicands(poses, geometry), tol, geometry.L)
+    v = vertices(poses, geometry)
+    centre = np.stack([v[..., 0, 0], geometry.B2 - v[..., 1, 0], geometry.H3 - v[..., 2, 1]], -1)
+    return centre + signs * root
+
+
+def inverse(pose, geometry, *, tol=TANGENT_TOL):
+    """All the inputs ``(lambda1, lambda2, lambda3)`` that assemble the mechanism in ``pose``.
+
+    Each leg gives two values of its input (line-circle intersection, equations 53, 57, 61 of the
+    study), one when the leg is tangent to its guide (``|radicand| <= tol * L**2``: an inverse
+    singularity, reported by :func:`radicands`), none when the pose is out of its reach. The
+    solutions are all the combinations, in the order of the study's tables: ``lambda1`` with
+    ``+`` first, ``lambda2`` and ``lambda3`` with ``-`` first.
+
+    Parameters
+    ----------
+    pose : array_like, shape (3,)
+        ``(x, y, psi)`` in metres and radians.
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
+    tol : float, optional
+        Relative tolerance of tangency (:data:`TANGENT_TOL`).
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        ``n = 8`` in general, 4, 2 or 1 with tangent legs, 0 for an unreachable pose.
+
+    Raises
+    ------
+    ValueError
+        If ``pose`` is not three finite numbers, or ``tol`` not a positive number.
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.prr3 import Geometry
+    >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
+    >>> inverse([0.6, 0.4, 0.0], g)[:2].round(5).tolist()
+    [[1.51652, 0.48348, -0.18254], [1.51652, 0.48348, 1.65049]]
+    >>> inverse([0.6, 1.4, 0.0], g).shape
+    (0, 3)
+    """
+    pose = _validate.array(pose, "pose", shape=(3,))
+    tol = _validate.tolerance(tol)
+    first = branch_inputs(pose, geometry, STUDY_ORDER, tol=tol)
+    if np.any(np.isnan(first)):
+        return np.empty((0, 3))
+    second = branch_inputs(pose, geometry, np.negative(STUDY_ORDER), tol=tol)
+    values = [(f,) if f == s else (f, s) for f, s in zip(first, second)]  # equal: tangent
+    return np.array(list(product(*values)))
+
+
+def workspace(x, y, psi, geometry, *, tol=TANGENT_TOL):
+    """Reachability of every pose of a grid: can the inverse problem be solved there?
+
+    Parameters
+    ----------
+    x, y, psi : array_like
+        Coordinates (m) and orientation (rad) of the poses; broadcast against each other (use
+        :func:`numpy.meshgrid` with ``indexing="ij"`` for a full grid). Empty arrays are valid.
+    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
+    tol : float, optional
+        A radicand down to ``-tol * L**2`` counts as zero (a tangent leg is reachable).
+
+    Returns
+    -------
+    ndarray of bool
+        True where all three legs can be assembled; the broadcast shape of the inputs.
+
+    Raises
+    ------
+    ValueError
+        If an input is not finite and real, the inputs do not broadcast, or ``tol`` is not a
+        positive number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mechnum.mechanisms.prr3 import Geometry
+    >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
+    >>> workspace(np.array([0.6, 0.6]), np.array([0.4, 1.2]), 0.0, g).tolist()
+    [True, False]
+    """
+    arrays = [_validate.array(v, name) for v, name in ((x, "x"), (y, "y"), (psi, "psi"))]
+    tol = _validate.tolerance(tol)
+    try:
+        poses = np.stack(np.broadcast_arrays(*arrays), axis=-1)
+    except ValueError:
+        raise ValueError("x, y and psi must broadcast together, got shapes "
+                         f"{[a.shape for a in arrays]}") from None
+    return np.all(radicands(poses, geometry) >= -tol * geometry.L ** 2, axis=-1)

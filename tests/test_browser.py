@@ -1,0 +1,147 @@
+"""Every built page in a real browser: headless Chromium, from ``file://``, offline.
+
+Each page must load with no console error and no request leaving the machine, render all its
+TeX, and fit a 1280 px wide window (wide content scrolls inside its own code cell or table, not
+the page). Solution dropdowns must open, and animations must advance when played, with their
+control icons drawn. A screenshot of the top of each page is written to
+``_build/screenshots`` for a reader to look at.
+
+Runs on the HTML that ``make book`` writes (``MECHNUM_BUILT_HTML``), with Debian's Chromium
+(``apt-get install chromium``; ``MECHNUM_CHROMIUM`` names another binary) driven by Playwright.
+Skipped, with the reason, when either is missing.
+"""
+
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+BUILT = os.environ.get("MECHNUM_BUILT_HTML")
+CHROMIUM = os.environ.get("MECHNUM_CHROMIUM") or shutil.which("chromium")
+pytestmark = [
+    pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set"),
+    pytest.mark.skipif(not CHROMIUM, reason="Chromium is not installed (Debian: apt-get install "
+                                            "chromium): the browser tests are skipped"),
+]
+LOCAL = ("file:", "data:", "blob:", "about:")
+# Chromium's own background traffic stays off, so that any request seen comes from the page
+FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--no-first-run",
+         "--disable-component-update", "--disable-sync", "--disable-quic"]
+# TeX left in the text outside MathJax's output and outside code: a control word, a delimiter
+TEX_LEFT = r"""() => {
+    const skip = "SCRIPT,STYLE,PRE,CODE,TEXTAREA,MJX-CONTAINER,MJX-ASSISTIVE-MML";
+    const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+    const left = [];
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+        if (node.parentElement.closest(skip.split(",").join(","))) continue;
+        if (/\\[A-Za-z]{2,}|\\[()\[\]]|\$[^$\s]|[_^]\{/.test(node.textContent))
+            left.push(node.textContent.trim().slice(0, 80));
+    }
+    return left;
+}"""
+
+
+def pages():
+    """The book's pages: not the theme's snippets under ``_static``, nor the redirect at the top
+    (``index.html`` sends the reader to ``book/index.html``, which is tested)."""
+    if not BUILT:
+        return []
+    root = Path(BUILT).resolve()
+    return sorted(p for p in root.rglob("*.html")
+                  if not p.relative_to(root).parts[0].startswith("_")
+                  and 'http-equiv="Refresh"' not in p.read_text(encoding="utf-8"))
+
+
+def name(path):
+    return str(path.relative_to(Path(BUILT).resolve()))
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        chromium = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield chromium
+        chromium.close()
+
+
+class Visit:
+    """A page opened in a fresh 1280 x 900 window, with its console errors and remote requests."""
+
+    def __init__(self, browser, path):
+        self.context = browser.new_context(viewport={"width": 1280, "height": 900})
+        self.errors, self.remote = [], []
+        self.context.route("**/*", self._route)
+        self.page = self.context.new_page()
+        self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+        self.page.goto(path.as_uri(), wait_until="load")
+        self.page.evaluate("() => window.MathJax && MathJax.startup && MathJax.startup.promise")
+
+    def _route(self, route):
+        if route.request.url.startswith(LOCAL):
+            route.continue_()
+        else:  # nothing leaves the machine: record it and refuse it
+            self.remote.append(route.request.url)
+            route.abort()
+
+    def close(self):
+        self.context.close()
+
+
+@pytest.mark.parametrize("path", pages(), ids=name)
+def test_page_loads_clean_renders_its_tex_and_fits_the_window(browser, path):
+    visit = Visit(browser, path)
+    page = visit.page
+    shots = Path(BUILT).parent / "screenshots"
+    shots.mkdir(exist_ok=True)
+    page.screenshot(path=shots / (name(path).replace("/", "_") + ".png"))
+    left = page.evaluate(TEX_LEFT)
+    width = page.evaluate("() => [document.documentElement.scrollWidth, window.innerWidth]")
+    visit.close()
+    assert not visit.errors, f"console errors: {visit.errors}"
+    assert not visit.remote, f"requests leaving the machine: {visit.remote}"
+    assert not left, f"TeX left unrendered: {left[:5]}"
+    assert width[0] <= width[1], f"the page is {width[0]} px wide in a {width[1]} px window"
+
+
+def with_selector(selector):
+    """The pages whose HTML holds ``selector``'s class (read from the file, no browser)."""
+    return [p for p in pages() if selector in p.read_text(encoding="utf-8")]
+
+
+@pytest.mark.parametrize("path", with_selector('class="solution dropdown'), ids=name)
+def test_solution_dropdowns_open(browser, path):
+    visit = Visit(browser, path)
+    solutions = visit.page.locator("div.solution.dropdown")
+    try:
+        for i in range(solutions.count()):
+            body = solutions.nth(i).locator("#solution-content").first
+            assert not body.is_visible(), f"solution {i} is open before a click"
+            solutions.nth(i).locator("button.toggle-button").click()
+            body.wait_for(state="visible", timeout=3000)
+    finally:
+        visit.close()
+
+
+@pytest.mark.parametrize("path", with_selector('class="animation"'), ids=name)
+def test_animations_play_and_draw_their_controls(browser, path):
+    visit = Visit(browser, path)
+    try:
+        for animation in visit.page.locator("div.animation").all():
+            animation.scroll_into_view_if_needed()
+            icons = animation.locator("button svg")
+            assert icons.count() == 9
+            for i in range(icons.count()):
+                box = icons.nth(i).bounding_box()
+                assert box and box["width"] >= 10 and box["height"] >= 10, "an icon is not drawn"
+            slider = animation.locator("input.anim-slider")
+            before = slider.input_value()
+            animation.locator('button[title="Play"]').click()
+            visit.page.wait_for_timeout(600)
+            assert slider.input_value() != before, "the animation did not advance when played"
+            animation.locator('button[title="Pause"]').click()
+    finally:
+        visit.close()

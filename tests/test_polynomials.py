@@ -1,0 +1,127 @@
+"""Tests of mechnum.polynomials: companion roots, conditioning, Sylvester, counting bounds."""
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from numpy.testing import assert_allclose
+
+from mechnum import polynomials as poly
+from mechnum.polynomials import PolynomialSystem
+
+MANY = settings(max_examples=200, deadline=None)
+P = np.polynomial.polynomial
+roots_strategy = st.lists(st.floats(-10, 10), min_size=1, max_size=6)
+
+
+@MANY
+@given(r=roots_strategy, lead=st.floats(0.1, 10), batch=st.integers(1, 3))
+def test_roots_are_the_companion_eigenvalues_and_match_the_true_roots(r, lead, batch):
+    r = np.sort(r)
+    assume(len(r) == 1 or np.diff(r).min() > 0.5)  # well separated: well conditioned
+    c = lead * P.polyfromroots(r)
+    C = np.tile(c, (batch, 1))
+    found = poly.roots(C)
+    assert found.shape == (batch, len(r))
+    for row in found:
+        assert_allclose(np.sort(row.real), r, atol=1e-6 * (1 + np.abs(r).max()) ** len(r))
+    M = poly.companion(c)
+    assert_allclose(np.poly(M)[::-1] * c[-1], c, atol=1e-9 * np.abs(c).max())
+
+
+@MANY
+@given(r=roots_strategy, delta=st.floats(1e-12, 1e-8), seed=st.integers(0, 1000))
+def test_root_condition_bounds_how_far_a_simple_root_moves(r, delta, seed):
+    r = np.sort(r)
+    assume(len(r) == 1 or np.diff(r).min() > 0.5)
+    c = P.polyfromroots(r)
+    kappa = poly.root_condition(c, r)
+    rng = np.random.default_rng(seed)
+    moved = poly.roots(c * (1 + delta * rng.uniform(-1, 1, c.shape)))
+    for root, k in zip(r, kappa):
+        gap = np.abs(moved - root).min()
+        # first order in delta, plus the eigensolver's own round-off (relative to the largest
+        # coefficient, so absolute in the root: a root near 0 is not known relatively)
+        assert gap <= 2 * k * delta + 1e-12 * (1 + k) * (1 + np.abs(r).max())
+
+
+def test_a_double_root_moves_by_the_square_root_of_the_perturbation():
+    c = P.polyfromroots([1.0, 1.0, 3.0])
+    assert np.isinf(poly.root_condition(c, [1.0])[0])
+    moved = poly.roots(c + [1e-10, 0, 0, 0])
+    assert 1e-6 < np.abs(moved - 1.0).min() < 1e-4  # sqrt(1e-10) = 1e-5
+
+
+@MANY
+@given(p=st.lists(st.integers(-5, 5), min_size=1, max_size=4),
+       q=st.lists(st.integers(-5, 5), min_size=1, max_size=4))
+def test_sylvester_determinant_is_the_product_of_root_differences(p, q):
+    a, b = P.polyfromroots(p), P.polyfromroots(q)  # integer coefficients, exact in floats
+    S = poly.sylvester(a, b)
+    assert S.shape == (len(p) + len(q),) * 2
+    exact = sp.Matrix(poly.sylvester([int(v) for v in a], [int(v) for v in b])).det()
+    # Res(p, q) = prod (p_i - q_j) for monic p, q: zero exactly when a root is shared
+    assert exact == np.prod([pi - qj for pi in p for qj in q], dtype=object)
+    hadamard = np.prod(np.linalg.norm(S, axis=1))  # bounds |det S|; round-off is eps of it
+    assert_allclose(np.linalg.det(S), float(exact), atol=1e-13 * hadamard)
+
+
+def test_sylvester_with_symbolic_coefficients_eliminates_a_variable():
+    x, y = sp.symbols("x y")
+    # x^2 + y^2 - 1 and x - y, as polynomials in x with coefficients in y
+    S = poly.sylvester([y ** 2 - 1, 0, 1], [-y, 1])
+    assert S.dtype == object
+    assert sp.expand(sp.Matrix(S).det() - (2 * y ** 2 - 1)) == 0
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: poly.companion([1.0, 0.0]), "zero leading"),
+    (lambda: poly.companion([1.0]), "at least 2"),
+    (lambda: poly.roots([np.nan, 1.0]), "finite"),
+    (lambda: poly.roots([[1.0, 1.0], [1.0, 0.0]]), "zero leading"),
+    (lambda: poly.root_condition([1.0, 0.0], [1.0]), "zero leading"),
+    (lambda: poly.sylvester([1.0], [1.0, 2.0]), "degree >= 1"),
+    (lambda: poly.mixed_volume([[(0, 0)]]), "shape"),
+    (lambda: PolynomialSystem.from_dicts([{}]), "no term"),
+    (lambda: PolynomialSystem.from_dicts([{(1, 0): np.inf}]), "finite"),
+    (lambda: PolynomialSystem.from_dicts([{(1, 0): 1}, {(1,): 1}]), "same length"),
+    (lambda: PolynomialSystem.from_dicts([{(-1, 0): 1}]), "integers >= 0"),
+])
+def test_bad_input_raises_a_value_error_that_names_it(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+@MANY
+@given(d1=st.integers(1, 4), d2=st.integers(1, 4), seed=st.integers(0, 10 ** 6))
+def test_mixed_volume_of_dense_supports_is_bezouts_number(d1, d2, seed):
+    dense = [[(i, j) for i in range(d + 1) for j in range(d + 1 - i)] for d in (d1, d2)]
+    assert poly.mixed_volume(dense) == d1 * d2
+    rng = np.random.default_rng(seed)
+    system = PolynomialSystem.from_dicts([{e: rng.normal() for e in s} for s in dense])
+    assert poly.bezout_bound(system) == d1 * d2 and system.degrees == (d1, d2)
+
+
+def test_mixed_volume_counts_the_solutions_of_sparse_systems():
+    # a x y + b x + c y + d = 0 twice: 2 solutions, though Bezout says 4
+    bilinear = [(0, 0), (1, 0), (0, 1), (1, 1)]
+    assert poly.mixed_volume([bilinear, bilinear]) == 2
+    # the unit simplex in 3-D: MV(P, P, P) = 3! vol(P) = 1
+    simplex = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    assert poly.mixed_volume([simplex] * 3) == 1
+
+
+@MANY
+@given(seed=st.integers(0, 10 ** 6))
+def test_system_evaluation_and_jacobian_agree_with_finite_differences(seed):
+    rng = np.random.default_rng(seed)
+    eqs = [{tuple(rng.integers(0, 3, 3)): rng.normal() for _ in range(4)} for _ in range(3)]
+    system = PolynomialSystem.from_dicts(eqs)
+    x = rng.normal(size=3) + 1j * rng.normal(size=3)
+    J = system.jacobian(x)
+    h = 1e-7
+    fd = np.column_stack([(system(x + h * e) - system(x - h * e)) / (2 * h) for e in np.eye(3)])
+    assert_allclose(J, fd, atol=1e-5 * (1 + np.abs(J).max()))
+    H = system.homogenized()  # at x0 = 1 the homogenized system is the system
+    assert_allclose(H(np.r_[1.0, x]), system(x), atol=1e-12 * (1 + np.abs(system(x)).max()))
