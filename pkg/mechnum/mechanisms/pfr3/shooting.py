@@ -226,6 +226,7 @@ def chart_from_clamps(mech, clamp_moments, forces):
         ``(psi_i, t_i)``; ``t_i`` is NaN for a rod whose ``|k_rel|`` rounds to 0 or 1 from its
         clamp state (a rod straight to rounding, or in tension beyond the study's chart).
     modes : ndarray of int, shape (..., 3)
+        The rods' modes; 0 where the clamp state gives none (a rod straight to rounding).
 
     Examples
     --------
@@ -245,7 +246,7 @@ def chart_from_clamps(mech, clamp_moments, forces):
     z = np.full(psi.shape[:-1] + (6,), np.nan)
     z[..., 0::2] = psi
     z[..., 1::2][inside] = regular.t_from_k_rel(psi[inside], k_rel[inside])
-    return z, modes.astype(int)
+    return z, np.where(np.isnan(modes), 0, modes).astype(int)
 
 
 def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
