@@ -193,6 +193,30 @@ def test_inverse_map_and_singular_points(table8):
     assert points.shape[1] == 2
 
 
+def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
+    # The study's shooting example (Annex II 4.1) at its pose: along +x the branch folds
+    # (det J_IK -> 0 while lambda1 runs off) about 0.67 m from the centre.
+    mech, pose = pfr3.SHOOTING_EXAMPLE, pfr3.SHOOTING_POSE
+    guess = np.concatenate([np.r_[-0.002, 0.04 * model.UNIT_CIRCLE[i], 0.0]
+                            for i in range(3)])
+    start = pfr3.inverse_shooting(mech, pose, guess)
+    z, modes = shooting.chart_from_clamps(mech, start.clamp_moments[0], start.forces[0])
+    centre = pfr3.inverse_path(mech, [pose, pose], start.lambdas[0], z, modes,
+                               method="shooting")
+    edge = pfr3.workspace_edge(mech, pose, start.lambdas[0], z, modes, directions=3)
+    assert edge.converged.all() and edge.pose.shape == (3, 3)
+    radius = np.hypot(*(edge.pose[:, :2] - pose[:2]).T)
+    assert np.allclose(radius, radius[0], atol=1e-3)      # the mechanism's threefold symmetry
+    assert 0.66 < radius[0] < 0.68
+    assert (np.abs(edge.det_ik) < 0.05 * abs(centre.det_ik[-1])).all()
+
+
+@pytest.mark.parametrize("bad", [dict(directions=0), dict(step=-0.1), dict(levels=-1)])
+def test_workspace_edge_rejects_bad_settings(bad):
+    with pytest.raises(ValueError):
+        pfr3.workspace_edge(MECH, [0.0, 0.0, 0.0], LAMBDAS, np.full(6, 0.5), **bad)
+
+
 def test_draw_runs(table8):
     import matplotlib
     matplotlib.use("Agg")

@@ -10,7 +10,8 @@ are pinned to the vertices of a rigid triangular platform, which carries a force
   given slider inputs with its stability, crossings and an independent check;
 * :mod:`~mechnum.mechanisms.pfr3.shooting`: the study's RK4 shooting, inverse and direct;
 * :mod:`~mechnum.mechanisms.pfr3.paths`: trajectories by continuation, the determinants of the
-  direct and inverse problems, maps over the plane and singularity curves;
+  direct and inverse problems, maps over the plane, singularity curves and the workspace's
+  edge (:func:`workspace_edge`);
 * :mod:`~mechnum.mechanisms.pfr3.study`: the study's published numbers, the inputs they belong
   to, and its own residual; :func:`reproduce` gives the registry's values;
 * :func:`draw` draws an equilibrium.
@@ -25,7 +26,7 @@ from mechnum.mechanisms.pfr3.model import (SHOOTING_EXAMPLE, SHOOTING_POSE, TABL
                                            forward_system, full_system, pins, pose_of_tips,
                                            thesis_from_chart)
 from mechnum.mechanisms.pfr3.paths import (Path, forward_path, inverse_map, inverse_path,
-                                           jacobians, singular_points)
+                                           jacobians, singular_points, workspace_edge)
 from mechnum.mechanisms.pfr3.reproduction import reproduce
 from mechnum.mechanisms.pfr3.shooting import (Shooting, forward_shooting, inverse_shooting,
                                               shooting_guess)

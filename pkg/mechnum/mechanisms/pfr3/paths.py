@@ -329,6 +329,75 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
     return _finish(mech, modes, u[..., :6], u[..., 6:], grid, converged)
 
 
+def workspace_edge(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, step=0.04,
+                   reach=1.0, levels=6, nodes=STUDY_NODES):
+    """Where the inverse problem's branch ends on rays from the platform's centre, at its fixed
+    angle: the edge of the workspace that the equilibrium reaches (by shooting, modes free).
+
+    All rays are followed at once (:func:`mechnum.newton.solve_path`), from the equilibrium
+    at ``pose`` (sliders ``lambdas``, rods ``z``), in steps of ``step`` up to ``reach`` from
+    the centre; from each ray's last solution on, the ray is followed again in steps four
+    times shorter, ``levels`` times, so the edge is located to ``step / 4**levels`` (a step
+    fails near a fold when the solution changes too fast for it). Where the branch folds
+    (``det_ik`` through zero) the last points approach the fold, and their ``det_ik`` falls
+    towards zero; a ray may also end at ``reach``.
+
+    Parameters
+    ----------
+    mech, modes
+        As in :func:`~mechnum.mechanisms.pfr3.forward_elliptic`.
+    pose : array_like, shape (3,)
+        The centre and the platform's (fixed) angle.
+    lambdas, z : array_like, shapes (3,) and (6,)
+        An equilibrium at ``pose``.
+    directions, step, reach, levels, nodes : optional
+        Rays at equal angles, the first step (m), the largest distance (m), refinements and
+        RK4 nodes per rod.
+
+    Returns
+    -------
+    Path
+        Shape ``(directions,)``: the last equilibrium of each ray (its ``pose`` is the edge).
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> pose = shooting.shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)[9:]
+    >>> edge = workspace_edge(model.TABLE8, pose, model.TABLE8_LAMBDAS, z, directions=4,
+    ...                       step=0.05, reach=0.1, levels=1)
+    >>> edge.pose.shape, bool(edge.converged.all())
+    ((4, 3), True)
+    """
+    pose = _validate.array(pose, "pose", shape=(3,))
+    directions = _validate.maxiter(directions, "directions", minimum=1)
+    levels = _validate.maxiter(levels, "levels", minimum=0)
+    step, reach = _validate.positive(step, "step"), _validate.positive(reach, "reach")
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
+    angle = 2.0 * np.pi * np.arange(directions) / directions
+    ray = np.column_stack((np.cos(angle), np.sin(angle)))
+    fun, jac, _ = shooting._system(mech, nodes, "lambdas", 0.0)
+    u = np.tile(shooting.shooting_guess(mech, lambdas, z, modes, unknown="lambdas"),
+                (directions, 1))
+    r, h = np.zeros(directions), step
+    for level in range(levels + 1):
+        # each level starts at its rays' last solutions (the centre first), and goes on for
+        # three steps of the level before (a step of the secant prediction needs two)
+        steps = np.arange(int(np.ceil(reach / h)) + 1) if level == 0 else np.arange(13)
+        radii = np.minimum(r + h * steps[:, None], reach)                     # (steps, rays)
+        known = np.concatenate((pose[:2] + radii[..., None] * ray,
+                                np.full(radii.shape + (1,), pose[2])), axis=-1)
+        res = newton.solve_path(fun, known, u, jac, tol=shooting.SHOOTING_TOL, resume=False)
+        done = res.converged.sum(axis=0)                 # steps before the first failure
+        moved = np.flatnonzero(done > 0)
+        u[moved] = res.x[done[moved] - 1, moved]
+        r[moved] = radii[done[moved] - 1, moved]
+        if level == 0:
+            converged = done > 0                         # the centre's equilibrium solved
+        h /= 4.0
+    edge = np.column_stack((pose[:2] + r[:, None] * ray, np.full(directions, pose[2])))
+    return _shooting_path(mech, u, converged, edge, "lambdas", nodes, 0.0)
+
+
 def singular_points(x, y, values):
     """Where a map over the grid ``x`` by ``y`` changes sign: points on its zero curve.
 
