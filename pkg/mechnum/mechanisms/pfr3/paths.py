@@ -250,7 +250,24 @@ def _on_branch(z0, z, converged):
 
 
 def _outwards(n, start):
-    return np.arange(start, n), np.arange(start, -1, -1)
+    """The indices from ``start`` to the end and back to 0, as two paths of one length (the
+    shorter padded with its last index: a step of length zero, solved at once), and their
+    lengths."""
+    up, down = np.arange(start, n), np.arange(start, -1, -1)
+    steps = max(len(up), len(down))
+    padded = [np.pad(i, (0, steps - len(i)), mode="edge") for i in (up, down)]
+    return np.stack(padded, axis=1), (len(up), len(down))
+
+
+def _both_ways(fun, jac, params, u0, keep, controls):
+    """Continuation from ``u0`` (batch, m) along ``params`` (steps, 2, batch, 3), both ways at
+    once; the solutions (steps, 2, batch, m), NaN where continuation stopped."""
+    steps, _, batch, _ = params.shape
+    u0 = np.concatenate((u0, u0))
+    res = newton.solve_path(fun, params.reshape(steps, 2 * batch, 3), u0, jac, resume=False,
+                            **controls)
+    ok = keep(u0, res.x, res.converged)
+    return np.where(ok[..., None], res.x, np.nan).reshape(steps, 2, batch, -1)
 
 
 def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
@@ -313,16 +330,16 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
         def keep(u0, u, ok):
             return ok
     column = np.full((len(y), len(u0)), np.nan)
-    for js in _outwards(len(y), j0):
-        res = newton.solve_path(fun, grid[i0, js], u0, jac, resume=False, **controls)
-        column[js] = np.where(keep(u0, res.x, res.converged)[:, None], res.x, np.nan)
-    alive = ~np.isnan(column[:, 0])
+    js, lengths = _outwards(len(y), j0)
+    both = _both_ways(fun, jac, grid[i0, js][:, :, None], u0[None], keep, controls)
+    for way, n in enumerate(lengths):
+        column[js[:n, way]] = both[:n, way, 0]
+    alive = np.flatnonzero(~np.isnan(column[:, 0]))
     u = np.full(grid.shape[:2] + (len(u0),), np.nan)
-    for i_s in _outwards(len(x), i0):
-        res = newton.solve_path(fun, grid[i_s][:, alive], column[alive], jac, resume=False,
-                                **controls)
-        ok = keep(column[alive], res.x, res.converged)
-        u[i_s[:, None], alive] = np.where(ok[..., None], res.x, np.nan)
+    i_s, lengths = _outwards(len(x), i0)
+    both = _both_ways(fun, jac, grid[i_s][:, :, alive], column[alive], keep, controls)
+    for way, n in enumerate(lengths):
+        u[i_s[:n, way, None], alive] = both[:n, way]
     converged = ~np.isnan(u[..., 0])
     if method == "shooting":
         return _shooting_path(mech, u, converged, grid, "lambdas", nodes, 0.0)
