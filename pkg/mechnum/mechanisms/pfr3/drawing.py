@@ -17,7 +17,7 @@ def draw(ax, mech, lambdas, z, modes=(1, 1, 1), *, force_scale=0.3,
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    mech : Mechanism
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     z : array_like, shape (6,)

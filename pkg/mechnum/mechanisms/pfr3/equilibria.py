@@ -177,7 +177,7 @@ def forward_elliptic(mech, lambdas, modes=(1, 1, 1), *, n_starts=N_STARTS, check
 
     Parameters
     ----------
-    mech : Mechanism
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     modes : (int, int, int), optional
@@ -191,7 +191,7 @@ def forward_elliptic(mech, lambdas, modes=(1, 1, 1), *, n_starts=N_STARTS, check
 
     Returns
     -------
-    Equilibria
+    ~mechnum.mechanisms.pfr3.equilibria.Equilibria
         ``n >= 0`` equilibria, sorted by ``psi1``.
 
     Raises

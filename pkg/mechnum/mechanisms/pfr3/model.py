@@ -129,7 +129,7 @@ TABLE8 = Mechanism(UNIT_CIRCLE, STUDY_GUIDES, np.radians([45.0, 180.0, -60.0]), 
 """The example of the study's Tabla 8 (13.3.1) with the inputs its solutions belong to: clamp
 angles 45, **180** and -60 deg (the text prints 0 deg for rod 2; the code's option ``opt = 2``
 has 180), platform side **0.2 m** (not printed), ``O_i`` unrounded, guides of Annex II 4.4
-(irrelevant at ``lambda = 0``). See :func:`mechnum.mechanisms.pfr3.recover_inputs`."""
+(irrelevant at ``lambda = 0``). See :func:`~mechnum.mechanisms.pfr3.study.recover_inputs`."""
 TABLE8_LAMBDAS = np.zeros(3)
 """The slider inputs of Tabla 8 (m)."""
 TABLE2 = Mechanism(UNIT_CIRCLE, STUDY_GUIDES, STUDY_GUIDES, 0.5, force=[0.3, -0.2])

@@ -145,7 +145,7 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
     Parameters
     ----------
     mech, modes
-        As in :func:`~mechnum.mechanisms.pfr3.forward_elliptic`.
+        As in :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`.
     poses : array_like, shape (n, 3)
         Platform poses ``(x, y, phi)``, close to each other.
     lambdas, z : array_like, shapes (3,) and (6,)
@@ -362,7 +362,7 @@ def workspace_edge(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, st
     Parameters
     ----------
     mech, modes
-        As in :func:`~mechnum.mechanisms.pfr3.forward_elliptic`.
+        As in :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`.
     pose : array_like, shape (3,)
         The centre and the platform's (fixed) angle.
     lambdas, z : array_like, shapes (3,) and (6,)

@@ -36,7 +36,7 @@ def reproduce(table8=None, table2=None, table2_mirrored=None):
 
     Parameters
     ----------
-    table8, table2, table2_mirrored : Equilibria, optional
+    table8, table2, table2_mirrored : ~mechnum.mechanisms.pfr3.equilibria.Equilibria, optional
         The mode-1 equilibria of :data:`~mechnum.mechanisms.pfr3.model.TABLE8`, of
         :data:`~mechnum.mechanisms.pfr3.model.TABLE2` and of its mirrored platform, if already
         computed (a chapter passes its own); by default :func:`forward_elliptic` with

@@ -1,7 +1,7 @@
 """The 3PFR by RK4 shooting: the study's (109) with its unknowns (111) and (112) (11.4.1).
 
-Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.tip_jacobian`, complex-step
-derivatives in the same sweep). The twelve equations are the study's (109): at each pin a
+Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.shooting.tip_jacobian`,
+complex-step derivatives in the same sweep). The twelve equations are the study's (109): at each pin a
 moment-free tip at ``B_i``, and the platform's balance of forces and of moments about the origin,
 ``sum_i p_i x n_i - P x F - M = 0`` (its (110) prints rod 1 three times in ``f12``). The
 unknowns are the clamp moments and forces with the sliders, ``X = (m0_i, n_i, lambda_i)`` (its
@@ -162,7 +162,7 @@ def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TO
 
     Parameters
     ----------
-    mech : Mechanism
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
     lambdas : array_like, shape (3,) or (batch, 3)
         Slider inputs (m).
     guess : array_like, shape (12,) or (batch, 12)
