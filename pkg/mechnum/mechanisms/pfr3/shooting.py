@@ -1,0 +1,271 @@
+"""The 3PFR by RK4 shooting: the study's (109) with its unknowns (111) and (112) (11.4.1).
+
+Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.shooting.tip_jacobian`,
+complex-step derivatives in the same sweep). The twelve equations are the study's (109): at each pin a
+moment-free tip at ``B_i``, and the platform's balance of forces and of moments about the origin,
+``sum_i p_i x n_i - P x F - M = 0`` (its (110) prints rod 1 three times in ``f12``). The
+unknowns are the clamp moments and forces with the sliders, ``X = (m0_i, n_i, lambda_i)`` (its
+(111), the inverse problem at a given pose), or with the pose, ``X = (m0_i, n_i; x, y, phi)``
+(its (112), the direct problem at given sliders).
+
+The study's shooting programs (Annex II 4.1 to 4.3) end each rod with a rigid segment of length
+``d = 0.1`` m along the tip's tangent, pinned at its far end: ``rigid_end`` reproduces it
+(``pin = p(L) + d t(L)``, ``m_pin = m(L) - d t(L) x n``); the study's text and its elliptic
+program have none (``rigid_end = 0``, the default).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechnum import _validate, newton, rods
+from mechnum.mechanisms.pfr3 import model
+from mechnum.mechanisms.rfr2.shooting import STUDY_NODES, _memoised
+from mechnum.rods import regular
+
+# Shooting converges when the dimensionless residual is below this: round-off of the O(1)
+# positions and forces is ~1e-15; 1e-12 leaves a margin of a thousand.
+SHOOTING_TOL = 1e-12
+STUDY_RIGID_END = 0.10
+"""The rigid segment at the pinned end of the study's shooting programs (``d``, m)."""
+
+
+@dataclass(frozen=True)
+class Shooting:
+    """Equilibria found by RK4 shooting (:func:`forward_shooting`, :func:`inverse_shooting`).
+
+    Attributes
+    ----------
+    lambdas, pose : ndarray, shape (batch, 3)
+        Slider inputs (m) and platform pose ``(x, y, phi)`` (m, m, rad).
+    clamp_moments : ndarray, shape (batch, 3)
+    forces : ndarray, shape (batch, 3, 2)
+        Force on each rod at its tip (N).
+    jacobian : ndarray, shape (batch, 12, 12)
+        The scaled Jacobian of (109) in the unknowns: the study's ``J_IK`` (in (111)) or
+        ``J_FK`` (in (112)).
+    newton : mechnum.newton.BatchNewtonResult
+        The iteration; read ``newton.status``.
+    """
+
+    lambdas: np.ndarray
+    pose: np.ndarray
+    clamp_moments: np.ndarray
+    forces: np.ndarray
+    jacobian: np.ndarray
+    newton: newton.BatchNewtonResult
+
+
+def _pins(mech, m0, force, lambdas, nodes, rigid_end):
+    """States ``(x, y, theta, m)`` at the pins (batch, 3, 4) and their derivatives with respect
+    to ``(m0, n_x, n_y)`` (batch, 3, 4, 3)."""
+    tip, D = rods.tip_jacobian(mech.EI, mech.L, m0, force, theta0=mech.clamp_angles,
+                               origin=model.clamps(mech, lambdas), nodes=nodes)
+    if rigid_end:
+        c, s = np.cos(tip[..., 2]), np.sin(tip[..., 2])
+        dn = np.zeros(D.shape[:-2] + (2, 3))
+        dn[..., 0, 1] = dn[..., 1, 2] = 1.0
+        t_cross_n = c * force[..., 1] - s * force[..., 0]
+        d_theta = D[..., 2, :]
+        tip = tip.copy()
+        tip[..., 0] += rigid_end * c
+        tip[..., 1] += rigid_end * s
+        tip[..., 3] -= rigid_end * t_cross_n
+        D = D.copy()
+        D[..., 0, :] -= rigid_end * s[..., None] * d_theta
+        D[..., 1, :] += rigid_end * c[..., None] * d_theta
+        D[..., 3, :] -= rigid_end * ((-s * force[..., 1] - c * force[..., 0])[..., None]
+                                     * d_theta + c[..., None] * dn[..., 1, :]
+                                     - s[..., None] * dn[..., 0, :])
+    return tip, D
+
+
+def _system(mech, nodes, unknown, rigid_end):
+    """Residual (109) and its Jacobian, ``fun(X, known)`` and ``jac(X, known)``, batched, for
+    ``unknown`` "lambdas" ((111), ``known`` the pose) or "pose" ((112), ``known`` the sliders);
+    both from one RK4 sweep, remembered between the two calls."""
+    moment, length, force = mech.EI / mech.L, mech.L, mech.EI / mech.L ** 2
+    scale = np.array([moment, length, length] * 3 + [force, force, moment])
+    guide = np.stack((np.cos(mech.guide_angles), np.sin(mech.guide_angles)), -1)
+
+    def split(X, known):
+        """``(m0, n, lambdas, pose)`` of the unknowns, the known ones filled in."""
+        if unknown == "lambdas":
+            per_rod = X.reshape(-1, 3, 4)
+            return per_rod[..., 0], per_rod[..., 1:3], per_rod[..., 3], known
+        per_rod = X[:, :9].reshape(-1, 3, 3)
+        return per_rod[..., 0], per_rod[..., 1:], known, X[:, 9:]
+
+    @_memoised
+    def sweep(X, known):
+        m0, n, lambdas, pose = split(X, known)
+        pin, D = _pins(mech, m0, n, lambdas, nodes, rigid_end)
+        return pin, D, n, pose, model.pins(mech, pose)
+
+    def fun(X, known):
+        pin, _, n, pose, B = sweep(X, known)
+        rows = np.concatenate((pin[..., 3:], pin[..., :2] - B), axis=-1).reshape(-1, 9)
+        P, F = pose[:, :2], mech.force
+        torque = (model.cross(pin[..., :2], n).sum(axis=1) - model.cross(P, F) - mech.moment)
+        return np.concatenate((rows, n.sum(axis=1) - F, torque[:, None]), axis=-1) / scale
+
+    def jac(X, known):
+        pin, D, n, pose, B = sweep(X, known)
+        width = 4 if unknown == "lambdas" else 3
+        J = np.zeros((len(X), 12, 12))
+        for i in range(3):
+            rows, cols = slice(3 * i, 3 * i + 3), slice(width * i, width * i + 3)
+            J[:, rows, cols] = D[:, i][:, [3, 0, 1], :]
+            J[:, 9:11, width * i + 1:width * i + 3] = np.eye(2)
+            dp = D[:, i, :2, :]                                   # d pin / d (m0, n)
+            J[:, 11, cols] = dp[:, 0] * n[:, i, 1, None] - dp[:, 1] * n[:, i, 0, None]
+            J[:, 11, width * i + 1] -= pin[:, i, 1]
+            J[:, 11, width * i + 2] += pin[:, i, 0]
+            if unknown == "lambdas":
+                J[:, 3 * i + 1:3 * i + 3, 4 * i + 3] = guide[i]
+                J[:, 11, 4 * i + 3] = guide[i, 0] * n[:, i, 1] - guide[i, 1] * n[:, i, 0]
+            else:
+                r = B[:, i] - pose[:, :2]
+                J[:, 3 * i + 1:3 * i + 3, 9:11] = -np.eye(2)
+                J[:, 3 * i + 1, 11], J[:, 3 * i + 2, 11] = r[:, 1], -r[:, 0]
+        if unknown == "pose":
+            J[:, 11, 9], J[:, 11, 10] = -mech.force[1], mech.force[0]
+        return J / scale[:, None]
+
+    return fun, jac, split
+
+
+def _shooting(mech, unknown, known, guess, nodes, tol, maxiter, rigid_end):
+    X0 = np.atleast_2d(_validate.array(guess, "guess"))
+    if X0.shape[1] != 12:
+        raise ValueError(f"guess must have a last axis of 12 (the study's unknowns), "
+                         f"got shape {np.shape(guess)}")
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
+    rigid_end = _validate.scalar(rigid_end, "rigid_end", nonnegative=True)
+    known = np.broadcast_to(known, (len(X0), 3))
+    fun, jac, split = _system(mech, nodes, unknown, rigid_end)
+    res = newton.solve_batch(lambda X: fun(X, known), X0, lambda X: jac(X, known), tol=tol,
+                             maxiter=maxiter, criterion="residual", damping=True,
+                             raise_on_failure=False)
+    m0, n, lambdas, pose = split(res.x, known)
+    return Shooting(np.array(lambdas), np.array(pose), m0, n, jac(res.x, known), res)
+
+
+def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
+                     rigid_end=0.0):
+    """The direct problem by RK4 shooting: the study's (109) in its unknowns (112).
+
+    ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, m0_3, n3_x, n3_y, x, y, phi)``: damped Newton
+    (complex-step Jacobian; the study differentiates by forward differences with a step of
+    ``1e-11``) drives the pins' moments to zero, the tips to the platform and its loads to
+    balance. The guess picks the equilibrium.
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,) or (batch, 3)
+        Slider inputs (m).
+    guess : array_like, shape (12,) or (batch, 12)
+        Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
+    nodes : int, optional
+        RK4 nodes per rod (the study's 41; the error falls as ``nodes**-4``).
+    tol, maxiter : optional
+        Newton's tolerance on the scaled residual, most iterations.
+    rigid_end : float, optional
+        Length of a rigid segment at each pinned end (m): the study's programs have 0.1.
+
+    Returns
+    -------
+    Shooting
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> X = shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)
+    >>> sol = forward_shooting(model.TABLE8, model.TABLE8_LAMBDAS, X, nodes=801)
+    >>> np.round(sol.pose, 4).tolist(), sol.newton.status.tolist()
+    ([[0.0165, 0.0206, 1.2027]], ['converged'])
+    """
+    return _shooting(mech, "pose", _validate.array(lambdas, "lambdas"), guess, nodes, tol,
+                     maxiter, rigid_end)
+
+
+def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
+                     rigid_end=0.0):
+    """The inverse problem by RK4 shooting: the study's (109) in its unknowns (111).
+
+    ``X = (m0_1, n1_x, n1_y, lambda_1, ..., m0_3, n3_x, n3_y, lambda_3)`` for a given pose
+    ``(x, y, phi)``; otherwise as :func:`forward_shooting`. A pose with a pin farther than
+    ``L`` from its guide raises :class:`~mechnum.errors.UnreachablePoseError`.
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> X = shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z, unknown="lambdas")
+    >>> sol = inverse_shooting(model.TABLE8, [0.0165, 0.0206, 1.2027], X, nodes=801)
+    >>> np.round(sol.lambdas, 3).tolist()          # the printed pose has 4 decimals
+    [[0.0, -0.0, -0.0]]
+    """
+    model.check_reach(mech, pose)
+    return _shooting(mech, "lambdas", _validate.array(pose, "pose"), guess, nodes, tol,
+                     maxiter, rigid_end)
+
+
+def chart_from_clamps(mech, clamp_moments, forces):
+    """The chart and modes of rods known by their clamp moments and tip forces (shooting).
+
+    Parameters
+    ----------
+    clamp_moments : array_like, shape (..., 3)
+    forces : array_like, shape (..., 3, 2)
+        Global forces on the rods at their tips (N).
+
+    Returns
+    -------
+    z : ndarray, shape (..., 6)
+        ``(psi_i, t_i)``; ``t_i`` is NaN for a rod whose ``|k_rel|`` rounds to 0 or 1 from its
+        clamp state (a rod straight to rounding, or in tension beyond the study's chart).
+    modes : ndarray of int, shape (..., 3)
+        The rods' modes; 0 where the clamp state gives none (a rod straight to rounding).
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> _, force, moment, _ = model.rods(model.TABLE8, model.TABLE8_LAMBDAS, z, jacobian=False)
+    >>> back, modes = chart_from_clamps(model.TABLE8, moment, force)
+    >>> bool(np.allclose(back, z, atol=1e-12)), modes.tolist()
+    (True, [1, 1, 1])
+    """
+    m0 = _validate.array(clamp_moments, "clamp_moments")
+    forces = _validate.array(forces, "forces")
+    c, s = np.cos(mech.clamp_angles), np.sin(mech.clamp_angles)
+    local = np.stack((c * forces[..., 0] + s * forces[..., 1],
+                      -s * forces[..., 0] + c * forces[..., 1]), axis=-1)
+    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
+    inside = (k_rel != 0) & (np.abs(k_rel) < 1)      # a rod straight to rounding has no chart
+    z = np.full(psi.shape[:-1] + (6,), np.nan)
+    z[..., 0::2] = psi
+    z[..., 1::2][inside] = regular.t_from_k_rel(psi[inside], k_rel[inside])
+    return z, np.where(np.isnan(modes), 0, modes).astype(int)
+
+
+def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
+    """The study's shooting unknowns of closed-form equilibria: (112), or (111) with
+    ``unknown="lambdas"``.
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> np.round(shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)[9:], 4).tolist()
+    [0.0165, 0.0206, 1.2028]
+    """
+    _validate.choice(unknown, ("pose", "lambdas"), "unknown")
+    lambdas = model._lambdas(lambdas)
+    tip, force, moment, _ = model.rods(mech, lambdas, z, model._modes(modes), jacobian=False)
+    per_rod = np.concatenate((moment[..., None], force), axis=-1)       # (..., 3, 3)
+    if unknown == "lambdas":
+        per_rod = np.concatenate((per_rod, np.broadcast_to(lambdas, moment.shape)[..., None]),
+                                 axis=-1)
+        return per_rod.reshape(per_rod.shape[:-2] + (12,))
+    return np.concatenate((per_rod.reshape(per_rod.shape[:-2] + (9,)),
+                           model.pose_of_tips(mech, tip)), axis=-1)

@@ -1,0 +1,162 @@
+"""The study's published 3PFR numbers, the inputs they belong to, and its own residual.
+
+* Tabla 8 (13.3.1) prints two solutions to 4 decimals; its text's inputs do not all fit them and
+  it omits the platform's side: :func:`thesis_residual` evaluates the printed solutions under
+  candidate inputs, :func:`recover_inputs` fits the inputs to them, :func:`digit_matches` tells
+  truncated digits from rounded ones.
+* Tabla 2 (11.4.3) counts the solutions that the study's grid search finds for one mechanism
+  (:data:`~mechnum.mechanisms.pfr3.model.TABLE2`) at several grid sizes and tolerances. The
+  study's residual (114) checks the platform's three side lengths, which the mirror image of the
+  platform satisfies too; :func:`within_study_reach` says which equilibria its refinement could
+  represent.
+"""
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from mechnum import _validate
+from mechnum.mechanisms.pfr3 import model
+from mechnum.rods import regular
+
+TABLE8_PUBLISHED = np.array([[5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952],
+                             [5.9923, -0.9062, 5.3280, -0.8652, 2.8573, -0.0629]])
+"""Tabla 8 as printed, ``(psi_i, k_rel_i)`` of its solutions 1 and 2: the input data of
+:func:`recover_inputs` (the reproduction computes them)."""
+TABLE8_TEXT = model.Mechanism([[-0.866, -0.5], [0.866, -0.5], [0.0, 1.0]], model.STUDY_GUIDES,
+                              np.radians([45.0, 0.0, -60.0]), 0.2, force=[0.0, 0.5])
+"""Tabla 8's inputs as 13.3.1 prints them (``O_i`` rounded, ``theta_2 = 0``); the side, which
+it does not print, set to the fitted 0.2 m."""
+TABLE2_NPSI = (15, 20, 25, 30)
+TABLE2_TOLERANCES = ((1.0, 1.0), (0.5, 1.0), (0.1, 1.0), (0.5, 1.0), (0.5, 0.5), (0.1, 0.1))
+"""Tabla 2's columns ``(tol_L, tol_M)`` as printed (the fourth repeats the second)."""
+TABLE2_COUNTS = np.array([[5, 5, 4, 4, 3, np.nan], [6, 6, 5, 6, 5, np.nan],
+                          [6, 6, 5, 5, np.nan, 3], [np.nan, np.nan, 6, np.nan, 6, np.nan]])
+TABLE2_TIMES = np.array([[2030, 1686, 1270, 1067, 985, np.nan],
+                         [4848, 4341, 3170, 3534, 3592, np.nan],
+                         [9908, 12176, 7771, 7171, np.nan, 5467],
+                         [np.nan, np.nan, 17241, np.nan, 11750, np.nan]])
+"""Tabla 2's solution counts and run times (s), NaN where it prints none."""
+STUDY_GAP = 1e-12
+"""The closest ``1 - |k_rel|`` the study's refinement can hold: its ``Jacobian`` (Annex II 4.5)
+steps ``k_rel`` by ``1e-12`` and aborts (NaN) when that leaves ``|k_rel| < 1``."""
+
+
+def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
+    """The study's refinement residual at solutions ``(psi_i, k_rel_i)`` (Annex II 4.5,
+    ``Residue``; its (114) with the force balance of its code).
+
+    Returns
+    -------
+    ndarray, shape (..., 6)
+        ``|B2 - B1| - a``, ``|B3 - B2| - a``, ``|B1 - B3| - a`` (m), ``F - sum n_i`` (N) and
+        ``sum (B_i - P) x (-n_i) + M`` about the centroid ``P`` (N m).
+
+    Examples
+    --------
+    >>> r = thesis_residual(model.TABLE8, model.TABLE8_LAMBDAS, TABLE8_PUBLISHED)
+    >>> bool(np.abs(r).max() < 2e-4)                # the printed digits leave ~1e-4
+    True
+    >>> float(np.round(thesis_residual(TABLE8_TEXT, model.TABLE8_LAMBDAS,
+    ...                                TABLE8_PUBLISHED[0])[0], 3))     # theta_2 = 0
+    1.679
+    """
+    z = model.chart_from_thesis(solutions)
+    tip, force, _, _ = model.rods(mech, model._lambdas(lambdas), z, model._modes(modes),
+                                  jacobian=False)
+    sides = np.linalg.norm(np.roll(tip, -1, axis=-2) - tip, axis=-1) - mech.a
+    r = tip - tip.mean(axis=-2, keepdims=True)
+    moment = -model.cross(r, force).sum(axis=-1) + mech.moment
+    return np.concatenate((sides, mech.force - force.sum(axis=-2), moment[..., None]), axis=-1)
+
+
+def orientation(mech, lambdas, z, modes=(1, 1, 1)):
+    """+1 where the tips ``B1, B2, B3`` of equilibria ``z`` (..., 6) go anticlockwise, -1 where
+    clockwise: the sign of ``(B2 - B1) x (B3 - B1)``.
+
+    Examples
+    --------
+    >>> orientation(model.TABLE8, model.TABLE8_LAMBDAS, model.chart_from_thesis(
+    ...     TABLE8_PUBLISHED)).tolist()
+    [1.0, 1.0]
+    """
+    tip = model.rods(mech, model._lambdas(lambdas), np.asarray(z, float), model._modes(modes),
+                     jacobian=False)[0]
+    return np.sign(model.cross(tip[..., 1, :] - tip[..., 0, :], tip[..., 2, :] - tip[..., 0, :]))
+
+
+def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=(0.0, 0.5)):
+    """The clamp angles, platform side and bending stiffness that printed solutions determine.
+
+    Each printed solution fixes the three rods' shapes and forces in their clamp frames; with
+    the clamps at ``origins`` and the load ``force``, the mechanism must close into the
+    platform and balance it: six equations per solution (those of
+    :func:`~mechnum.mechanisms.pfr3.model.forward_system`), twelve for two, for five unknowns
+    (three angles, ``a`` and ``EI``), fitted by least squares from ``clamp_angles``.
+
+    Parameters
+    ----------
+    solutions : array_like, shape (m, 6)
+        Printed solutions (mode 1).
+    clamp_angles : array_like, shape (3,)
+        The start of the fit (rad): a candidate set of inputs.
+    origins, force : array_like, optional
+        The guides' points and the load, taken as given.
+
+    Returns
+    -------
+    dict
+        ``clamp_angles`` (rad), ``a`` (m), ``EI`` (N m^2) and ``residual``, the largest
+        (dimensionless) residual of the fit.
+
+    Examples
+    --------
+    >>> fit = recover_inputs(TABLE8_PUBLISHED, np.radians([45.0, 180.0, -60.0]))
+    >>> np.round(np.degrees(fit["clamp_angles"]), 1).tolist(), round(fit["a"], 3)
+    ([45.0, 180.0, -60.0], 0.2)
+    """
+    s = _validate.array(solutions, "solutions", shape=(None, 6))
+    start = _validate.array(clamp_angles, "clamp_angles", shape=(3,))
+
+    def residuals(q):
+        mech = model.Mechanism(origins, model.STUDY_GUIDES, q[:3], q[3], force=force,
+                               EI=q[4])
+        fun, _ = model.forward_system(mech, np.zeros(3))
+        return fun(model.chart_from_thesis(s)).ravel()
+
+    fit = least_squares(residuals, np.concatenate((start, [0.3, model.EI])),
+                        bounds=([-np.inf] * 3 + [1e-3, 1e-3 * model.EI], np.inf),
+                        x_scale=[1.0, 1.0, 1.0, 0.1, model.EI], xtol=1e-15, ftol=1e-15,
+                        gtol=1e-15)
+    return {"clamp_angles": fit.x[:3], "a": float(fit.x[3]), "EI": float(fit.x[4]),
+            "residual": float(np.abs(fit.fun).max())}
+
+
+def digit_matches(exact, printed, decimals=4):
+    """How many printed numbers are the truncation, and how many the rounding, of ``exact``.
+
+    Examples
+    --------
+    >>> digit_matches([5.005957, 2.69081], [5.0059, 2.6908])
+    (2, 1)
+    """
+    exact, printed = np.asarray(exact, float), np.asarray(printed, float)
+    scale = 10.0 ** decimals
+    truncated = np.trunc(exact * scale) / scale
+    rounded = np.round(exact * scale) / scale
+    tiny = 0.5 / scale * 1e-6
+    return (int(np.sum(np.abs(truncated - printed) < tiny)),
+            int(np.sum(np.abs(rounded - printed) < tiny)))
+
+
+def within_study_reach(z):
+    """Which equilibria (chart points ``z``, shape (..., 6)) the study's refinement can hold:
+    every rod with ``1 - |k_rel| > STUDY_GAP`` (computed without cancellation).
+
+    Examples
+    --------
+    >>> within_study_reach(model.chart_from_thesis(TABLE8_PUBLISHED)).tolist()
+    [True, True]
+    """
+    z = _validate.array(z, "z")
+    gap = regular.k_rel_from_t(z[..., 0::2], z[..., 1::2], complement=True)
+    return np.all(gap > STUDY_GAP, axis=-1)
