@@ -1,8 +1,8 @@
 """A cantilever under a growing dead load: its equilibria as curves, for continuation.
 
 With the direction ``psi`` of the tip force fixed and its magnitude ``R`` free, the
-equilibria of a cantilever (RK4 shooting, :func:`mechnum.rods.integrate`) form curves in the
-plane of the dimensionless unknowns ``u = (m0 L / EI, R L**2 / EI)``: one equation,
+equilibria of a cantilever (RK4 shooting, :func:`mechnum.rods.shooting.integrate`) form
+curves in the plane of the dimensionless unknowns ``u = (m0 L / EI, R L**2 / EI)``: one equation,
 ``m(L) L / EI = 0``, in two unknowns, the load last. :class:`DeadLoad` gives that equation
 and its derivatives for :func:`mechnum.continuation.pseudo_arclength`, and the stability of
 each equilibrium: the index of the second variation of the energy
@@ -53,7 +53,8 @@ class DeadLoad:
         return u[0] * self.EI / self.L, u[1] * self.EI / self.L ** 2 * self.direction
 
     def rod(self, u):
-        """The equilibrium's :class:`~mechnum.rods.Rod` at ``u = (m0 L / EI, R L**2 / EI)``."""
+        """The equilibrium's rod (:class:`~mechnum.rods.shooting.Rod`) at
+        ``u = (m0 L / EI, R L**2 / EI)``."""
         return integrate(self.EI, self.L, *self._physical(u), nodes=2 * self.segments + 1)
 
     def fun(self, u):
