@@ -429,6 +429,24 @@ def test_pinned_default_start_reaches_the_mode_1_rod(alpha):
     assert_allclose(res.rod.tip, closed.tip, rtol=0, atol=1e-12)
 
 
+@pytest.mark.parametrize("psi", [PI / 4, PI / 2, 3 * PI / 4, -PI / 2])
+def test_pinned_default_start_converges_over_the_load_range(psi):
+    # issue 17: for P L**2 / EI from 0.1 to 15, the default start is the closed-form cantilever
+    # whose tip is at the point (its Newton converged: the tip within START_TOL, the clamp
+    # moment that cantilever's), under the load that put the tip there; shooting then needs
+    # a Newton step or two (the second for RK4's error on 41 nodes at large loads)
+    EI, L = 2.0, 0.5
+    for alpha in np.geomspace(0.1, 15.0, 13):
+        force = polar(alpha, psi, EI, L)
+        point = rods.cantilever(EI, L, force, nodes=2).tip
+        res = rods.shoot_pinned(EI, L, point, nodes=41)
+        closed = rods.cantilever(EI, L, res.start[1:], nodes=2)
+        assert np.abs(closed.tip - point).max() <= shooting.START_TOL * L
+        assert_allclose(res.start[0], closed.clamp_moment, rtol=1e-12)
+        assert_allclose(res.start[1:], force, rtol=0, atol=1e-3 * alpha * EI / L ** 2)
+        assert res.newton.converged and res.newton.iterations <= 2
+
+
 @EXAMPLES
 @given(st.floats(-1.0, np.log10(15.0)), st.floats(PI / 4, 3 * PI / 4),
        st.sampled_from([-1.0, 1.0]), st.floats(-PI, PI))

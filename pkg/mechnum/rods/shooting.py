@@ -21,6 +21,7 @@ multiple shooting (:func:`shoot_pinned_multiple`), more nodes or the closed form
 """
 
 import cmath
+import functools
 import math
 from dataclasses import dataclass
 
@@ -48,12 +49,12 @@ START_TOL = 1e-9
 """Residual (tip distance over ``L``) at which the closed-form start of a pinned rod is good
 enough: RK4 on the requested grid differs from the closed form by more."""
 START_MAXITER = 60
-"""Most iterations of that start's Newton (damped Newton from linear theory takes up to some
-forty near the limits of mode 1)."""
-START_MAX_STEP = 0.5
-"""Longest step of that Newton in ``(psi, lambda L)`` when full steps fail: under large
-compressive loads a full step from linear theory can leap many turns of ``psi`` away, into
-another rod's basin; steps of half a radian then keep the start on the growing branch."""
+"""Most iterations of that start's Newton (two or three on a transverse load, up to some seven
+on loads within 45 degrees of transverse, from ``P L**2 / EI = 0.1`` to 15)."""
+START_TABLE = np.linspace(0.0, 8.0, 61)
+"""The values of ``lambda L`` at which the start's table of transversely loaded cantilevers is
+computed: ``P L**2 / EI`` up to 64, deflections up to ``0.93 L`` (a point beyond starts from
+the last)."""
 
 
 @dataclass(frozen=True)
@@ -528,40 +529,52 @@ def _reshaped(rod, batch):
                  for name in ("s", "x", "y", "theta", "m", "force")))
 
 
+@functools.cache
+def _transverse_table():
+    """``(y(L) / L, P L**2 / EI)`` of cantilevers under a transverse tip load ``P`` at
+    ``lambda L`` in :data:`START_TABLE`, by the closed form (computed once)."""
+    from mechnum.rods.elliptic import _growing_tip   # the closed form builds on this module
+
+    y = [_growing_tip(0.5 * math.pi, lam)[1] for lam in START_TABLE.tolist()]
+    return np.array(y), START_TABLE ** 2
+
+
 def _pinned_start(EI, L, points, theta0):
     """The default start of :func:`shoot_pinned`: the closed-form cantilever through the point.
 
     A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
     branch) under its tip force. Damped Newton drives the closed form's tip to the point in
-    the variables ``(psi, lambda L)`` (the force's direction in the clamp's frame and
-    ``L sqrt(|n| / EI)``, in which the tip varies smoothly from small to large loads), from
-    linear beam theory: a transverse force ``3 EI Y / L**3``, ``Y`` the
-    point's offset from the clamp line. If Newton stops short (no mode-1 rod reaches the point,
-    or a nearly straight rod leaves its axial force ill-determined), its best iterate is the
-    start.
+    the force's components ``n L**2 / EI`` in the clamp's frame (in which the tip of a nearly
+    straight rod is nearly linear: its deflection follows ``n_y``, its shortening ``n_x``
+    weakly), from the transverse load whose cantilever deflects as far as the point does:
+    ``3 EI Y / L**3`` at small loads (linear beam theory, ``Y`` the point's offset from the
+    clamp line), interpolated in a table of the closed form (:func:`_transverse_table`) at
+    large ones. If Newton stops short (no mode-1 rod reaches the point, or a nearly straight
+    rod leaves its axial force ill-determined), its best iterate is the start.
     """
     from mechnum.rods.elliptic import _growing_tip   # the closed form builds on this module
 
+    def growing(n):      # the closed form at the load n = (n_x, n_y) L**2 / EI
+        return _growing_tip(math.atan2(n[1], n[0]), math.sqrt(math.hypot(n[0], n[1])))
+
+    deflections, loads = _transverse_table()
     c, s = math.cos(theta0), math.sin(theta0)
     starts = np.empty((len(points), 3))
     for i, (px, py) in enumerate(points.tolist()):
         X, Y = (c * px + s * py) / L, (c * py - s * px) / L   # the point in the clamp's frame
 
-        def fun(z):      # z of shape (2,), or (1, 2) in the line search
-            return np.reshape(np.subtract(_growing_tip(*z.ravel())[:2], (X, Y)), z.shape)
+        def fun(n):      # n of shape (2,), or (1, 2) in the line search
+            return np.reshape(np.subtract(growing(n.ravel())[:2], (X, Y)), n.shape)
 
-        z = np.array([math.copysign(0.5 * math.pi, Y), math.sqrt(3.0 * abs(Y))])
-        for max_step in (None, START_MAX_STEP):  # full steps first; bounded ones if they fail
-            try:
-                z = newton.solve(fun, z, tol=START_TOL, maxiter=START_MAXITER, damping=True,
-                                 max_step=max_step).x
-                break
-            except MechnumError as error:  # the best iterate of the bounded steps, near start
-                best = error.result.history[np.argmin(error.result.residual_norms)]
-        else:
-            z = best
-        m0, R = _growing_tip(*z)[2], EI * (z[1] / L) ** 2
-        starts[i] = m0 * EI / L, R * math.cos(z[0] + theta0), R * math.sin(z[0] + theta0)
+        n = np.array([0.0, math.copysign(np.interp(abs(Y), deflections, loads), Y)])
+        try:
+            n = newton.solve(fun, n, tol=START_TOL, maxiter=START_MAXITER,
+                             criterion="residual", damping=True).x
+        except MechnumError as error:
+            n = error.result.history[np.argmin(error.result.residual_norms)]
+        nx, ny = n.tolist()
+        starts[i] = (growing(n)[2] * EI / L,
+                     EI / L ** 2 * (c * nx - s * ny), EI / L ** 2 * (s * nx + c * ny))
     return starts
 
 
@@ -590,10 +603,10 @@ def shoot_pinned(EI, L, tip, guess=None, *, theta0=0.0, nodes=41, tol=1e-12, max
     ``((x(L) - x_t) / L, (y(L) - y_t) / L, m(L) L / EI)`` to zero with the exact Jacobian of
     :func:`tip_jacobian`. A pinned point has many equilibria (buckling modes, both senses of
     bending): the start selects one. The default start is the closed-form cantilever (mode 1,
-    the growing branch) whose tip is at the point, found by damped Newton from linear beam
-    theory (:func:`_pinned_start`): it leads to the mode-1 rod where the point admits one and
-    Newton reaches it (a point near the reach ``L`` in near tension may defeat it: the force of
-    a nearly straight rod is ill-determined by its tip).
+    the growing branch) whose tip is at the point, found by damped Newton from the transverse
+    load that deflects a cantilever as far (:func:`_pinned_start`): it leads to the mode-1 rod
+    where the point admits one and Newton reaches it (a point near the reach ``L`` in near
+    tension may defeat it: the force of a nearly straight rod is ill-determined by its tip).
 
     Parameters
     ----------
