@@ -35,6 +35,7 @@ book-student: downloads
 	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
 		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
 		c['execute']['execute_notebooks'] = 'off'; \
+		c['sphinx']['local_extensions'] = {'gated_solutions': '$(CURDIR)/book/_ext'}; \
 		yaml.safe_dump(c, open('$(DOWNLOADS)/student_config.yml', 'w'))"
 	$(NB_ENV) $(BIN)/jupyter-book build . --config $(DOWNLOADS)/student_config.yml \
 		--path-output _build/student -W -n --keep-going
