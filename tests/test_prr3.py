@@ -531,16 +531,28 @@ def test_mode_change_path_joins_two_assembly_modes_of_one_input():
     _assert_singularity_free(path, g, signs)
 
 
+def _assemblable_poses():
+    """Poses of Table 5's mechanism in the window below that its (1, 1, 1) branch assembles,
+    split by the sign of det J: a pair from one part is a valid case of the test below, drawn
+    directly (filtering random pairs rejects three in four and trips hypothesis's health check)."""
+    rng = np.random.default_rng(5)
+    poses = np.column_stack([rng.uniform(1.6, 3.4, 4000), rng.uniform(0.05, 0.95, 4000),
+                             rng.uniform(0.0, 2 * np.pi, 4000)])
+    lam = prr3.branch_inputs(poses, TABLE_5, (1, 1, 1))
+    built = np.all(np.isfinite(lam), axis=1)
+    poses, lam = poses[built], lam[built]
+    det = prr3.jacobian_dets(poses, lam, TABLE_5)[1]
+    return poses[det > 0], poses[det < 0]
+
+
+SAME_SIGN_POSES = _assemblable_poses()
+
+
 @settings(max_examples=200, deadline=None)
-@given(a=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)),
-       b=st.tuples(st.floats(1.6, 3.4), st.floats(0.05, 0.95), st.floats(0, 2 * np.pi)))
-def test_mode_change_path_is_singularity_free_or_none(a, b):
-    g, signs = TABLE_5, (1, 1, 1)
-    a, b = np.array(a), np.array(b)
-    lam = prr3.branch_inputs(np.stack([a, b]), g, signs)
-    assume(np.all(np.isfinite(lam)))
-    dets = prr3.jacobian_dets(np.stack([a, b]), lam, g)[1]
-    assume(dets[0] * dets[1] > 0)
+@given(side=st.integers(0, 1), i=st.integers(0, 10 ** 6), j=st.integers(0, 10 ** 6))
+def test_mode_change_path_is_singularity_free_or_none(side, i, j):
+    g, signs, pool = TABLE_5, (1, 1, 1), SAME_SIGN_POSES[side]
+    a, b = pool[i % len(pool)], pool[j % len(pool)]
     path = prr3.mode_change_path(a, b, g, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
                                  shape=(12, 6, 24))
     if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
