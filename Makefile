@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-student downloads pdf test unit notebooks notebooks-other-machine html-check bench execute lab \
+.PHONY: book book-student downloads pdf test unit explore notebooks notebooks-other-machine html-check bench execute lab \
 	clean
 
 $(STAMP): environment.txt pkg/pyproject.toml
@@ -40,8 +40,13 @@ book-student: downloads
 	$(NB_ENV) $(BIN)/jupyter-book build . --config $(DOWNLOADS)/student_config.yml \
 		--path-output _build/student -W -n --keep-going
 
+# The property-based tests draw the same examples on every run (tests/conftest.py); `make explore`
+# draws new ones, to search for counterexamples.
 unit: $(STAMP)
-	MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
+	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
+
+explore: $(STAMP)
+	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest tests
 
 notebooks: $(STAMP)
 	$(NB_ENV) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg book
