@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
@@ -120,14 +120,17 @@ def test_multiple_shooting_solves_a_linear_bvp_in_one_step(segments):
 
 @EXAMPLES
 @given(st.floats(0.01, 9.0), st.floats(-1e3, 1e3), st.floats(-1e3, 1e3), st.integers(1, 8))
+@example(1.0, 7.060005362754902e-11, 0.0, 1)
 def test_multiple_shooting_solves_the_discrete_rk4_problem(c, a, b, segments):
     # the RK4 propagator M over [0, 1] (from the identity) gives the discrete BVP's answer:
-    # y(1) = M00 a + M01 y'(0) = b; every number of segments must find that same solution
+    # y(1) = M00 a + M01 y'(0) = b; every number of segments must find that same solution.
+    # The guess is far from it (a zero guess would already meet the absolute tolerance 1e-10
+    # when |a|, |b| are below it, and be returned as it is: a = 7e-11, b = 0).
     f, bc, _ = sine_bvp(c, a, b)
     s = np.linspace(0.0, 1.0, 33)
     M = rk4(f, np.eye(2), s)[-1].T
     discrete = rk4(f, [a, (b - M[0, 0] * a) / M[0, 1]], s)
-    sol = multiple_shooting(f, bc, s, np.zeros((33, 2)), segments=segments)
+    sol = multiple_shooting(f, bc, s, np.ones((33, 2)), segments=segments)
     scale = max(np.abs(discrete).max(), 1.0) / abs(M[0, 1])       # M01 ~ sin(sqrt(c))
     assert_allclose(sol.y, discrete, rtol=0, atol=1e-12 * scale)
     assert_allclose(bc(sol.y[0], sol.y[-1]), 0.0, rtol=0, atol=1e-10 * scale)

@@ -134,7 +134,7 @@ def _motor(t, alpha_max):
         A * t**3 / (2 * T),
         A * T**2 / 54 - A * t * (T - 3 * t) / 6,
         A * T**2 / 6 - 5 * A * T * t / 6 + 3 * A * t**2 / 2 - A * t**3 / (2 * T),
-        2 * A * T * t / 3 - A * T**2 / 3])
+        2 * A * T / 3 * (t - T / 2)])  # not 2 A T t / 3: its 2 A T t overflows first
     omega = np.choose(phase, [
         3 * A * t**2 / (2 * T),
         A * t - A * T / 6,
