@@ -41,12 +41,14 @@ book-student: downloads
 		--path-output _build/student -W -n --keep-going
 
 # The property-based tests draw the same examples on every run (tests/conftest.py); `make explore`
-# draws new ones, to search for counterexamples.
+# draws new ones, to search for counterexamples, and fails on numpy's overflow and invalid-value
+# warnings too (not in `make test`: whether such a warning is raised can depend on the CPU's SIMD
+# loops).
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
 
 explore: $(STAMP)
-	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest tests
+	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
 
 notebooks: $(STAMP)
 	$(NB_ENV) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg book

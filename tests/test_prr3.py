@@ -586,6 +586,16 @@ def test_a_root_at_infinity_is_the_pose_psi_pi():
         assert angle_gap(psi.real, value).min() < 1e-12
 
 
+def test_a_root_t_equal_i_is_no_pose_and_no_warning():
+    # t^6 + t^2 + 2 has the factor 1 + t^2: the companion matrix returns t = +-i exactly, the
+    # poles of psi = 2 atan(t). Those roots are complex, no pose; none is real.
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        psi = DIRECT._angles(np.array([[2.0, 0, 1, 0, 0, 0, 1]]))[0]
+    assert not np.any(np.abs(psi.imag) <= 1e-6)
+
+
 def test_direct_emits_no_overflow_far_away():
     import warnings
     g = EXAMPLES["Table 6"][0]

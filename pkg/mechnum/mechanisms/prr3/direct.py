@@ -291,7 +291,8 @@ def _angles(sextic):
     (``psi = pi``, a zero leading coefficient) is the accurate root ``u = 0``. An end
     coefficient below :data:`_NEGLIGIBLE` times the largest is raised to it (both ends
     vanish only for roots at ``psi = 0`` and ``pi`` at once); a polynomial that vanishes
-    identically (a continuum of poses, no isolated one) gives NaN.
+    identically (a continuum of poses, no isolated one) gives NaN, and so does a root
+    ``t = +-i`` (``1 + t**2`` a factor: complex, no pose), where ``atan`` has its poles.
     """
     largest = np.abs(sextic).max(axis=-1, initial=0.0)
     reverse = np.abs(sextic[:, 0]) > np.abs(sextic[:, 6])
@@ -302,7 +303,8 @@ def _angles(sextic):
     ok = largest > 0
     if ok.any():
         z = roots(c[ok])
-        out[ok] = np.where(reverse[ok, None], np.pi - 2 * np.arctan(z), 2 * np.arctan(z))
+        with np.errstate(divide="ignore", invalid="ignore"):  # t = +-i: no pose, psi infinite
+            out[ok] = np.where(reverse[ok, None], np.pi - 2 * np.arctan(z), 2 * np.arctan(z))
     return out
 
 
