@@ -15,7 +15,7 @@ benchmark's ``extra_info``).
 import itertools
 
 import numpy as np
-from scipy.optimize import fsolve
+from peers import fsolve_each
 
 from mechnum.mechanisms import pfr3
 from mechnum.mechanisms.pfr3 import equilibria, model, shooting, study
@@ -33,18 +33,7 @@ def _fsolve_multistart(mech, lambdas, modes, n_starts, seed=0):
     a time."""
     fun, jac = model.forward_system(mech, lambdas, modes)
     starts = equilibria.sampler(mech, lambdas)(np.random.default_rng(seed), n_starts)
-    roots = []
-    for z0 in starts:
-        def f(z):
-            return fun(z[None])[0] if model.in_chart(z[None])[0] else np.full(6, 1e3)
-
-        def J(z):
-            return jac(z[None])[0] if model.in_chart(z[None])[0] else np.eye(6)
-
-        z, _, ier, _ = fsolve(f, z0, fprime=J, full_output=True, xtol=1e-12)
-        if ier == 1 and np.linalg.norm(f(z)) < 1e-10:
-            roots.append(z)
-    return np.unique(np.round(np.array(roots).reshape(-1, 6), 8), axis=0)
+    return fsolve_each(fun, jac, model.in_chart, starts)
 
 
 def test_mode1_equilibria_of_table8(benchmark):

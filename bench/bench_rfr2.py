@@ -11,7 +11,7 @@ the 2RFR.
 """
 
 import numpy as np
-from scipy.optimize import fsolve
+from peers import fsolve_each
 
 from mechnum.mechanisms import rfr2
 
@@ -24,20 +24,8 @@ COUNTS = {(1, 1): 3, (1, 2): 5, (1, 3): 4, (2, 1): 2, (2, 2): 6, (2, 3): 4, (3, 
 def _fsolve_multistart(modes, n_starts, seed=0):
     """Every root that fsolve reaches from ``n_starts`` starts, one start at a time."""
     fun, jac = rfr2.forward_system(MECH, THETA, modes)
-    rng = np.random.default_rng(seed)
-    starts = rfr2._sample(rng, n_starts)
-    roots = []
-    for z0 in starts:
-        def f(z):
-            return fun(z[None])[0] if rfr2._in_chart(z[None])[0] else np.full(4, 1e3)
-
-        def J(z):
-            return jac(z[None])[0] if rfr2._in_chart(z[None])[0] else np.eye(4)
-
-        z, info, ier, _ = fsolve(f, z0, fprime=J, full_output=True, xtol=1e-12)
-        if ier == 1 and np.linalg.norm(f(z)) < 1e-10:
-            roots.append(z)
-    return np.unique(np.round(np.array(roots).reshape(-1, 4), 8), axis=0)
+    starts = rfr2._sample(np.random.default_rng(seed), n_starts)
+    return fsolve_each(fun, jac, rfr2._in_chart, starts)
 
 
 def test_mode1_equilibria_of_table7(benchmark):
