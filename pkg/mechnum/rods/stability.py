@@ -39,6 +39,33 @@ from scipy.linalg import null_space, solve_banded
 from mechnum import _validate
 
 
+class TwoResolutions:
+    """The verdicts of a result whose ``index`` (shape ``(n, 2)``) holds, for each of ``n``
+    equilibria, its index at two resolutions (coarse, fine): a base of the mechanisms'
+    equilibria tables.
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @dataclass
+    ... class Table(TwoResolutions):
+    ...     index: np.ndarray
+    >>> t = Table(np.array([[0, 0], [1, 1], [0, 1]]))
+    >>> t.stable.tolist(), t.settled.tolist()
+    ([True, False, False], [True, True, False])
+    """
+
+    @property
+    def stable(self):
+        """ndarray of bool, shape (n,): stable at both resolutions."""
+        return (self.index == 0).all(axis=1)
+
+    @property
+    def settled(self):
+        """ndarray of bool, shape (n,): both resolutions give the same index."""
+        return self.index[:, 0] == self.index[:, 1]
+
+
 @dataclass(frozen=True)
 class RodBlock:
     """One discretised rod of :func:`rod_block`.

@@ -27,7 +27,7 @@ from mechnum.mechanisms.pfr3 import model
 from mechnum.mechanisms.rfr2.analysis import SHAPE_NODES
 from mechnum.rods import crossing, profile, regular
 from mechnum.rods.bodies import constrained_index_with_body
-from mechnum.rods.stability import rod_block
+from mechnum.rods.stability import TwoResolutions, rod_block
 
 # q ranges of the starts (q ~ 2 sqrt(R L**2 / EI) for large forces R): pulling rods from about
 # the buckling load to ~2e4 EI / L**2 (q = 300), pushing ones from a straight rod (q = 1e-8,
@@ -63,7 +63,7 @@ N_STARTS = 1000
 
 
 @dataclass(frozen=True)
-class Equilibria:
+class Equilibria(TwoResolutions):
     """Every equilibrium that :func:`forward_elliptic` found, and how well it looked.
 
     Attributes
@@ -108,16 +108,6 @@ class Equilibria:
     self_cross: np.ndarray
     platform_cross: np.ndarray
     search: newton.RootSet
-
-    @property
-    def stable(self):
-        """ndarray of bool, shape (n,): stable at both resolutions."""
-        return (self.index == 0).all(axis=1)
-
-    @property
-    def settled(self):
-        """ndarray of bool, shape (n,): both resolutions give the same index."""
-        return self.index[:, 0] == self.index[:, 1]
 
     @property
     def crossing_free(self):

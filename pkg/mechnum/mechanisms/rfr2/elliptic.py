@@ -16,6 +16,7 @@ from mechnum import _validate, newton
 from mechnum.mechanisms.rfr2.analysis import crossings, stability
 from mechnum.mechanisms.rfr2.model import _in_chart, _modes, _rods, _theta
 from mechnum.rods import regular
+from mechnum.rods.stability import TwoResolutions
 
 # Starts of the all-solutions search are drawn with |t| <= 0.985 (forces up to ~(q/2)**2 =
 # 1000 EI / L**2, far beyond what the study's mechanism can balance); iterates may go on to T_MAX.
@@ -99,7 +100,7 @@ def _residual(mech, modes, z, theta):
 
 
 @dataclass(frozen=True)
-class Equilibria:
+class Equilibria(TwoResolutions):
     """Every equilibrium that :func:`forward_elliptic` found, and how well it looked.
 
     Attributes
@@ -141,16 +142,6 @@ class Equilibria:
     rods_cross: np.ndarray
     self_cross: np.ndarray
     search: newton.RootSet
-
-    @property
-    def stable(self):
-        """ndarray of bool, shape (n,): stable at both resolutions."""
-        return (self.index == 0).all(axis=1)
-
-    @property
-    def settled(self):
-        """ndarray of bool, shape (n,): both resolutions give the same index."""
-        return self.index[:, 0] == self.index[:, 1]
 
     @property
     def buildable(self):
