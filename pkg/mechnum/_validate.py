@@ -137,10 +137,12 @@ def tolerance(value, name="tol"):
     return scalar(value, name, positive=True)
 
 
-def maxiter(value, name="maxiter", minimum=1):
-    """An iteration (or node, or start) count: an integer ``>= minimum``.
+def maxiter(value, name="maxiter", minimum=1, maximum=None):
+    """An iteration (or node, or start) count: an integer ``>= minimum`` (and ``<= maximum``).
 
-    Floats with an integer value are accepted; ``inf``, NaN, fractions, booleans are not.
+    Floats with an integer value are accepted; ``inf``, NaN, fractions, booleans are not. Every
+    argument that sets an amount of work has a documented ``maximum``, so that a typing slip
+    (``nodes=1e6``) fails at once instead of running for hours or exhausting memory.
 
     Examples
     --------
@@ -150,6 +152,10 @@ def maxiter(value, name="maxiter", minimum=1):
     Traceback (most recent call last):
     ...
     ValueError: maxiter must be an integer >= 1, got inf
+    >>> maxiter(10**6, "nodes", minimum=2, maximum=100_000)
+    Traceback (most recent call last):
+    ...
+    ValueError: nodes must be an integer <= 100000 (a bound on the work), got 1000000
     """
     if isinstance(value, (bool, np.bool_)):
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
@@ -162,7 +168,48 @@ def maxiter(value, name="maxiter", minimum=1):
         out = int(as_float)
     if out < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if maximum is not None and out > maximum:
+        raise ValueError(f"{name} must be an integer <= {maximum} (a bound on the work), "
+                         f"got {value!r}")
     return out
+
+
+def flag(value, name):
+    """A yes/no option: a ``bool`` (or numpy's), nothing that is merely truthy.
+
+    Examples
+    --------
+    >>> flag(True, "damping")
+    True
+    >>> flag("yes", "damping")
+    Traceback (most recent call last):
+    ...
+    ValueError: damping must be True or False, got 'yes'
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False, got {_shown(value)}")
+    return bool(value)
+
+
+def rng(value, name="rng"):
+    """A random generator: ``None``, a non-negative integer seed, or a ``numpy.random.Generator``.
+
+    Examples
+    --------
+    >>> int(rng(0).integers(10)) == int(rng(0).integers(10))
+    True
+    >>> rng(-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: rng must be None, a non-negative integer seed or a numpy.random.Generator, got -1
+    """
+    if value is None or isinstance(value, np.random.Generator):
+        return np.random.default_rng(value)
+    if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) \
+            and value >= 0:
+        return np.random.default_rng(value)
+    raise ValueError(f"{name} must be None, a non-negative integer seed or a "
+                     f"numpy.random.Generator, got {_shown(value)}")
 
 
 def choice(value, options, name):
