@@ -175,17 +175,21 @@ def cells(number):
     ['```{exercise}', ':label: ch4-ex-companion']
     """
     exercise = _exercise(number)
+    stem = "ex" + number.replace(".", "-")  # cell ids, unique in a notebook
 
-    def markdown(text):
-        return {"cell_type": "markdown", "metadata": {}, "source": text}
+    def markdown(text, part):
+        return {"cell_type": "markdown", "id": f"{stem}-{part}", "metadata": {}, "source": text}
 
     def code(text, role):
-        return {"cell_type": "code", "metadata": {"mechnum": {"exercise": number, "role": role}},
-                "source": text.rstrip("\n"), "outputs": [], "execution_count": None}
+        return {"cell_type": "code", "id": f"{stem}-{role}", "execution_count": None,
+                "metadata": {"mechnum": {"exercise": number, "role": role}},
+                "source": text.rstrip("\n"), "outputs": []}
 
-    return [markdown(f"```{{exercise}}\n:label: {exercise.label}\n\n{exercise.statement}\n```"),
+    return [markdown(f"```{{exercise}}\n:label: {exercise.label}\n\n{exercise.statement}\n```",
+                     "exercise"),
             code(starter(number), "starter"),
-            markdown(f"```{{solution-start}} {exercise.label}\n:class: dropdown\n```"),
+            markdown(f"```{{solution-start}} {exercise.label}\n:class: dropdown\n```",
+                     "solution-start"),
             code(solution(number), "solution"),
-            markdown("```{solution-end}\n```"),
+            markdown("```{solution-end}\n```", "solution-end"),
             code(check_code(number), "check")]
