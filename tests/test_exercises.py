@@ -3,9 +3,12 @@ implementations (written here, independently of the package's mistake models) wi
 that names the mistake, fails a stub, never raises on a wrong answer, and raises on a malformed
 call. The references are checked against the package's own methods."""
 
+import re
 import time
+from pathlib import Path
 from types import SimpleNamespace
 
+import nbformat
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -16,6 +19,7 @@ from mechnum.mechanisms import hacksaw as hs
 from mechnum.mechanisms import prr3
 
 NUMBERS = sorted(exercises.CHECKS)
+ROOT = Path(__file__).resolve().parents[1]
 ref = exercises.reference
 
 
@@ -583,3 +587,33 @@ def test_references_of_chapter_7_agree_with_the_package():
     assert_allclose(ANNEX.inertias, actuator.ANNEX.inertias, rtol=1e-12)
     s, kin = _state(0.3), actuator.kinematics(0.3)
     assert_allclose([s.eps2, s.eps4], [float(kin.eps2), float(kin.eps4)], rtol=1e-10)
+
+
+NOTEBOOKS = [*sorted((ROOT / "book").glob("*.ipynb")), ROOT / "tests" / "fixtures" /
+             "exercise_chapter.ipynb"]
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_the_notebooks_exercise_cells_are_the_packages(path):
+    """A chapter's starter, solution and check cells equal the package's, in that order, with
+    the exercise (its label and statement) and the gated solution's fences around them; the
+    fixture has two such exercises."""
+    cells = nbformat.read(path, as_version=4).cells
+    for k, cell in enumerate(cells):
+        meta = cell.metadata.get("mechnum", {})
+        if meta.get("role") != "starter":
+            continue
+        number = meta["exercise"]
+        expected = exercises.cells(number)
+        got = cells[k - 1:k + 5]
+        for mine, theirs in zip(got, expected):
+            if theirs["cell_type"] == "code":
+                assert mine.source == theirs["source"], (path.name, number)
+                assert mine.metadata["mechnum"] == theirs["metadata"]["mechnum"]
+        label = re.search(r":label: ([\w-]+)", expected[0]["source"]).group(1)
+        assert f":label: {label}" in got[0].source
+        assert exercises.statement(number) in got[0].source
+        assert f"{{solution-start}} {label}" in got[2].source
+        assert "{solution-end}" in got[4].source
+    if path.parent.name == "fixtures":
+        assert sum(c.metadata.get("mechnum", {}).get("role") == "starter" for c in cells) == 2

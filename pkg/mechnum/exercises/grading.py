@@ -37,7 +37,14 @@ MARK = "MECHNUM-GRADES "
 
 
 def defined(notebook):
-    """The exercise numbers whose function the notebook's code cells define."""
+    """The exercise numbers whose function the notebook's code cells define.
+
+    Examples
+    --------
+    >>> cells = [{"cell_type": "code", "source": "def rk4_step(f, s, y, h):\\n    pass"}]
+    >>> defined({"cells": cells})
+    ['3.1']
+    """
     from mechnum import exercises
 
     names = set()
@@ -55,7 +62,14 @@ def defined(notebook):
 
 def report(namespace, numbers):
     """Run the checks of ``numbers`` on the functions of ``namespace`` (a kernel's
-    ``globals()``) and print them as one line of JSON after :data:`MARK`."""
+    ``globals()``) and print them as one line of JSON after :data:`MARK`.
+
+    Examples
+    --------
+    >>> from mechnum import exercises
+    >>> report({"rk4_step": exercises.reference("3.1")}, ["3.1", "1.1"])  # doctest: +ELLIPSIS
+    MECHNUM-GRADES {"3.1": ["pass", "Exercise 3.1: passed, ..."], "1.1": ["missing", ...]}
+    """
     from mechnum import exercises
 
     verdicts = {}
