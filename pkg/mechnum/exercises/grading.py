@@ -133,9 +133,9 @@ def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT):
 
     Parameters
     ----------
-    folder : str or Path
+    folder : str or pathlib.Path
         The students' notebooks.
-    out : str or Path, optional
+    out : str or pathlib.Path, optional
         Where to write the three files.
     limit, cell_limit : float
         Seconds per notebook and per cell.
