@@ -54,6 +54,8 @@ def test_starter_solution_and_cells_agree(number):
     assert cells[5]["source"] == exercises.check_code(number)
     assert "{solution-start}" in cells[2]["source"] and "{solution-end}" in cells[4]["source"]
     assert exercises.statement(number) in cells[0]["source"]
+    for cell in cells[1::2]:  # the code a lecture page shows: its lines fit its column
+        assert max(len(line) for line in cell["source"].splitlines()) <= 76, cell["source"]
 
 
 def test_a_malformed_call_raises_and_a_wrong_answer_does_not():

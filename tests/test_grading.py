@@ -32,7 +32,8 @@ def graded(tmp_path_factory):
     submission(folder / "carl.ipynb", "import numpy as np", "1 / 0", LOOPING, right[1],
                "while True:\n    pass")
     submission(folder / "dina.ipynb", "import numpy as np", right[1],
-               "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nwhile True:\n    pass")
+               "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+               "while True:\n    pass")
     summary = grading.grade(folder, folder / "out", limit=20.0, cell_limit=4.0)
     with open(folder / "out" / "grades.csv", encoding="utf-8") as file:
         rows = {row["notebook"]: row for row in csv.DictReader(file)}

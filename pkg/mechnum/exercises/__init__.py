@@ -86,11 +86,11 @@ def check(number, answer):
     Examples
     --------
     >>> from mechnum import exercises
-    >>> def sor_sweep(A, b, x, omega):
+    >>> def one_sor_sweep(A, b, x, omega):
     ...     ...
-    >>> exercises.check("2.1", sor_sweep).message.split(".")[0]
+    >>> exercises.check("2.1", one_sor_sweep).message.split(".")[0]
     'Exercise 2'
-    >>> exercises.check("2.1", sor_sweep).passed
+    >>> exercises.check("2.1", one_sor_sweep).passed
     False
     """
     return run_check(_exercise(number), answer)

@@ -28,12 +28,14 @@ def loop_equations(q, theta2, r1y, r2, r3):
         ``J[i, j] = dF_i / dq_j``.
     """
     r1, theta1, theta3 = q
-    F = np.array([r1 * np.sin(theta1) - r1y,
-                  -r1 * np.cos(theta1) + r2 * np.cos(theta2) + r3 * np.cos(theta3),
-                  r1 * np.sin(theta1) - r2 * np.sin(theta2) - r3 * np.sin(theta3)])
-    J = np.array([[np.sin(theta1), r1 * np.cos(theta1), 0.0],
-                  [-np.cos(theta1), r1 * np.sin(theta1), -r3 * np.sin(theta3)],
-                  [np.sin(theta1), r1 * np.cos(theta1), -r3 * np.cos(theta3)]])
+    s1, c1 = np.sin(theta1), np.cos(theta1)
+    s3, c3 = np.sin(theta3), np.cos(theta3)
+    F = np.array([r1 * s1 - r1y,
+                  -r1 * c1 + r2 * np.cos(theta2) + r3 * c3,
+                  r1 * s1 - r2 * np.sin(theta2) - r3 * s3])
+    J = np.array([[s1, r1 * c1, 0.0],
+                  [-c1, r1 * s1, -r3 * s3],
+                  [s1, r1 * c1, -r3 * c3]])
     return F, J
 
 
@@ -43,7 +45,8 @@ def newton_study(F, J, x0, tol=1e-6, maxiter=50):
     Parameters
     ----------
     F, J : callable
-        The residual ``F(x)``, shape (n,), and its Jacobian ``J(x)``, shape (n, n).
+        The residual ``F(x)``, shape (n,), and its Jacobian ``J(x)``,
+        shape (n, n).
     x0 : ndarray, shape (n,)
         The seed.
     tol : float
@@ -176,7 +179,8 @@ def _newton_compare(expected, got):
 
 
 NEWTON = Exercise(
-    number="1.2", label="ch1-ex-newton-study", title="Newton's method with the study's stopping test",
+    number="1.2", label="ch1-ex-newton-study",
+    title="Newton's method with the study's stopping test",
     statement=(
         "**Implement it yourself.** Write `newton_study(F, J, x0, tol, maxiter)`: Newton's "
         "method that solves $J(x_k)\\,\\Delta x_k = -F(x_k)$ with `np.linalg.solve`, stops after "

@@ -6,7 +6,7 @@ import numpy as np
 from mechnum.exercises._harness import Case, Exercise, Mistake, close
 
 
-def sor_sweep(A, b, x, omega):
+def one_sor_sweep(A, b, x, omega):
     """One SOR sweep, component by component.
 
     Parameters
@@ -49,9 +49,9 @@ def lstsq_householder(A, b):
     """
     R, y = np.array(A, dtype=float), np.array(b, dtype=float)
     m, n = R.shape
-    for k in range(n):  # the reflection I - 2 v v^T / (v^T v) zeroes column k below row k
+    for k in range(n):  # I - 2 v v^T zeroes column k below row k
         v = R[k:, k].copy()
-        v[0] += np.copysign(np.linalg.norm(v), v[0])  # the sign that avoids cancellation
+        v[0] += np.copysign(np.linalg.norm(v), v[0])  # no cancellation
         v /= np.linalg.norm(v)
         R[k:, k:] -= 2 * np.outer(v, v @ R[k:, k:])
         y[k:] -= 2 * v * (v @ y[k:])
@@ -88,7 +88,7 @@ def _short_sweep(A, b, x, omega):
 
 def _backward(A, b, x, omega):
     order = np.arange(len(b))[::-1]
-    return sor_sweep(A[np.ix_(order, order)], b[order], x[order], omega)[np.argsort(order)]
+    return one_sor_sweep(A[np.ix_(order, order)], b[order], x[order], omega)[np.argsort(order)]
 
 
 def _sweep_cases():
@@ -108,13 +108,13 @@ def _sweep_cases():
 SOR = Exercise(
     number="2.1", label="ch2-ex-sor-sweep", title="one SOR sweep",
     statement=(
-        "**Implement it yourself.** Write `sor_sweep(A, b, x, omega)`, one sweep of SOR "
+        "**Implement it yourself.** Write `one_sor_sweep(A, b, x, omega)`, one sweep of SOR "
         "component by component, $i = 0, \\dots, n-1$: each $x_i$ is moved $\\omega$ times as "
         "far as Gauss-Seidel would move it, using the components already updated in this sweep. "
         "Leave the argument `x` unchanged (work on a copy) and return the new iterate. Compare "
         "it with the matrix form of the chapter, "
         "$(D - \\omega L)^{-1}[((1 - \\omega) D + \\omega U)\\,x + \\omega b]$."),
-    reference=sor_sweep, cases=_sweep_cases,
+    reference=one_sor_sweep, cases=_sweep_cases,
     compare=lambda expected, got: close(expected, got, rtol=1e-12, atol=1e-13, what="x"),
     mistakes=(Mistake("a Jacobi sweep", "SOR uses the components already updated in this "
                       "sweep (x[j] for j < i), not the old ones.", _jacobi),

@@ -33,18 +33,20 @@ def rk4_step(f, s, y, h):
 
 
 def pinned_residual(q, EI, L, target, nodes):
-    """The shooting residual of a rod clamped at the origin along +x, its tip pinned at a point.
+    """The shooting residual of a rod clamped along +x, its tip pinned.
 
     Parameters
     ----------
     q : ndarray, shape (3,)
-        The unknowns ``(m0, n_x, n_y)``: the clamp moment (N m) and the tip force (N).
+        The unknowns ``(m0, n_x, n_y)``: the clamp moment (N m) and the
+        tip force (N).
     EI, L : float
         Bending stiffness (N m^2) and length (m).
     target : ndarray, shape (2,)
         Where the tip is pinned (m).
     nodes : int
-        RK4 on ``nodes`` equally spaced nodes from ``s = 0`` to ``s = L`` (``nodes - 1`` steps).
+        RK4 on ``nodes`` equally spaced nodes from ``s = 0`` to ``s = L``
+        (``nodes - 1`` steps).
 
     Returns
     -------

@@ -9,7 +9,7 @@ from mechnum.exercises._harness import Case, Exercise, Mistake, close
 
 
 def companion(c):
-    """The companion matrix of a polynomial, whose eigenvalues are its roots.
+    """The companion matrix of a polynomial: its eigenvalues are the roots.
 
     Parameters
     ----------
@@ -31,39 +31,41 @@ def companion(c):
 
 
 def prr3_newton_step(pose, lam, g):
-    """One Newton step on the 3PRR's loop equations ``F_i = |P_i - C_i|^2 - L^2``.
+    """One Newton step on the 3PRR's loop equations.
 
     Parameters
     ----------
     pose : ndarray, shape (3,)
-        The current iterate ``(x, y, psi)``: the vertex ``P_1`` (m) and the platform's angle
-        (rad).
+        The current iterate ``(x, y, psi)``: the vertex ``P_1`` (m) and the
+        platform's angle (rad).
     lam : ndarray, shape (3,)
         The inputs ``(lambda_1, lambda_2, lambda_3)`` (m).
     g : object
-        The geometry, with attributes ``a, L, B2, B3, H3`` (m), as ``prr3.Geometry``.
+        The geometry, with attributes ``a, L, B2, B3, H3`` (m), as
+        ``prr3.Geometry``.
 
     Returns
     -------
     ndarray, shape (3,)
-        The next iterate.
+        The next iterate of ``F_i = |P_i - C_i|^2 - L^2 = 0``.
     """
     x, y, psi = pose
-    vertices = np.array([[x, y],
-                         [x + g.a * np.cos(psi), y + g.a * np.sin(psi)],
-                         [x + g.a * np.cos(psi + np.pi / 3), y + g.a * np.sin(psi + np.pi / 3)]])
-    sliders = np.array([[lam[0], 0.0], [g.B2 - lam[1], 0.0], [g.B3, g.H3 - lam[2]]])
+    angles = np.array([0.0, psi, psi + np.pi / 3])
+    arms = g.a * np.column_stack((np.cos(angles), np.sin(angles)))
+    arms[0] = 0.0  # P_1 = P
+    vertices = np.array([x, y]) + arms
+    sliders = np.array([[lam[0], 0.0], [g.B2 - lam[1], 0.0],
+                        [g.B3, g.H3 - lam[2]]])
     u = vertices - sliders
     F = (u ** 2).sum(axis=1) - g.L ** 2
-    dP_dpsi = np.column_stack((-(vertices[:, 1] - y), vertices[:, 0] - x))  # P_i - P turned 90 deg
-    J = 2 * np.column_stack((u, (u * dP_dpsi).sum(axis=1)))
+    n = np.column_stack((-arms[:, 1], arms[:, 0]))  # dP_i / dpsi
+    J = 2 * np.column_stack((u, (u * n).sum(axis=1)))
     return np.asarray(pose, dtype=float) - np.linalg.solve(J, F)
 
 
 # Typical mistakes of 4.1
 def _not_divided(c):
-    M = companion(np.append(c[:-1], 1.0))
-    return M
+    return companion(np.append(c[:-1], 1.0))
 
 
 def _descending(c):

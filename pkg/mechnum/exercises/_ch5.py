@@ -14,7 +14,8 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     EI, L : float
         Bending stiffness (N m^2) and length (m).
     psi : float
-        Direction of the tip force from the clamped tangent, ``0 < psi < 2 pi``.
+        Direction of the tip force from the clamped tangent,
+        ``0 < psi < 2 pi``.
     k_rel : float
         Relative modulus, ``0 < |k_rel| < 1``.
     mode : int
@@ -35,20 +36,20 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
     dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
     lam = dF / L  # (40): lambda L = F(phi2, k) - F(phi1, k)
-    dC = np.cos(phi2) - np.cos(phi1)
-    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam  # (45)
-    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam  # (46)
+    dC = np.cos(phi2) - np.cos(phi1)  # then x by (45), y by (46)
+    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam
+    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam
     return np.array([x, y])
 
 
 def pin_residual(tips, forces, origins, theta, load):
-    """The equilibrium of the 2RFR's pin: both tips at one point, the forces balancing the load.
+    """The 2RFR's pin: the tips at one point, the forces balancing the load.
 
     Parameters
     ----------
     tips, forces : ndarray, shape (2, 2)
-        Row ``i``: the tip of rod ``i`` (m) and the force on it at its tip (N), in the frame of
-        its clamp.
+        Row ``i``: the tip of rod ``i`` (m) and the force on it at its tip
+        (N), in the frame of its clamp.
     origins : ndarray, shape (2, 2)
         Row ``i``: the motor ``O_i`` (m).
     theta : ndarray, shape (2,)
@@ -63,7 +64,7 @@ def pin_residual(tips, forces, origins, theta, load):
     """
     c, s = np.cos(theta), np.sin(theta)
     rotations = np.array([[[ci, -si], [si, ci]] for ci, si in zip(c, s)])
-    p = origins + np.einsum("ijk,ik->ij", rotations, tips)  # the study's (103)
+    p = origins + np.einsum("ijk,ik->ij", rotations, tips)  # (103)
     n = np.einsum("ijk,ik->ij", rotations, forces)
     return np.concatenate((p[0] - p[1], n[0] + n[1] - load))
 
@@ -74,23 +75,25 @@ def krawczyk_1d(f, df, lo, hi):
     Parameters
     ----------
     f : callable
-        ``f(x)`` -> ``(f_lo, f_hi)``: an enclosure of ``f`` at the float ``x``.
+        ``f(x)`` -> ``(f_lo, f_hi)``: an enclosure of ``f`` at the float
+        ``x``.
     df : callable
-        ``df(lo, hi)`` -> ``(d_lo, d_hi)``: an enclosure of ``f'`` over ``[lo, hi]``.
+        ``df(lo, hi)`` -> ``(d_lo, d_hi)``: an enclosure of ``f'`` over
+        ``[lo, hi]``.
     lo, hi : float
         The interval ``X``, ``lo < hi``.
 
     Returns
     -------
     verdict : str
-        ``"unique"`` if ``K(X)`` lies in the interior of ``X`` (exactly one root in ``X``),
-        ``"none"`` if ``K(X)`` and ``X`` are disjoint (no root in ``X``), else
-        ``"undecided"``.
+        ``"unique"`` if ``K(X)`` lies in the interior of ``X`` (exactly
+        one root in ``X``), ``"none"`` if ``K(X)`` and ``X`` are disjoint
+        (no root in ``X``), else ``"undecided"``.
     K : tuple of float
-        ``K(X) = m - y f(m) + (1 - y f'(X)) (X - m)`` with ``m`` the midpoint of ``X`` and
-        ``y = 2 / (d_lo + d_hi)``, rounded outwards.
+        ``K(X) = m - y f(m) + (1 - y f'(X)) (X - m)``, ``m`` the midpoint
+        of ``X``, ``y = 2 / (d_lo + d_hi)``, rounded outwards.
     """
-    def down(v):  # the float below v: with v correctly rounded, below the exact value
+    def down(v):  # below v, so below the exact value v was rounded from
         return np.nextafter(v, -np.inf)
 
     def up(v):
@@ -102,7 +105,7 @@ def krawczyk_1d(f, df, lo, hi):
 
     m = lo + (hi - lo) / 2
     d_lo, d_hi = df(lo, hi)
-    y = 2 / (d_lo + d_hi)  # a float near 1 / f'(m): any invertible y is valid
+    y = 2 / (d_lo + d_hi)  # near 1 / f'(m); any y != 0 is valid
     yf = times((y, y), f(m))
     newton = down(m - yf[1]), up(m - yf[0])
     yd = times((y, y), (d_lo, d_hi))

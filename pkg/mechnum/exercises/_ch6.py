@@ -7,7 +7,7 @@ from mechnum.exercises._harness import Case, Exercise, Mistake, close
 
 
 def constrained_index(H, A):
-    """The number of negative eigenvalues of ``H`` on the null space of ``A``.
+    """The number of negative eigenvalues of ``H`` on the null space of A.
 
     Parameters
     ----------
@@ -19,7 +19,8 @@ def constrained_index(H, A):
     Returns
     -------
     int
-        The index: how many independent ways the equilibrium has to escape (0: stable).
+        The index: how many independent ways the equilibrium has to escape
+        (0: stable).
     """
     H, A = np.asarray(H, dtype=float), np.asarray(A, dtype=float)
     if A.shape[0] == 0:
@@ -32,7 +33,7 @@ def constrained_index(H, A):
 
 
 def rigid_residual(pins, a):
-    """Three equations that vanish when three points are the platform turned, not mirrored.
+    """Three equations: zero when the pins are the platform turned.
 
     Parameters
     ----------
@@ -45,8 +46,10 @@ def rigid_residual(pins, a):
     -------
     ndarray, shape (3,)
         With ``d_i`` the offsets of the pins from their centroid and
-        ``b_i = a / sqrt(3) e^{i beta_i}``, ``beta = (-150, -30, 90)`` degrees, as complex
-        numbers: ``(Re(d_1/b_1 - d_2/b_2), Im(d_1/b_1 - d_2/b_2), |d_1/b_1| - 1)``.
+        ``b_i = a / sqrt(3) e^{i beta_i}``, ``beta = (-150, -30, 90)``
+        degrees, as complex numbers: ``Re`` and ``Im`` of
+        ``d_1/b_1 - d_2/b_2``, and ``|d_1/b_1| - 1``. A mirror image of the
+        platform is no zero.
     """
     z = pins[:, 0] + 1j * pins[:, 1]
     d = z - z.mean()

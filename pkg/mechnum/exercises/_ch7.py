@@ -9,7 +9,7 @@ from mechnum.exercises._harness import Case, Exercise, Mistake, close
 
 
 def velocity_coefficients(theta2, theta4, a, l, b):
-    """The exact velocity coefficients ``k_2 = d theta_2 / da`` and ``k_4 = d theta_4 / da``.
+    """The exact velocity coefficients ``k_2`` and ``k_4``.
 
     Parameters
     ----------
@@ -23,24 +23,27 @@ def velocity_coefficients(theta2, theta4, a, l, b):
     Returns
     -------
     k2, k4 : float
-        In rad/m.
+        ``d theta_2 / da`` and ``d theta_4 / da`` (rad/m).
     """
     delta = theta2 - theta4
-    return np.cos(delta) / ((a + l) * np.sin(delta)), 1 / (b * np.sin(delta))
+    k4 = 1 / (b * np.sin(delta))
+    return np.cos(delta) / ((a + l) * np.sin(delta)), k4
 
 
-def virtual_power_force(kin, mech, g):
+def force_by_virtual_power(kin, mech, g):
     """The actuator's force at one instant, by virtual power.
 
     Parameters
     ----------
     kin : object
-        The kinematics at the instant, with attributes ``theta2, theta4`` (rad), ``k2, k4``
-        (rad/m), ``omega2, omega4`` (rad/s), ``eps2, eps4`` (rad/s^2) and ``a, a_dot,
-        a_ddot`` (m, m/s, m/s^2), as ``actuator.kinematics`` returns them.
+        The kinematics at the instant, with attributes ``theta2, theta4``
+        (rad), ``k2, k4`` (rad/m), ``omega2, omega4`` (rad/s), ``eps2,
+        eps4`` (rad/s^2) and ``a, a_dot, a_ddot`` (m, m/s, m/s^2), as
+        ``actuator.kinematics`` returns them.
     mech : object
-        The mechanism, with attributes ``m2, m3, m4`` (kg), ``inertias`` (``I_G2, I_G3,
-        I_G4``, kg m^2) and ``g2, g3, g4`` (m), as ``actuator.ANNEX``.
+        The mechanism, with attributes ``m2, m3, m4`` (kg), ``inertias``
+        (``I_G2, I_G3, I_G4``, kg m^2) and ``g2, g3, g4`` (m), as
+        ``actuator.ANNEX``.
     g : float
         Gravity (m/s^2).
 
@@ -49,19 +52,21 @@ def virtual_power_force(kin, mech, g):
     float
         ``Q`` (N).
     """
-    e2, e4, r3 = np.exp(1j * kin.theta2), np.exp(1j * kin.theta4), kin.a + mech.g3
-    w2, w4, eps2, eps4 = kin.omega2, kin.omega4, kin.eps2, kin.eps4
-    links = [  # mass, I_G, acceleration of G, velocity coefficient J of G, epsilon, k
+    e2, e4 = np.exp(1j * kin.theta2), np.exp(1j * kin.theta4)
+    r3, w2, w4 = kin.a + mech.g3, kin.omega2, kin.omega4
+    eps2, eps4, k2, k4 = kin.eps2, kin.eps4, kin.k2, kin.k4
+    coriolis = 2 * w2 * kin.a_dot  # the rod's centre slides on the barrel
+    links = [  # mass, I_G, acceleration of G, its J, epsilon, k
         (mech.m2, mech.inertias[0], mech.g2 * (1j * eps2 - w2 ** 2) * e2,
-         1j * mech.g2 * kin.k2 * e2, eps2, kin.k2),
+         1j * mech.g2 * k2 * e2, eps2, k2),
         (mech.m3, mech.inertias[1],
-         (kin.a_ddot - r3 * w2 ** 2 + 1j * (r3 * eps2 + 2 * w2 * kin.a_dot)) * e2,
-         (1 + 1j * r3 * kin.k2) * e2, eps2, kin.k2),
+         (kin.a_ddot - r3 * w2 ** 2 + 1j * (r3 * eps2 + coriolis)) * e2,
+         (1 + 1j * r3 * k2) * e2, eps2, k2),
         (mech.m4, mech.inertias[2], mech.g4 * (1j * eps4 - w4 ** 2) * e4,
-         1j * mech.g4 * kin.k4 * e4, eps4, kin.k4)]
+         1j * mech.g4 * k4 * e4, eps4, k4)]
     Q = 0.0
     for mass, inertia, a_G, J, eps, k in links:
-        Q += mass * (a_G.real * J.real + a_G.imag * J.imag)  # inertia force . J
+        Q += mass * (a_G.real * J.real + a_G.imag * J.imag)  # force . J
         Q += inertia * eps * k  # inertia couple * k
         Q += mass * g * J.imag  # weight . J, sign reversed
     return Q
@@ -143,15 +148,16 @@ COEFFICIENTS = Exercise(
 def _no_coriolis(kin, mech, g):
     # the Coriolis acceleration 2 omega2 a_dot (i e2) of the rod's centre, dotted with J3
     r3 = kin.a + mech.g3
-    return virtual_power_force(kin, mech, g) - mech.m3 * 2 * kin.omega2 * kin.a_dot * r3 * kin.k2
+    coriolis = mech.m3 * 2 * kin.omega2 * kin.a_dot * r3 * kin.k2
+    return force_by_virtual_power(kin, mech, g) - coriolis
 
 
 def _gravity_sign(kin, mech, g):
-    return virtual_power_force(kin, mech, -g)
+    return force_by_virtual_power(kin, mech, -g)
 
 
 def _no_couples(kin, mech, g):
-    return virtual_power_force(kin, SimpleNamespace(**{**vars(mech), "inertias": (0, 0, 0)}), g)
+    return force_by_virtual_power(kin, SimpleNamespace(**{**vars(mech), "inertias": (0, 0, 0)}), g)
 
 
 def _force_cases():
@@ -165,14 +171,14 @@ def _force_cases():
 FORCE = Exercise(
     number="7.2", label="ch7-ex-virtual-power", title="the force at one instant by virtual power",
     statement=(
-        "**Implement it yourself.** Write `virtual_power_force(kin, mech, g)`, the actuator's "
+        "**Implement it yourself.** Write `force_by_virtual_power(kin, mech, g)`, the actuator's "
         "force $Q$ at one instant by virtual power: for the virtual motion $\\delta a = 1$, "
         "$Q = \\sum_i m_i\\,\\mathbf a_{G_i}\\cdot\\mathbf J_i + I_{G_i}\\varepsilon_i k_i "
         "+ m_i g J_{i,y}$, with the accelerations of the centres of mass by the relative-motion "
         "formulas of the chapter (the rod's centre has a Coriolis term $2\\omega_2\\dot a$). "
         "Compare with the package's `virtual_power_force` on `kinematics(t)`, and at "
         "$t = 0.25$ s, where the actuator stops, with the sheet's power divided by $\\dot a$."),
-    reference=virtual_power_force, cases=_force_cases,
+    reference=force_by_virtual_power, cases=_force_cases,
     compare=lambda expected, got: close(expected, float(got), rtol=1e-10, atol=1e-10,
                                         what="Q (N)"),
     mistakes=(Mistake("the Coriolis term left out", "the rod's centre slides along the turning "

@@ -190,7 +190,8 @@ def _write(path, fields, rows):
 
 def _summary(rows, numbers):
     statuses = [row["status"] for row in rows]
-    words = {"ok": "ran", "errors": "with errors", "timeout": "timed out", "failed": "failed to run"}
+    words = {"ok": "ran", "errors": "with errors", "timeout": "timed out",
+             "failed": "failed to run"}
     lines = [f"{len(rows)} notebooks: " + ", ".join(
         f"{statuses.count(s)} {word}" for s, word in words.items() if s in statuses)]
     for number in numbers:
