@@ -47,6 +47,11 @@ PREAMBLE = r"""
 % table columns of given widths (Sphinx's \X) set ragged right: a narrow justified column
 % opens wide gaps between its words
 \usepackage{ragged2e}
+% a table continued from the previous page says so without a number: the book's tables have
+% none (Sphinx would print "Table 1.1" there, in an appendix too)
+\protected\def\sphinxtablecontinued#1{\textsf{\printedbookcontinued#1\printedbookend}}
+\def\printedbookcontinued#1#2\printedbookend{%
+  \ifx#1\tablename (continued from the previous page)\else#1#2\fi}
 % the widest tables print on pages turned a quarter (the PDF shows them turned to read)
 \usepackage{pdflscape}
 \makeatletter
@@ -269,8 +274,8 @@ def _add_preamble(app, config):
 
 
 def setup(app):
-    app.add_config_value("latex_exclude_docs", [], "env", [list])
-    app.add_config_value("latex_preface_title", "Preface", "env", [str])
+    app.add_config_value("latex_exclude_docs", [], "", [list])
+    app.add_config_value("latex_preface_title", "Preface", "", [str])
     app.add_post_transform(PrintedParts)
     app.add_post_transform(PrintedTables)
     app.add_node(nodes.math_block, override=True, latex=(visit_math_block, None))
