@@ -21,7 +21,7 @@ book: downloads
 	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
 
 # What the page "Run the chapters yourself" serves: the package's wheel, and the chapters with
-# what they read (the registry) and cite (references.bib, for JupyterLab's citations).
+# what they read (the registry) and cite (references.bib: the entries behind the citation keys).
 DOWNLOADS := _build/downloads
 CHAPTER_FILES := *.ipynb *.csv references.bib
 downloads: $(STAMP)
@@ -101,13 +101,27 @@ NB ?= $(wildcard book/*.ipynb)
 execute: $(STAMP)
 	$(NB_ENV) $(BIN)/python .ci/execute_notebooks.py $(NB)
 
-# The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf (not part of
-# make test). It needs XeLaTeX and its fonts, from Debian's packages: TEX_PACKAGES below.
-TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk fonts-freefont-otf
-pdf: $(STAMP)
-	@command -v xelatex >/dev/null && command -v latexmk >/dev/null || { echo "make pdf needs" \
-		"XeLaTeX: apt-get install $(TEX_PACKAGES)"; exit 1; }
-	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex
+# The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf, on A4 paper
+# (`make pdf PAPER=letter`: US Letter), then its test, tests/test_pdf.py (not part of make test).
+# It needs XeLaTeX and its fonts, and poppler's pdftotext for the test, from Debian's packages:
+# TEX_PACKAGES below.
+TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk \
+	fonts-freefont-otf poppler-utils
+PAPER ?= a4
+PDF_CONFIG := _build/pdf_config.yml
+pdf: downloads
+	@command -v xelatex >/dev/null && command -v latexmk >/dev/null && \
+		command -v pdftotext >/dev/null || { echo "make pdf needs XeLaTeX and poppler:" \
+		"apt-get install $(TEX_PACKAGES)"; exit 1; }
+	@case "$(PAPER)" in a4|letter) ;; *) echo "PAPER is a4 or letter, not $(PAPER)"; exit 1;; esac
+	$(BIN)/python -c "import pathlib, yaml; c = yaml.safe_load(open('_config.yml')); \
+		s = c['sphinx']; s['config']['latex_elements']['papersize'] = '$(PAPER)paper'; \
+		s['local_extensions'] = {k: str(pathlib.Path(v).resolve()) \
+			for k, v in s['local_extensions'].items()}; \
+		yaml.safe_dump(c, open('$(PDF_CONFIG)', 'w'))"
+	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
+	MECHNUM_PDF=_build/latex/numerical-methods-for-mechanisms.pdf MECHNUM_PDF_PAPER=$(PAPER) \
+		$(BIN)/pytest -rs tests/test_pdf.py
 
 # JupyterLab with jupyterlab-myst, installed once into .venv from requirements.txt, on the book.
 LAB_STAMP := $(VENV)/.lab-installed
