@@ -19,7 +19,7 @@ import pytest
 from mechnum.mechanisms import hacksaw as hs
 
 TIMES = np.linspace(0.0, 2 * hs.first_revolution_time(), 1000)
-EXACT = hs.closed_form(TIMES)
+EXACT = hs.closed_form(hs.STUDY, TIMES)
 FASTEST = {}  # the fastest time of each benchmark of this run, for the printed ratios
 
 
@@ -74,14 +74,15 @@ def test_reference_vectorised_newton(benchmark):
 
 @pytest.mark.benchmark(group="hacksaw: 1000 points at once")
 def test_batched_sweep(benchmark):
-    res = benchmark.pedantic(hs.sweep, args=(TIMES, "batched"), rounds=30, warmup_rounds=2)
+    res = benchmark.pedantic(hs.sweep, args=(hs.STUDY, TIMES, "batched"), rounds=30,
+                             warmup_rounds=2)
     assert np.abs(res.x - EXACT).max() < 1e-9
     _record(benchmark, "batched sweep", "reference")
 
 
 @pytest.mark.benchmark(group="hacksaw: 1000 points at once")
 def test_closed_form(benchmark):
-    x = benchmark(hs.closed_form, TIMES)
+    x = benchmark(hs.closed_form, hs.STUDY, TIMES)
     assert x.shape == (1000, 9)
     _record(benchmark, "closed form", "reference")
 
@@ -92,9 +93,8 @@ def scipy_root_sweep(times):
 
     out, x = np.empty((times.size, 9)), hs.TRAJECTORY_SEED
     for i, state in enumerate(np.stack(hs.motor(times), axis=-1)):
-        x = root(hs.residual, x, args=tuple(state),
-                 jac=lambda z, *_: hs.jacobian(z), method="hybr",
-                 tol=1e-12).x
+        x = root(lambda z, *s: hs.residual(hs.STUDY, z, *s), x, args=tuple(state),
+                 jac=lambda z, *_: hs.jacobian(hs.STUDY, z), method="hybr", tol=1e-12).x
         out[i] = x
     return out
 
@@ -110,7 +110,7 @@ def test_sweep_scipy_root_peer(benchmark):
 @pytest.mark.parametrize("predictor", hs.PREDICTORS)
 @pytest.mark.parametrize("method", ["consecutive", "simultaneous"])
 def test_sweep_loop(benchmark, method, predictor):
-    res = benchmark.pedantic(hs.sweep, args=(TIMES, method), kwargs={"predictor": predictor},
-                             rounds=3, warmup_rounds=1)
+    res = benchmark.pedantic(hs.sweep, args=(hs.STUDY, TIMES, method),
+                             kwargs={"predictor": predictor}, rounds=3, warmup_rounds=1)
     assert np.abs(res.x - EXACT).max() < 1e-9
     _record(benchmark, f"{method}, {predictor}", "scipy hybr")
