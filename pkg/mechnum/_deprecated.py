@@ -50,7 +50,7 @@ def warn(old: str, new: str) -> None:
 
 def mech_at(position: int, mech_type: type) -> Callable[[tuple, dict], bool]:
     """The test of a new-form call: a ``mech_type`` (or another mechanism, or None) at
-    ``position``, or ``mech`` by keyword.
+    ``position``, or, with fewer positional arguments, ``mech`` by keyword.
 
     Anything else there (a number, an array, a tuple of them) is the first argument of the old
     form, which had the mechanism later. A dataclass of another type, or None, counts as the
@@ -64,10 +64,8 @@ def mech_at(position: int, mech_type: type) -> Callable[[tuple, dict], bool]:
     (True, False, True, True)
     """
     def is_new(args, kwargs):
-        if "mech" in kwargs:
-            return True
         if len(args) <= position:
-            return False
+            return "mech" in kwargs
         first = args[position]
         return first is None or isinstance(first, mech_type) or dataclasses.is_dataclass(first)
     return is_new

@@ -101,7 +101,7 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
     Returns
     -------
     dict
-        ``{name: artist}``, in the order of ``shapes``.
+        ``{name: artist}``, in the order of ``shapes`` (the dict ``artists`` itself, if given).
 
     Raises
     ------
@@ -117,7 +117,7 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
     >>> fig, ax = plt.subplots()
     >>> drawn = parts(ax, {"bar": ([[0, 0], [1, 1]], {"color": "k"})})
     >>> moved = parts(ax, {"bar": ([[0, 0], [2, 0]], {})}, drawn)
-    >>> moved["bar"] is drawn["bar"], moved["bar"].get_xydata().tolist()
+    >>> moved is drawn, moved["bar"].get_xydata().tolist()
     (True, [[0.0, 0.0], [2.0, 0.0]])
     >>> plt.close(fig)
     """
@@ -125,7 +125,7 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
     if artists is not None and (not isinstance(artists, dict) or set(artists) != set(shapes)):
         raise ValueError(f"artists must be the dict that an earlier draw returned, with the "
                          f"parts {sorted(shapes)}, got {artists!r:.80}")
-    out = {}
+    out = {} if artists is None else artists
     for name, (points, style) in shapes.items():
         xy = np.asarray(points, dtype=float).reshape(-1, 2)
         style = dict(style)
@@ -133,7 +133,6 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
         if kind not in _KINDS:
             raise ValueError(f"the kind of part {name!r} must be one of {_KINDS}, got {kind!r}")
         if artists is not None:
-            out[name] = artists[name]
             if kind == "line":
                 out[name].set_data(xy[:, 0], xy[:, 1])
             elif kind == "fill":
