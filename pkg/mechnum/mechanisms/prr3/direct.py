@@ -116,6 +116,20 @@ class DirectSolution:
         return np.abs(self.elimination_det) < SINGULAR_DET
 
 
+def _radical_axes(psi, sliders, A):
+    """The centres of the three unit circles that ``P`` lies on (complex, units of ``L``), the
+    radical axes' normals ``d_j = centre_j - centre_0``, their determinant, and that
+    determinant made dimensionless (``det / max(|d|, 1)^2``)."""
+    turn = A * np.exp(1j * psi)
+    centres = sliders.copy()
+    centres[:, 1] -= turn
+    centres[:, 2] -= turn * _SIXTH_TURN
+    d = centres[:, 1:] - centres[:, :1]  # the radical axes: Re(conj(d_j) P) = b_j
+    det = d[:, 0].real * d[:, 1].imag - d[:, 0].imag * d[:, 1].real
+    scaled = det / np.maximum(np.maximum(np.abs(d.real), np.abs(d.imag)).max(axis=-1), 1.0) ** 2
+    return centres, d, det, scaled
+
+
 def _candidates(psi, sliders, A):
     """Candidate positions of ``P`` for each angle ``psi``, their residuals, and the
     dimensionless determinant of the radical-axis equations (``det / max(|d|, 1)^2``).
@@ -130,15 +144,9 @@ def _candidates(psi, sliders, A):
     of a candidate is ``max_i | |P - centre_i|^2 - 1 |`` (``inf`` for NaN): the loop equations
     relative to ``L^2``.
     """
-    turn = A * np.exp(1j * psi)
-    centres = sliders.copy()
-    centres[:, 1] -= turn
-    centres[:, 2] -= turn * _SIXTH_TURN
-    d = centres[:, 1:] - centres[:, :1]  # the radical axes: Re(conj(d_j) P) = b_j
+    centres, d, det, scaled = _radical_axes(psi, sliders, A)
     square = centres.real ** 2 + centres.imag ** 2
     b = (square[:, 1:] - square[:, :1]) / 2
-    det = d[:, 0].real * d[:, 1].imag - d[:, 0].imag * d[:, 1].real
-    scaled = det / np.maximum(np.maximum(np.abs(d.real), np.abs(d.imag)).max(axis=-1), 1.0) ** 2
     points = np.empty((len(psi), 3), dtype=complex)
     points[:, 0] = 1j * (b[:, 1] * d[:, 0] - b[:, 0] * d[:, 1]) / np.where(
         np.abs(scaled) <= _CRAMER_DET, np.nan, det)
@@ -326,9 +334,10 @@ def _forward(mech, lam, imag_tol, residual_tol):
     keep = np.flatnonzero(valid)[_distinct(poses[valid], res[valid], index[valid], mech.L)]
     keep = keep[np.lexsort((poses[keep, 2], index[keep]))]
     counts = np.bincount(index[keep], minlength=len(batch)).reshape(lam.shape[:-1])
+    own = kernels.slider_points(mech, batch[index[keep]]) / mech.L  # the elimination at the
+    elimination = _radical_axes(poses[keep, 2], own, mech.a / mech.L)[3]  # poses' own angles
     return DirectSolution(poses[keep], index[keep], counts, continuum.reshape(lam.shape[:-1]),
-                          res[keep], elimination[root[keep]], jacobian_det[keep],
-                          inverse_det[keep])
+                          res[keep], elimination, jacobian_det[keep], inverse_det[keep])
 
 
 direct = _deprecated.renamed(forward, "direct", mech_type=Geometry, to=1)
