@@ -11,8 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from mechnum.errors import (DivergenceError, GeometryError, RelaxationFactorError,
-                            SingularJacobianError, UnreachablePoseError)
+from mechnum.errors import (
+    DivergenceError,
+    GeometryError,
+    RelaxationFactorError,
+    SingularJacobianError,
+    UnreachablePoseError,
+)
 from mechnum.mechanisms import finger as F
 from mechnum.plotting import animate
 from mechnum.published import check_row, read_published, read_registry

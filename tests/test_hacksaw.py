@@ -222,7 +222,8 @@ def test_position_jacobian_is_the_derivative(g, q, th2, form):
 
 
 @EXAMPLES
-@given(g=geometries, q=st.tuples(st.floats(-2, 2), angles, angles), v=st.tuples(rates, rates, rates),
+@given(g=geometries, q=st.tuples(st.floats(-2, 2), angles, angles),
+       v=st.tuples(rates, rates, rates),
        th2=angles, w2=rates)
 def test_velocity_residual_is_linear_with_the_rate_jacobian(g, q, v, th2, w2):
     q, v = np.array(q), np.array(v)
@@ -543,19 +544,20 @@ def study_iterations(g, t, seed, method, predictor, tol):
         start = x
         if i and predictor == "velocity":
             start = x + (t[i] - t[i - 1]) * np.concatenate([x[3:], np.zeros(3)])
+        m, q, v = (th2[i], w2[i], a2[i]), exact[i, :3], exact[i, 3:6]  # this point's
         if method == "simultaneous":
-            counts.append([newton.solve(lambda z: hs.residual(g, z, th2[i], w2[i], a2[i]), start,
+            counts.append([newton.solve(lambda z, m=m: hs.residual(g, z, *m), start,
                                         lambda z: hs.jacobian(g, z), **rule).iterations])
         else:
-            q = exact[i, :3]
             counts.append([
-                newton.solve(lambda z: hs.position_residual(g, z, th2[i]), start[:3],
+                newton.solve(lambda z, m=m: hs.position_residual(g, z, m[0]), start[:3],
                              lambda z: hs.position_jacobian(g, z), **rule).iterations,
-                newton.solve(lambda z: hs.velocity_residual(g, z, q, th2[i], w2[i]), start[3:6],
-                             lambda z: hs.rate_jacobian(g, q), **rule).iterations,
-                newton.solve(lambda z: hs.acceleration_residual(g, z, exact[i, 3:6], q, th2[i],
-                                                                w2[i], a2[i]), start[6:],
-                             lambda z: hs.position_jacobian(g, q), **rule).iterations])
+                newton.solve(lambda z, m=m, q=q: hs.velocity_residual(g, z, q, *m[:2]),
+                             start[3:6], lambda z, q=q: hs.rate_jacobian(g, q),
+                             **rule).iterations,
+                newton.solve(lambda z, m=m, q=q, v=v: hs.acceleration_residual(g, z, v, q, *m),
+                             start[6:], lambda z, q=q: hs.position_jacobian(g, q),
+                             **rule).iterations])
         x = exact[i]
     return np.array(counts, dtype=int).reshape(t.size, 1 if method == "simultaneous" else 3)
 

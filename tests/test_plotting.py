@@ -8,8 +8,16 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from mechnum.plotting import (MAX_DPI, MAX_FRAMES, STYLE, JSAnimation, animate,  # noqa: E402
-                              check_axes, parts, use_book_style)
+from mechnum.plotting import (  # noqa: E402
+    MAX_DPI,
+    MAX_FRAMES,
+    STYLE,
+    JSAnimation,
+    animate,
+    check_axes,
+    parts,
+    use_book_style,
+)
 
 
 def bar(ax, mech, state, *, artists=None, color="C0"):
@@ -38,7 +46,7 @@ def test_animate_moves_one_set_of_artists_and_fits_every_frame():
     animate(spy, 2.0, [0.0, np.pi / 2, np.pi], ax=ax, titles=["a", "b", "c"])
     assert [new for new, _, _ in seen].count(True) == 1  # drawn once, then moved
     assert {count for _, count, _ in seen} == {1}  # nothing accumulates
-    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    (x0, x1), (_, y1) = ax.get_xlim(), ax.get_ylim()
     assert x0 <= -2.0 and x1 >= 2.0 and y1 >= 2.0  # limits hold every frame's bar
     assert ax.get_title() == "c"
 

@@ -119,7 +119,8 @@ def test_vertices_form_the_platform_triangle(g, poses):
 def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
     c = prr3.sliders(g, lam)
     assert c[0, 1] == c[1, 1] == 0 and c[2, 0] == g.B3
-    assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, rtol=0, atol=1e-9 * (1 + abs(g.B2)
+    assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, rtol=0,
+                    atol=1e-9 * (1 + abs(g.B2)
                                                                                  + abs(g.H3)))
 
 
@@ -169,9 +170,11 @@ def test_jacobians_match_finite_differences(case, k):
     lam = prr3.branch_inputs(g, pose, SIGNS[k])
     assume(np.all(np.isfinite(lam)))
     J = prr3.direct_jacobian(g, pose, lam)
-    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(g, p, lam), pose), rtol=0, atol=1e-6)
+    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(g, p, lam), pose), rtol=0,
+                    atol=1e-6)
     Ji = prr3.inverse_jacobian(g, pose, lam)
-    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(g, pose, q), lam), rtol=0, atol=1e-6)
+    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(g, pose, q), lam), rtol=0,
+                    atol=1e-6)
     assert np.count_nonzero(Ji - np.diag(np.diag(Ji))) == 0
 
 
@@ -187,7 +190,8 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
     assert_allclose(prr3.jacobian_dets(big, pose_big, lam * scale),
                     prr3.jacobian_dets(g, pose, lam), rtol=0, atol=1e-9)
     inverse_det, direct_det = prr3.jacobian_dets(g, pose, lam)
-    assert_allclose(inverse_det * (2 * g.L) ** 3, np.linalg.det(prr3.inverse_jacobian(g, pose, lam)),
+    assert_allclose(inverse_det * (2 * g.L) ** 3,
+                    np.linalg.det(prr3.inverse_jacobian(g, pose, lam)),
                     rtol=1e-9, atol=1e-12)
 
 
@@ -410,7 +414,8 @@ def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
 def test_a_self_motion_is_reported_as_a_continuum():
     g = TABLE_5
     lam = [3.5, 0.5, 2.8]  # C2 = C3 = (2.5, 0): the platform turns about P = (2.5, 0)
-    assert np.abs(prr3.polynomial(g, lam)).max() < 1e-12 * np.abs(prr3.polynomial(g, [2.0, 0.5, 0.2])).max()  # zero but for round-off
+    scale = np.abs(prr3.polynomial(g, [2.0, 0.5, 0.2])).max()
+    assert np.abs(prr3.polynomial(g, lam)).max() < 1e-12 * scale  # zero but for round-off
     for psi in (0.3, 2.0, 4.0):
         assert_allclose(prr3.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
     sol = prr3.forward(g, [lam, [2.0, 0.5, 0.2]])
@@ -575,7 +580,8 @@ def test_mode_change_path_joins_two_assembly_modes_of_one_input():
     lam0 = np.array([3.1266, 1.8887, 3.6427])
     sol = prr3.forward(g, lam0)
     start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
-    assert_allclose(prr3.branch_inputs(g, sol.poses[[1, 3]], signs), [lam0, lam0], rtol=0, atol=1e-9)
+    assert_allclose(prr3.branch_inputs(g, sol.poses[[1, 3]], signs), [lam0, lam0], rtol=0,
+                    atol=1e-9)
     path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
     assert_allclose(path[[0, -1]], [start, end], rtol=0, atol=1e-12)
     _assert_singularity_free(path, g, signs)

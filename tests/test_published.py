@@ -7,9 +7,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
-                              read_findings, read_published, read_registry,
-                              reproduction_table)
+from mechnum.published import (
+    COLUMNS,
+    agrees,
+    below,
+    check_row,
+    half_unit,
+    is_claim,
+    read_findings,
+    read_published,
+    read_registry,
+    reproduction_table,
+)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),

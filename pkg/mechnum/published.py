@@ -197,7 +197,8 @@ def read_registry(path: str | PathLike, chapter: str | None = None) -> list[dict
     --------
     >>> import pathlib, tempfile
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
-    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> _ = path.write_text(",".join(COLUMNS)
+    ...                     + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
     >>> [row["published"] for row in read_registry(path, chapter="01")]
     ['1.942']
     """
@@ -214,7 +215,8 @@ def read_published(path: str | PathLike, chapter: str) -> dict[str, str]:
     --------
     >>> import pathlib, tempfile
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
-    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> _ = path.write_text(",".join(COLUMNS)
+    ...                     + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
     >>> read_published(path, "01")
     {'T': '1.942'}
     """

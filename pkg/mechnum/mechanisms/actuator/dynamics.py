@@ -10,7 +10,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-
 from numpy.typing import ArrayLike
 
 from mechnum import _deprecated, _validate

@@ -116,7 +116,8 @@ def stroke_kinematics(mech: Actuator, a: ArrayLike, a_dot: ArrayLike = 0.0,
     UnreachablePoseError
         If the loop cannot close at some stroke.
     SingularJacobianError
-        If ``model="exact"`` and some stroke is a dead point (``|sin delta| < sqrt(eps)``, or ``a + l`` within round-off of ``d +- b``).
+        If ``model="exact"`` and some stroke is a dead point (``|sin delta| < sqrt(eps)``,
+        or ``a + l`` within round-off of ``d +- b``).
 
     Examples
     --------

@@ -30,20 +30,51 @@ the angles, ``draw(ax, pose, index, lines=)`` and its millimetre tables are gone
 """
 
 from mechnum.mechanisms.finger.drawing import draw
-from mechnum.mechanisms.finger.examples import (FIG1_GIVEN, FIG1_PRINTED, MAX_VECTORS,
-                                                fig1_vectors, ill_conditioned_example,
-                                                loop_closure)
-from mechnum.mechanisms.finger.model import (CROSSED, MODES, OPEN, Linkage, Pose,
-                                             angles_from_points, forward,
-                                             freudenstein_coefficients, inverse, place_links,
-                                             pose, pose_from_output, reachable, workspace)
-from mechnum.mechanisms.finger.study import (MM, STUDY_OMEGAS, TABLE1_EI, TABLE1_R4,
-                                             TABLE2_THETA_IN, TABLE2_THETA_IN_UNROUNDED,
-                                             TABLE2_THETA_OUT, TABLE3_LINKAGE, column_shifts,
-                                             published_points, reproduce, table1_linkage)
-from mechnum.mechanisms.finger.synthesis import (Synthesis, design_matrix,
-                                                 lengths_from_coefficients,
-                                                 linkage_from_coefficients, synthesize)
+from mechnum.mechanisms.finger.examples import (
+                                                FIG1_GIVEN,
+                                                FIG1_PRINTED,
+                                                MAX_VECTORS,
+                                                fig1_vectors,
+                                                ill_conditioned_example,
+                                                loop_closure,
+)
+from mechnum.mechanisms.finger.model import (
+                                                CROSSED,
+                                                MODES,
+                                                OPEN,
+                                                Linkage,
+                                                Pose,
+                                                angles_from_points,
+                                                forward,
+                                                freudenstein_coefficients,
+                                                inverse,
+                                                place_links,
+                                                pose,
+                                                pose_from_output,
+                                                reachable,
+                                                workspace,
+)
+from mechnum.mechanisms.finger.study import (
+                                                MM,
+                                                STUDY_OMEGAS,
+                                                TABLE1_EI,
+                                                TABLE1_R4,
+                                                TABLE2_THETA_IN,
+                                                TABLE2_THETA_IN_UNROUNDED,
+                                                TABLE2_THETA_OUT,
+                                                TABLE3_LINKAGE,
+                                                column_shifts,
+                                                published_points,
+                                                reproduce,
+                                                table1_linkage,
+)
+from mechnum.mechanisms.finger.synthesis import (
+                                                Synthesis,
+                                                design_matrix,
+                                                lengths_from_coefficients,
+                                                linkage_from_coefficients,
+                                                synthesize,
+)
 
 __all__ = [
     # model

@@ -12,8 +12,14 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, linear
 from mechnum.mechanisms.finger.examples import fig1_vectors, ill_conditioned_example, loop_closure
-from mechnum.mechanisms.finger.model import (Linkage, angles_from_points, forward, inverse,
-                                             place_links, workspace)
+from mechnum.mechanisms.finger.model import (
+    Linkage,
+    angles_from_points,
+    forward,
+    inverse,
+    place_links,
+    workspace,
+)
 from mechnum.mechanisms.finger.synthesis import design_matrix, synthesize
 
 MM = 1e-3

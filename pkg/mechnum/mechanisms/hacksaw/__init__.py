@@ -56,18 +56,47 @@ The package's modules:
 """
 
 from mechnum.mechanisms.hacksaw.drawing import DRAW_PAD, draw, joints
-from mechnum.mechanisms.hacksaw.equations import (DEAD_POINT_COS, acceleration_residual,
-                                                  jacobian, position_jacobian,
-                                                  position_residual, rate_jacobian, residual,
-                                                  velocity_residual)
-from mechnum.mechanisms.hacksaw.exact import (POSITION_RTOL, SingularPoints, closed_form, forward,
-                                              singular_points, solve_rates)
+from mechnum.mechanisms.hacksaw.equations import (
+                                                  DEAD_POINT_COS,
+                                                  acceleration_residual,
+                                                  jacobian,
+                                                  position_jacobian,
+                                                  position_residual,
+                                                  rate_jacobian,
+                                                  residual,
+                                                  velocity_residual,
+)
+from mechnum.mechanisms.hacksaw.exact import (
+                                                  POSITION_RTOL,
+                                                  SingularPoints,
+                                                  closed_form,
+                                                  forward,
+                                                  singular_points,
+                                                  solve_rates,
+)
 from mechnum.mechanisms.hacksaw.kernels import MODES
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, FORMS, NAMES, REPORT_SEED, STUDY,
-                                              STUDY_SEED, TOL, TRAJECTORY_SEED, Geometry,
-                                              first_revolution_time, motor)
-from mechnum.mechanisms.hacksaw.solvers import (MAX_POINTS, METHODS, PREDICTORS, SweepResult,
-                                                solve_consecutive, solve_simultaneous, sweep)
+from mechnum.mechanisms.hacksaw.model import (
+                                                  ALPHA_MAX,
+                                                  FORMS,
+                                                  NAMES,
+                                                  REPORT_SEED,
+                                                  STUDY,
+                                                  STUDY_SEED,
+                                                  TOL,
+                                                  TRAJECTORY_SEED,
+                                                  Geometry,
+                                                  first_revolution_time,
+                                                  motor,
+)
+from mechnum.mechanisms.hacksaw.solvers import (
+                                                  MAX_POINTS,
+                                                  METHODS,
+                                                  PREDICTORS,
+                                                  SweepResult,
+                                                  solve_consecutive,
+                                                  solve_simultaneous,
+                                                  sweep,
+)
 from mechnum.mechanisms.hacksaw.study import reproduce
 
 __all__ = [

@@ -16,8 +16,15 @@ from numpy.typing import ArrayLike
 
 from mechnum import _deprecated
 from mechnum.mechanisms.hacksaw import kernels
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, STUDY, Geometry, checked, checked_motor,
-                                              finite, motor)
+from mechnum.mechanisms.hacksaw.model import (
+    ALPHA_MAX,
+    STUDY,
+    Geometry,
+    checked,
+    checked_motor,
+    finite,
+    motor,
+)
 
 # Positions that close the position constraints to 1e-8 of the mechanism's size are a
 # configuration (a Newton solution stopped at the study's step of 1e-6 closes them to about
@@ -233,7 +240,8 @@ def singular_points(mech: Geometry) -> SingularPoints:
             turned = folded and g.r3 < g.r2  # the coupler points back along OB (theta3 + pi)
             theta2 = along + np.pi if folded and g.r3 > g.r2 else along
             limits[1 - right if turned else right].append(theta2)  # mode 1: cos(theta3) > 0
-    return SingularPoints(np.unique(_angles(dead)), np.array([_angles(m) for m in limits]).reshape(2, -1))
+    limits = np.array([_angles(m) for m in limits]).reshape(2, -1)
+    return SingularPoints(np.unique(_angles(dead)), limits)
 
 
 def _angles(values):

@@ -16,8 +16,17 @@ from numpy.typing import ArrayLike
 from mechnum import _deprecated, _validate
 from mechnum.errors import ConvergenceError
 from mechnum.mechanisms.hacksaw import kernels
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, FORMS, STUDY, TOL, TRAJECTORY_SEED,
-                                              Geometry, checked, checked_motor, motor)
+from mechnum.mechanisms.hacksaw.model import (
+    ALPHA_MAX,
+    FORMS,
+    STUDY,
+    TOL,
+    TRAJECTORY_SEED,
+    Geometry,
+    checked,
+    checked_motor,
+    motor,
+)
 from mechnum.newton import solve, solve_batch
 
 METHODS = ("consecutive", "simultaneous", "batched")

@@ -7,8 +7,7 @@
 import numpy as np
 
 from mechnum.mechanisms.hacksaw.exact import closed_form
-from mechnum.mechanisms.hacksaw.model import (NAMES, STUDY, STUDY_SEED, first_revolution_time,
-                                              motor)
+from mechnum.mechanisms.hacksaw.model import NAMES, STUDY, STUDY_SEED, first_revolution_time, motor
 from mechnum.mechanisms.hacksaw.solvers import solve_consecutive, solve_simultaneous, sweep
 
 

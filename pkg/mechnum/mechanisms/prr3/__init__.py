@@ -40,14 +40,31 @@ geometry last, are deprecated (CHANGELOG.md).
 """
 
 from mechnum.mechanisms.prr3.annex_i import annex_i_terms
-from mechnum.mechanisms.prr3.direct import (DirectSolution, direct, direct_by_newton, forward,
-                                            forward_by_newton)
+from mechnum.mechanisms.prr3.direct import (
+                                            DirectSolution,
+                                            direct,
+                                            direct_by_newton,
+                                            forward,
+                                            forward_by_newton,
+)
 from mechnum.mechanisms.prr3.drawing import draw
-from mechnum.mechanisms.prr3.elimination import (deflate, equations, polynomial,
-                                                 solutions_from_equations)
-from mechnum.mechanisms.prr3.geometry import (Geometry, bars, direct_jacobian, inverse_jacobian,
-                                              jacobian_dets, loop_residuals, radicands, sliders,
-                                              vertices)
+from mechnum.mechanisms.prr3.elimination import (
+                                            deflate,
+                                            equations,
+                                            polynomial,
+                                            solutions_from_equations,
+)
+from mechnum.mechanisms.prr3.geometry import (
+                                            Geometry,
+                                            bars,
+                                            direct_jacobian,
+                                            inverse_jacobian,
+                                            jacobian_dets,
+                                            loop_residuals,
+                                            radicands,
+                                            sliders,
+                                            vertices,
+)
 from mechnum.mechanisms.prr3.inverse import branch_inputs, inverse, workspace
 from mechnum.mechanisms.prr3.paths import mode_change_path
 from mechnum.mechanisms.prr3.singularities import singular_points

@@ -93,6 +93,6 @@ def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
         if values[i, k] == 0:
             found.append(grid[i])
         elif values[i + 1, k] != 0:  # an exact zero at i + 1 is found as the next left end
-            found.append(brentq(lambda s: float(measure(s)[k]), grid[i], grid[i + 1],
+            found.append(brentq(lambda s, k=k: float(measure(s)[k]), grid[i], grid[i + 1],
                                 xtol=_XTOL))
     return start + np.multiply.outer(np.unique(found), end - start).reshape(-1, 3)
