@@ -27,11 +27,12 @@ def bar(ax, mech, state, *, artists=None, color="C0"):
 
 
 def test_animation_is_self_contained_html():
+    before = set(plt.get_fignums())
     html = animate(bar, 1.0, np.linspace(0, np.pi, 4))
     assert isinstance(html, JSAnimation) and html._repr_html_() == str(html)
     assert "http" not in html and 'class="fa ' not in html
     assert html.count("data:image/png;base64") == 4
-    assert not plt.get_fignums()  # the figure was closed
+    assert set(plt.get_fignums()) == before  # its figure was closed
 
 
 def test_animate_moves_one_set_of_artists_and_fits_every_frame():
