@@ -231,6 +231,8 @@ OLD_FORMS = [  # the deprecated call, and what it must equal
      lambda: F.place_links(TABLE3, F.inverse(TABLE3, [2.3])[:, 0], [2.3]).I),
     (lambda: F.reachable([4.0, 5.0], TABLE3, "output"),
      lambda: F.workspace(TABLE3, [4.0, 5.0], "output")),
+    (lambda: F.place_links([5.0], [2.3], TABLE3).E, lambda: F.place_links(TABLE3, [5.0],
+                                                                          [2.3]).E),
 ]
 
 

@@ -53,7 +53,7 @@ the stroke ``a`` (or the time ``t``) is the input, and a state, what :func:`draw
 pair ``(a, (theta2, theta4))``. The orders of version 0.1, with the mechanism after the stroke,
 are deprecated (CHANGELOG.md). The modules: :mod:`~mechnum.mechanisms.actuator.model` (the
 parameters), :mod:`~mechnum.mechanisms.actuator.loop` (positions and the loop equations),
-:mod:`~mechnum.mechanisms.actuator.kinematics` (velocity coefficients, partial velocities),
+:mod:`~mechnum.mechanisms.actuator.velocities` (velocity coefficients, partial velocities),
 :mod:`~mechnum.mechanisms.actuator.dynamics` (the force, the energy, forward dynamics),
 :mod:`~mechnum.mechanisms.actuator.drawing` and :mod:`~mechnum.mechanisms.actuator.annex`
 (the study's numbers).
@@ -72,7 +72,7 @@ from mechnum.mechanisms.actuator.dynamics import (
     lagrange_terms,
     virtual_power_force,
 )
-from mechnum.mechanisms.actuator.kinematics import (
+from mechnum.mechanisms.actuator.velocities import (
     MODELS,
     Kinematics,
     PartialVelocities,

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mechnum.mechanisms.actuator.dynamics import lagrange_force, virtual_power_force
-from mechnum.mechanisms.actuator.kinematics import kinematics
+from mechnum.mechanisms.actuator.velocities import kinematics
 from mechnum.mechanisms.actuator.model import ANNEX
 
 # The cylinder's bore and rod radii (m), printed only inside the annulus area S.

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _deprecated, _validate
-from mechnum.mechanisms.actuator.kinematics import (  # kinematics: for the examples
+from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the examples
     MODELS,
     Kinematics,
     centres_of_mass,

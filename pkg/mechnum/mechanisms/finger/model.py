@@ -255,6 +255,14 @@ def angle_pairs(theta_in: ArrayLike, theta_out: ArrayLike) -> tuple[np.ndarray, 
     return theta_in, theta_out
 
 
+def _old_place_links(theta_in, theta_out, linkage):
+    return (linkage, theta_in, theta_out), {}
+
+
+@_deprecated.old_form(_old_place_links, old="place_links(theta_in, theta_out, linkage)",
+                      new="place_links(mech, theta_in, theta_out)",
+                      is_new=lambda args, kwargs: "linkage" not in kwargs and not (
+                          len(args) > 2 and isinstance(args[2], Linkage)))
 def place_links(mech: Linkage, theta_in: ArrayLike, theta_out: ArrayLike) -> Pose:
     """The points of the rockers at given angles, without assembling the coupler (as the
     study's Tables 4 and 5 do): ``E = r1 e(theta_out)``, ``I = H - r3 e(theta_in)``.
