@@ -72,15 +72,6 @@ from mechnum.mechanisms.actuator.dynamics import (
     lagrange_terms,
     virtual_power_force,
 )
-from mechnum.mechanisms.actuator.velocities import (
-    MODELS,
-    Kinematics,
-    PartialVelocities,
-    centres_of_mass,
-    kinematics,
-    partial_velocities,
-    stroke_kinematics,
-)
 from mechnum.mechanisms.actuator.loop import (
     MODES,
     forward,
@@ -92,6 +83,15 @@ from mechnum.mechanisms.actuator.loop import (
     solve_loop,
 )
 from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator
+from mechnum.mechanisms.actuator.velocities import (
+    MODELS,
+    Kinematics,
+    PartialVelocities,
+    centres_of_mass,
+    kinematics,
+    partial_velocities,
+    stroke_kinematics,
+)
 
 __all__ = ["G_MATHCAD", "Actuator", "ANNEX", "MODES", "MODELS", "forward", "positions",
            "inverse", "singular_points", "loop_residual", "loop_jacobian", "solve_loop",

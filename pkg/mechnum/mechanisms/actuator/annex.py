@@ -3,8 +3,8 @@
 import numpy as np
 
 from mechnum.mechanisms.actuator.dynamics import lagrange_force, virtual_power_force
-from mechnum.mechanisms.actuator.velocities import kinematics
 from mechnum.mechanisms.actuator.model import ANNEX
+from mechnum.mechanisms.actuator.velocities import kinematics
 
 # The cylinder's bore and rod radii (m), printed only inside the annulus area S.
 _BORE_RADIUS, _ROD_RADIUS = 0.016, 0.008

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _deprecated, _validate
+from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator, checked
 from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the examples
     MODELS,
     Kinematics,
@@ -23,7 +24,6 @@ from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the exam
     partial_velocities,
     stroke_kinematics,  # noqa: F401
 )
-from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator, checked
 from mechnum.ode import rk4
 
 

@@ -1,7 +1,7 @@
 """The 3PRR's formulas on checked input: the kernels that the public functions call.
 
-Each function here takes a :class:`~mechnum.mechanisms.prr3.geometry.Geometry` and float arrays of shape
-``(..., 3)`` that the caller has checked (:func:`~mechnum.mechanisms.prr3.geometry.vertices` and
+Each function here takes a :class:`~mechnum.mechanisms.prr3.geometry.Geometry` and float arrays
+of shape ``(..., 3)`` that the caller has checked (:func:`~mechnum.mechanisms.prr3.geometry.vertices` and
 its siblings check, then call these), so that the direct solver and the path search can call
 them many times without checking again. Nothing here validates its input.
 
