@@ -296,6 +296,8 @@ def test_annex_i_parser_refuses_what_is_not_a_monomial():
     assert annex_i.parse_terms("3*K1^2 - Q5") == [(3, {"K1": 2}), (-1, {"Q5": 1})]
     with pytest.raises(ValueError, match="not a monomial"):
         annex_i.parse_terms("3*K1^2 - Q5/2")
+    with pytest.raises(ValueError, match="text must be a str"):
+        annex_i.parse_terms(None)
 
 
 @MANY

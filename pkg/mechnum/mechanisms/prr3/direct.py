@@ -106,12 +106,12 @@ class DirectSolution:
     inverse_det: np.ndarray
 
     @property
-    def singular(self):
+    def singular(self) -> np.ndarray:
         """Poses at a direct singularity of the mechanism (``|jacobian_det| < 1e-6``)."""
         return np.abs(self.jacobian_det) < SINGULAR_DET
 
     @property
-    def elimination_singular(self):
+    def elimination_singular(self) -> np.ndarray:
         """Poses where the study's back-substitution fails (``|elimination_det| < 1e-6``)."""
         return np.abs(self.elimination_det) < SINGULAR_DET
 

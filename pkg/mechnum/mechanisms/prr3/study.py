@@ -19,7 +19,7 @@ EXAMPLES = {
 WORKSPACE_GEOMETRY = Geometry(L=1, a=1, B2=3, B3=2, H3=2)
 
 
-def reproduce():
+def reproduce() -> dict[str, float]:
     """Every number of the registry rows of chapter ``04_rigid_3prr``, computed by this package.
 
     Tables 3 and 4 (inverse problem): the two values of each input (``+``: the branch adding the
