@@ -477,6 +477,8 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     lambda g: prr3.forward(g, [[[0.4, 0.1, 0.6]]]),
     lambda g: prr3.forward(g, [0.4, 0.1, 0.6], imag_tol=-1),
     lambda g: prr3.forward(g, [0.4, 0.1, 0.6], residual_tol=np.nan),
+    lambda g: prr3.forward(g, np.zeros((DIRECT.MAX_INPUTS + 1, 3))),  # a bound on the work
+    lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], np.zeros((DIRECT.MAX_INPUTS + 1, 3))),
     lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], [0.0, 0.0, 0.0]),
     lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], [[0.0, 0.0, 0.0]], tol=-1),
     lambda g: prr3.draw(FIG[1], g, ([1.5, 0.5, 0.2], [[0.6, 0.4, 0.0]] * 2)),
@@ -506,7 +508,7 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
 def test_bad_input_raises_a_value_error_that_names_it(call):
     with pytest.raises(ValueError, match="pose|lambdas|tol|signs|x, y|psi|y must|overflow|"
                                          "c must|seeds|takes one|shape|mech must be|ax must|"
-                                         "state must|guides|points|kind|start|end|samples"):
+                                         "state must|guides|points|kind|start|end|samples|inputs"):
         call(EXAMPLES["Table 6"][0])
 
 

@@ -26,6 +26,9 @@ IMAG_TOL = 1e-4
 RESIDUAL_TOL = 1e-6
 # The sextic's degree: no input has more poses.
 MAX_POSES = 6
+MAX_INPUTS = 1_000_000
+"""The most inputs of one call of :func:`forward`, or seeds of :func:`forward_by_newton` (the
+forward problem holds some 2 kB per input while it works: 2 GB for the most)."""
 # Poses closer than 1e-4 (in L and in radians) are one solution: the two ends of a double
 # root blurred by round-off, as IMAG_TOL takes them.
 SAME_POSE = 1e-4
@@ -253,7 +256,8 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
     ----------
     mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     lambdas : array_like, shape (3,) or (m, 3)
-        The inputs ``(lambda1, lambda2, lambda3)``, metres; an empty batch is valid.
+        The inputs ``(lambda1, lambda2, lambda3)``, metres; an empty batch is valid, and at
+        most :data:`MAX_INPUTS`.
     imag_tol : float, optional
         Largest ``|Im psi|`` (radians) of a root taken as real (:data:`IMAG_TOL`).
     residual_tol : float, optional
@@ -285,6 +289,7 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
     lam = vectors(lambdas, "lambdas")
     if lam.ndim > 2:
         raise ValueError(f"lambdas must have shape (3,) or (m, 3), got shape {lam.shape}")
+    _validate.maxiter(lam.size // 3, "the number of inputs", minimum=0, maximum=MAX_INPUTS)
     imag_tol = _validate.tolerance(imag_tol, "imag_tol")
     residual_tol = _validate.tolerance(residual_tol, "residual_tol")
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
@@ -412,7 +417,8 @@ def forward_by_newton(mech: Geometry, lambdas: ArrayLike, seeds: ArrayLike, *,
     mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     lambdas : array_like, shape (3,)
     seeds : array_like, shape (m, 3)
-        Starting poses ``(x, y, psi)``; an empty batch gives no pose.
+        Starting poses ``(x, y, psi)``; an empty batch gives no pose; at most
+        :data:`MAX_INPUTS`.
     tol : float, optional
         Newton's step tolerance.
 
@@ -437,6 +443,7 @@ def forward_by_newton(mech: Geometry, lambdas: ArrayLike, seeds: ArrayLike, *,
     check(mech)
     lam = _validate.array(lambdas, "lambdas", shape=(3,))
     seeds = _validate.array(seeds, "seeds", shape=(None, 3))
+    _validate.maxiter(len(seeds), "the number of seeds", minimum=0, maximum=MAX_INPUTS)
     tol = _validate.tolerance(tol)
     if len(seeds) == 0:
         return np.empty((0, 3))
