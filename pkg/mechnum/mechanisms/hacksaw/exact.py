@@ -130,7 +130,10 @@ def solve_rates(mech: Geometry, q: ArrayLike,
 
     The velocity and acceleration constraints are linear in their unknowns, with the matrix
     :func:`rate_jacobian` (rows permuted: :func:`position_jacobian`), so each stage is one
-    linear solve; Newton would take one exact step from any seed, then a confirming step.
+    linear solve; Newton would take one exact step from any seed, then a confirming step. The
+    matrix's structure solves it without pivoting: two of its rows differ in the column of
+    ``theta3`` only, which gives ``omega3`` (``alpha3``) at once, and the two others are then a
+    rotation by ``theta1``.
 
     Parameters
     ----------

@@ -212,16 +212,27 @@ def closed_form(g, th2, w2, a2, mode=0):
     return np.stack(np.broadcast_arrays(r1, t1, t3, vr, w1, w3, ar, a1, a3), axis=-1)
 
 
+def _rate_solve(g, q, sines, rhs_c, rhs_x, rhs_y):
+    """Solve ``J u = (rhs_c, rhs_x, rhs_y)`` with ``J`` the position Jacobian (loop form, rows
+    ``c, x, y``) by its structure: rows ``c`` and ``y`` differ only in ``theta3``'s column,
+    ``-r3 cos(theta3)``, which gives ``u2`` at once; rows ``c`` and ``x`` are then a rotation by
+    ``theta1`` of ``(u0, r1 u1)``. No pivoting is needed: ``r1`` and ``r3 cos(theta3)`` are
+    the only divisors (the determinant is ``-r1 r3 cos(theta3)``)."""
+    s1, c1, s3, c3 = sines
+    r1 = _parts(q)[0]
+    u2 = (rhs_c - rhs_y) / (g.r3 * c3)
+    turned = rhs_x + g.r3 * s3 * u2
+    return _pack(s1 * rhs_c - c1 * turned, (c1 * rhs_c + s1 * turned) / r1, u2)
+
+
 def linear_rates(g, q, th2, w2, a2, crank_=None):
-    """The velocity and acceleration stages, linear in their unknowns, as two linear solves
-    (each one exact Newton step from zero: the residual at zero is minus the right side);
-    ``crank_``, the :func:`crank` of ``th2`` if known. Raises at a dead point."""
+    """The velocity and acceleration stages, linear in their unknowns, solved (each is one
+    exact Newton step from zero: the residual at zero is minus the right side); ``crank_``,
+    the :func:`crank` of ``th2`` if known. Raises at a dead point."""
     sines = trig(q)
     dead_points(sines[3], th2)
-    crank_ = crank(th2) if crank_ is None else crank_
-    J = loop_jacobian(g, q, sines=sines)  # rows (c, x, y); the velocity rows are (x', y', c')
-    zero = np.zeros(np.broadcast_shapes(q.shape, np.shape(w2) + (3,)))
-    rhs = -velocity(g, zero, q, crank_, w2, sines)[..., [2, 0, 1]]
-    v = np.linalg.solve(J, rhs[..., None])[..., 0]
-    rhs = -acceleration(g, zero, v, q, crank_, w2, a2, sines)
-    return v, np.linalg.solve(J, rhs[..., None])[..., 0]
+    s2, c2 = crank(th2) if crank_ is None else crank_
+    # the velocity rows at zero rates leave the crank's terms: the right side, rows (c, x, y)
+    v = _rate_solve(g, q, sines, 0.0 * (s2 * w2), g.r2 * w2 * s2, g.r2 * w2 * c2)
+    rhs = -acceleration(g, np.zeros_like(v), v, q, (s2, c2), w2, a2, sines)
+    return v, _rate_solve(g, q, sines, rhs[..., 0], rhs[..., 1], rhs[..., 2])
