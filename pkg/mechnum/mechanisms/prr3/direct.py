@@ -385,11 +385,15 @@ def _distinct(poses, residuals, groups, L):
     ranked, group = poses[order], groups[order]
     duplicate = np.zeros(len(order), dtype=bool)
     sizes = np.bincount(groups)
+    rows = np.arange(len(order))
     for shift in range(1, int(sizes.max(initial=0))):  # earlier in the same group
-        delta = ranked[shift:] - ranked[:-shift]
+        rows = rows[sizes[group[rows]] > shift]  # the poses of groups with more than shift
+        later = rows[rows >= shift]
+        later = later[group[later] == group[later - shift]]
+        delta = ranked[later] - ranked[later - shift]
         gap = (np.hypot(delta[:, 0], delta[:, 1]) / L
                + np.abs(np.mod(delta[:, 2] + np.pi, 2 * np.pi) - np.pi))
-        duplicate[shift:] |= (gap <= SAME_POSE) & (group[shift:] == group[:-shift])
+        duplicate[later] |= gap <= SAME_POSE
     kept = ~duplicate
     if np.bincount(group[kept], minlength=len(sizes)).max(initial=0) > MAX_POSES:
         count = np.cumsum(kept)
