@@ -108,7 +108,15 @@ def _position_entries(g, q, form="loop", sines=None):
 
 def loop_jacobian(g, q, form="loop", sines=None):
     """The Jacobian of :func:`loop` in ``(r1, theta1, theta3)``: shape ``(..., 3, 3)``."""
-    return _matrix(3, _position_entries(g, q, form, sines))
+    if form != "loop" or q.ndim == 1:
+        return _matrix(3, _position_entries(g, q, form, sines))
+    s1, c1, s3, c3 = trig(q) if sines is None else sines
+    r1 = q[..., 0]
+    out = np.empty(q.shape + (3,))  # a batch, filled row by row: the batched sweep's hot loop
+    out[..., 0, 0], out[..., 0, 1], out[..., 0, 2] = s1, r1 * c1, 0.0
+    out[..., 1, 0], out[..., 1, 1], out[..., 1, 2] = -c1, r1 * s1, -g.r3 * s3
+    out[..., 2, 0], out[..., 2, 1], out[..., 2, 2] = s1, out[..., 0, 1], -g.r3 * c3
+    return out
 
 
 def velocity(g, v, q, crank, w2, sines=None):
