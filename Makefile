@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-student downloads grade pdf test unit explore notebooks notebooks-other-machine html-check bench \
+.PHONY: book book-student downloads grade pdf test unit lint explore notebooks notebooks-other-machine html-check bench \
 	execute lab clean
 
 $(STAMP): environment.txt pkg/pyproject.toml
@@ -65,6 +65,10 @@ grade: $(STAMP)
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
 
+# The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
+lint: $(STAMP)
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
+
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
 
@@ -89,7 +93,7 @@ html-check: $(STAMP)
 		$(BIN)/pytest -rs tests/test_built_html.py tests/test_downloads.py \
 		tests/test_student_edition.py tests/test_browser.py
 
-test: unit notebooks notebooks-other-machine book book-student html-check
+test: lint unit notebooks notebooks-other-machine book book-student html-check
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \

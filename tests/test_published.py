@@ -7,9 +7,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
-                              read_findings, read_published, read_registry,
-                              reproduction_table)
+from mechnum.published import (
+    COLUMNS,
+    agrees,
+    below,
+    check_row,
+    half_unit,
+    is_claim,
+    read_findings,
+    read_published,
+    read_registry,
+    reproduction_table,
+)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -144,3 +153,26 @@ def test_read_published_gives_the_printed_text_by_quantity(tmp_path):
     path.write_text(",".join(COLUMNS) + "\n000,a,q1,1.50,s,1.5,reproduced,01,,\n"
                     "000,a,q2,7,s,7,reproduced,02,,\n")
     assert read_published(path, "01") == {"q1": "1.50"}
+
+
+@pytest.mark.parametrize("published, value, match", [
+    ("1.0", "x", "value must be a real number"),  # was a TypeError of abs()
+    ("1.0", None, "value must be a real number"),
+    ("1.0", 1 + 2j, "value must be a real number"),
+    ("1.0", True, "value must be a real number"),
+    (1.0, 1.0, "published must be the printed text"),  # was an AttributeError
+])
+def test_agrees_names_what_is_no_number(published, value, match):
+    with pytest.raises(ValueError, match=match):
+        agrees(published, value)
+
+
+def test_agrees_takes_numpy_numbers_and_nan_agrees_with_nothing():
+    assert agrees("1.942", np.float32(1.9416)) and agrees("62", np.int64(62))
+    assert not agrees("0", float("nan")) and not agrees("<1e-13", float("nan"))
+
+
+@pytest.mark.parametrize("bound", [0.0, -1e-13, float("nan"), float("inf"), "1e-13"])
+def test_below_refuses_a_bound_that_is_no_positive_number(bound):
+    with pytest.raises(ValueError, match="bound must be"):
+        below(1e-20, bound)
