@@ -23,12 +23,21 @@ import operator
 import numpy as np
 
 
-def _shown(value):
-    """A short text of ``value`` for an error message."""
+def shown(value) -> str:
+    """A short text of ``value`` for an error message.
+
+    Examples
+    --------
+    >>> shown(np.arange(100.0))
+    '[ 0.  1. ... 98. 99.]'
+    """
     if isinstance(value, np.ndarray):
         return np.array2string(value, threshold=8, edgeitems=2, precision=6)
     text = repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
+
+
+_shown = shown  # the name other modules used before it was public
 
 
 def array(value, name, *, ndim=None, shape=None, finite=True):
@@ -71,11 +80,11 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError) as error:  # ragged nested lists, for example
-        raise ValueError(f"{name} must be a numeric array, got {_shown(value)}: {error}") from None
+        raise ValueError(f"{name} must be a numeric array, got {shown(value)}: {error}") from None
     if np.iscomplexobj(raw):
-        raise ValueError(f"{name} must be real, got {_shown(raw)}")
+        raise ValueError(f"{name} must be real, got {shown(raw)}")
     if raw.dtype.kind not in "biuf":
-        raise ValueError(f"{name} must be numeric, got {_shown(value)} (dtype {raw.dtype})")
+        raise ValueError(f"{name} must be numeric, got {shown(value)} (dtype {raw.dtype})")
     out = raw.astype(float)
     if ndim is not None and out.ndim not in ((ndim,) if isinstance(ndim, int) else ndim):
         raise ValueError(f"{name} must have {ndim} dimension(s), got shape {out.shape}")
@@ -85,7 +94,7 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
                  ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name} must have shape {wanted}, got shape {out.shape}")
     if finite and not np.isfinite(out).all():   # the method: some microseconds cheaper
-        raise ValueError(f"{name} must be finite, got {_shown(out)}")
+        raise ValueError(f"{name} must be finite, got {shown(out)}")
     return out
 
 
@@ -120,7 +129,7 @@ def positive(value, name):
     """
     out = array(value, name)
     if not np.all(out > 0):
-        raise ValueError(f"{name} must be positive, got {_shown(out)}")
+        raise ValueError(f"{name} must be positive, got {shown(out)}")
     return out
 
 
@@ -187,7 +196,7 @@ def flag(value, name):
     ValueError: damping must be True or False, got 'yes'
     """
     if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be True or False, got {_shown(value)}")
+        raise ValueError(f"{name} must be True or False, got {shown(value)}")
     return bool(value)
 
 
@@ -209,7 +218,7 @@ def rng(value, name="rng"):
             and value >= 0:
         return np.random.default_rng(value)
     raise ValueError(f"{name} must be None, a non-negative integer seed or a "
-                     f"numpy.random.Generator, got {_shown(value)}")
+                     f"numpy.random.Generator, got {shown(value)}")
 
 
 def choice(value, options, name):

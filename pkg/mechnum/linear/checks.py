@@ -14,7 +14,7 @@ from mechnum import _validate
 from mechnum.errors import RelaxationFactorError, SingularJacobianError
 
 
-def check_matrix(A, square=True):
+def check_matrix(A, square: bool = True):
     """``A`` as a finite real float matrix, dense or compressed-row sparse, or a ValueError.
 
     Parameters
@@ -40,7 +40,9 @@ def check_matrix(A, square=True):
     if sp.issparse(A):
         if A.dtype.kind not in "biuf":
             raise ValueError(f"A must be a real numeric matrix, got dtype {A.dtype}")
-        A = sp.csr_array(A, dtype=float)
+        # astype first: scipy converts some formats holding float16 (which it does not support)
+        # only element by element
+        A = sp.csr_array(A.astype(float, copy=False))
         if not A.has_canonical_format:
             A = A.copy()
             A.sum_duplicates()

@@ -36,14 +36,15 @@ def _consecutive(th2, w2, a2, seed, g, tol, form="loop"):
     """The study's consecutive scheme, on checked input (the kernel of solve_consecutive)."""
     newton, crank, trig = (solve if seed.ndim == 1 else solve_batch), _crank(th2), _shared_trig()
     pos = newton(lambda q: _loop(q, crank, g, form, trig(q)), seed[..., 0:3],
-                 lambda q: _loop_jacobian(q, g, form, trig(q)), tol=tol)
+                 lambda q: _loop_jacobian(q, g, form, trig(q)), tol=tol, relative=False)
     q = pos.x
     _dead_points(np.cos(q[..., 2]), th2)
     ja = _loop_jacobian(q, g)  # of the acceleration rows; the velocity rows permute it
     jv = ja[..., _RATE_ROWS, :]
-    vel = newton(lambda v: _velocity(v, q, crank, w2, g), seed[..., 3:6], lambda v: jv, tol=tol)
+    vel = newton(lambda v: _velocity(v, q, crank, w2, g), seed[..., 3:6], lambda v: jv, tol=tol,
+                 relative=False)
     acc = newton(lambda a: _acceleration(a, vel.x, q, crank, w2, a2, g), seed[..., 6:9],
-                 lambda a: ja, tol=tol)
+                 lambda a: ja, tol=tol, relative=False)
     return pos, vel, acc
 
 
@@ -95,7 +96,7 @@ def solve_consecutive(motor_state, seed, geometry=STUDY, *, tol=TOL, form="loop"
 def _simultaneous(th2, w2, a2, seed, g, tol):
     crank, trig = _crank(th2), _shared_trig()
     res = solve(lambda x: _residual(x, crank, w2, a2, g, trig(x)), seed,
-                lambda x: _jacobian(x, g, trig(x)), tol=tol)
+                lambda x: _jacobian(x, g, trig(x)), tol=tol, relative=False)
     _dead_points(np.cos(res.x[2]), th2)
     return res
 
@@ -214,7 +215,8 @@ def sweep(t, method, geometry=STUDY, *, seed=TRAJECTORY_SEED, tol=TOL, alpha_max
         crank, trig = _crank(th2), _shared_trig()
         pos = solve_batch(lambda q: _loop(q, crank, geometry, trig=trig(q)),
                           np.tile(seed[:3], (t.size, 1)),
-                          lambda q: _loop_jacobian(q, geometry, trig=trig(q)), tol=tol)
+                          lambda q: _loop_jacobian(q, geometry, trig=trig(q)), tol=tol,
+                          relative=False)
         v, a = _linear_rates(pos.x, th2, w2, a2, geometry, crank)
         return SweepResult(np.concatenate([pos.x, v, a], axis=-1), pos.iterations[:, None])
     out, iterations = np.empty((t.size, 9)), np.empty((t.size, 3 if method == "consecutive"
