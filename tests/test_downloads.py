@@ -44,7 +44,7 @@ def test_page_serves_the_wheel_and_the_chapters():
     wheel, chapters = served(WHEEL), served("mechnum-chapters.zip")
     assert wheel.exists() and chapters.exists()
     with zipfile.ZipFile(wheel) as w:
-        assert "mechnum/newton.py" in w.namelist()
+        assert "mechnum/newton/__init__.py" in w.namelist()
     toc = (ROOT / "_toc.yml").read_text(encoding="utf-8")
     with zipfile.ZipFile(chapters) as z:
         names = set(z.namelist())
