@@ -1,13 +1,16 @@
 """Tests of mechnum.newton: textbook systems, criteria, batches, and every failure mode."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import (STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch,
-                            solve_path)
+from mechnum.errors import (ConvergenceError, DivergenceError, NonFiniteError,
+                            SingularJacobianError)
+from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
+from mechnum.results import Result
 
 
 def circle_line(x):
@@ -451,7 +454,7 @@ def test_max_step_bounds_every_step():
     assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
     with pytest.raises(ValueError, match="max_step must be positive"):
         solve(atan_system, [1.5], atan_jac, max_step=0.0)
-# --- independent systems, stacked backtracking, path following ------------------------------
+# --- independent systems, stacked backtracking ----------------------------------------------
 
 def test_independent_batch_gives_the_same_iterates_with_fewer_calls():
     rng = np.random.default_rng(7)
@@ -471,20 +474,153 @@ def test_fewer_halvings_drop_hard_starts():
     assert res.status.tolist() == ["converged", "stagnated"]
 
 
-def test_solve_path_follows_a_branch_and_reports_failures():
-    # x**2 = p on p from 1 down to -1: the positive root exists until p = 0
-    p = np.linspace(1.0, -1.0, 21)
-    fun = lambda x, c: x ** 2 - c[:, None]  # noqa: E731
-    jac = lambda x, c: 2 * x[:, :, None]  # noqa: E731
-    path = solve_path(fun, p, [1.0], jac)
-    ok = p > 0
-    assert np.array_equal(path.converged, ok)
-    np.testing.assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
-    assert np.isnan(path.x[~ok]).all()
-    # two paths at once, with their own parameters; a failed path may be abandoned
-    both = solve_path(fun, np.stack([p, p + 2], axis=1), [[1.0], [-np.sqrt(3.0)]], jac,
-                      resume=False)
-    assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
-    np.testing.assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
-    with pytest.raises(ValueError, match="params"):
-        solve_path(fun, p, [[1.0], [2.0]], jac)
+# --- issue 23: the step criterion, relative tests, jac=True, bad input, bounds -----------------
+
+def test_a_max_step_below_tol_cannot_fake_convergence():
+    # D2: the criterion tests Newton's full step (4.95 at the start), not the step shortened to
+    # max_step = 1e-4, so nothing converges at x = 9.9999 where f = 98
+    square = (lambda x: x ** 2 - 2, lambda x: np.diag(2 * x))
+    with pytest.raises(ConvergenceError, match="did not converge in 50") as info:
+        solve(*square[:1], [10.0], square[1], tol=1e-3, max_step=1e-4)
+    assert info.value.result.status == "maxiter" and info.value.result.x[0] > 9.99
+    batch = solve_batch(lambda x: x ** 2 - 2, [[10.0]], lambda x: 2 * x[:, :, None], tol=1e-3,
+                        max_step=1e-4, raise_on_failure=False)
+    assert batch.status.tolist() == ["maxiter"]
+    # with room to walk there, it converges, and only where the full step is small
+    res = solve(*square[:1], [10.0], square[1], tol=1e-3, max_step=0.5, maxiter=100)
+    assert abs(res.x[0] - np.sqrt(2)) < 1e-3 * np.sqrt(2)
+    assert res.full_step_norms[-1] <= 1e-3 * abs(res.x[0]) < res.full_step_norms[0]
+
+
+def test_damping_with_max_step_measures_armijo_against_the_full_step():
+    # D14: from 50 on arctan, steps of 0.1 decrease |f| by about 4e-5 each, less than the
+    # 1e-4 |f| Armijo would ask of a full step: the shortened step must be judged as such
+    res = solve(atan_system, [50.0], atan_jac, damping=True, max_step=0.1, maxiter=1000,
+                tol=1e-12)
+    assert res.converged and abs(res.x[0]) < 1e-12
+    assert res.step_norms.max() <= 0.1 * (1 + 1e-12) and res.iterations > 490
+
+
+def test_the_default_step_test_is_relative():
+    # the root of (x / s)^3 = 1 is s = 1e-13: an absolute test with tol 1e-10 stops after one
+    # step, 42 % off; the relative test finds s to ten digits
+    s = 1e-13
+    res = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3))
+    assert abs(res.x[0] - s) <= 1e-10 * s
+    absolute = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3),
+                     relative=False)
+    assert absolute.iterations == 1 and abs(absolute.x[0] - s) > 0.4 * s
+
+
+def pair(x):
+    """circle_line's residual and Jacobian from one call."""
+    return circle_line(x), circle_line_jac(x)
+
+
+def test_jac_true_takes_the_jacobian_from_fun():
+    calls = {"fun": 0}
+
+    def counted(x):
+        calls["fun"] += 1
+        return pair(x)
+
+    res = solve(counted, [1.0, 0.5], jac=True, tol=1e-14)
+    ref = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
+    np.testing.assert_array_equal(res.history, ref.history)
+    assert res.nfev == res.njev == calls["fun"] == res.iterations + 1
+    # damped: the Jacobian of a point the line search accepts is not computed again
+    calls["fun"] = 0
+    damped = solve(lambda x: (np.arctan(x), atan_jac(x)), [1.5], jac=True, damping=True, tol=1e-14)
+    assert damped.converged and damped.nfev == damped.njev
+    assert broyden(counted, [1.0, 0.5], jac=True, tol=1e-14).converged
+    batch = solve_batch(lambda z: (cubic_pair(z), cubic_pair_jac(z)), [[0.8, 0.7], [-2.0, -3.0]],
+                        jac=True, tol=1e-14)
+    np.testing.assert_allclose(batch.x, [[1.0, 1.0], [-1.0, -1.0]], rtol=1e-14)
+    found = solve_all(lambda z: (cubic_pair(z), cubic_pair_jac(z)),
+                      lambda rng, m: rng.uniform(-2, 2, (m, 2)), True, n_starts=100, rng=1)
+    assert len(found.roots) == 6
+    with pytest.raises(ValueError, match="pair"):
+        solve(circle_line, [1.0, 0.5], jac=True)
+    with pytest.raises(ValueError, match="jac must be"):
+        solve(circle_line, [1.0, 0.5], jac="exact")
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"damping": "yes"}, "damping must be True or False"),
+    ({"damping": np.nan}, "damping must be True or False"),
+    ({"relative": 1}, "relative must be True or False"),
+    ({"maxiter": 10 ** 9}, "bound on the work"),
+    ({"halvings": 100}, "bound on the work"),
+])
+def test_solve_refuses_bad_flags_and_unbounded_work(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve(circle_line, [1.0, 0.5], circle_line_jac, **kwargs)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"raise_on_failure": "no"}, "raise_on_failure must be True or False"),
+    ({"independent": 1}, "independent must be True or False"),
+    ({"damping": "yes"}, "damping must be True or False"),
+    ({"domain": lambda x: np.ones(3, bool)}, r"domain returned shape \(3,\)"),
+])
+def test_solve_batch_refuses_bad_flags_and_domains(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve_batch(lambda x: x ** 2 - 2, np.ones((2, 1)), lambda x: 2 * x[:, :, None],
+                    **({"damping": True} if "domain" in kwargs else {}) | kwargs)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"rng": "a"}, "rng must be"), ({"rng": -1}, "rng must be"),
+    ({"domain": lambda z: np.ones(2, bool)}, "domain returned shape"),
+    ({"n_starts": 10 ** 8}, "bound on the work"), ({"check": 10 ** 6}, "bound on the work"),
+    ({"sample": lambda rng, m: np.empty((0, 2))}, r"must return 10 starts"),
+    ({"sample": lambda rng, m: np.full((m, 2), np.nan)}, "must be finite"),
+])
+def test_solve_all_refuses_bad_input(kwargs, match):
+    args = {"sample": lambda rng, m: rng.uniform(-2, 2, (m, 2)), "n_starts": 10} | kwargs
+    with pytest.raises(ValueError, match=match):
+        solve_all(cubic_pair, args.pop("sample"), cubic_pair_jac, **args)
+
+
+def test_fd_jacobian_checks_its_inputs_and_its_differences():
+    with pytest.raises(ValueError, match="fx must be finite"):
+        fd_jacobian(circle_line, [1.0, 0.5], fx=[np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"fx must have shape \(2,\)"):
+        fd_jacobian(circle_line, [1.0, 0.5], fx=[0.0, 0.0, 0.0])
+    with pytest.raises(NonFiniteError, match="not finite"), np.errstate(over="ignore"):
+        fd_jacobian(lambda x: x ** 2, [1e200])     # fun overflows next to x
+    with pytest.raises(NonFiniteError), np.errstate(invalid="ignore"):
+        fd_jacobian(lambda x: np.sqrt(1.0 - x), [1.0])  # NaN one step beyond x
+
+
+def test_failures_leak_no_runtime_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        # every system non-finite: the message's largest residual has no finite value
+        res = solve_batch(lambda x: np.full_like(x, np.nan), np.ones((3, 1)),
+                          lambda x: np.ones((len(x), 1, 1)), raise_on_failure=False)
+        assert res.status.tolist() == ["non-finite"] * 3 and "none finite" in res.message
+        with pytest.raises(DivergenceError, match="Jacobian is not finite"):
+            solve(lambda x: x - 1.0, [3.0], lambda x: np.full((1, 1), np.inf))
+        # plain Newton on x / (1 + x^2): the iterates grow until the step overflows
+        with pytest.raises((ConvergenceError, SingularJacobianError)):
+            solve(lambda x: x / (1 + x * x) if abs(x[0]) < 1e150 else 1 / x, [2.0],
+                  lambda x: np.diag((1 - x * x) / (1 + x * x) ** 2) if abs(x[0]) < 1e150
+                  else np.diag(-1 / x ** 2))
+
+
+def test_results_follow_the_contract():
+    res = solve(circle_line, [1.0, 0.5], circle_line_jac)
+    assert isinstance(res, Result) and res.status == "converged" and res.converged is True
+    assert res.nfev == res.iterations + 1 and res.njev == res.iterations and res.message
+    batch = solve_batch(lambda x: x ** 2 - np.array([[4.0], [-1.0]]), np.ones((2, 1)),
+                        lambda x: 2 * x[:, :, None], raise_on_failure=False, damping=True)
+    assert isinstance(batch, Result) and batch.converged.tolist() == [True, False]
+    assert "1 of 2 systems converged" in batch.message
+    found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
+                      n_starts=50, check=1, rng=0)
+    assert isinstance(found, Result) and found.status.shape == found.iterations.shape == (100,)
+    assert found.x is found.roots and sum(found.status_counts.values()) == 100
+    with pytest.raises(ConvergenceError) as info:
+        solve(atan_system, [2.0], atan_jac, maxiter=4)
+    assert info.value.result.status == "maxiter" and not info.value.result.converged

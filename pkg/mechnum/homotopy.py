@@ -261,9 +261,19 @@ class HomotopyResult(Result):
         return self.iterations
 
     def real(self, imag_tol: float = 1e-8):
-        """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays."""
+        """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays;
+        below ``imag_tol ** (1 / m)`` for a root of multiplicity ``m``, which round-off
+        blurs by the ``m``-th root of its size (a double root carries half the digits).
+
+        Examples
+        --------
+        >>> F = PolynomialSystem.from_dicts([{(2,): 1, (1,): -2, (0,): 1}])    # (x - 1)^2
+        >>> solve(F, rng=0).real().round(6).tolist()
+        [[1.0]]
+        """
         imag_tol = _validate.tolerance(imag_tol, "imag_tol")
-        keep = np.all(np.abs(self.solutions.imag) <= imag_tol, axis=1)
+        limit = imag_tol ** (1.0 / np.maximum(self.multiplicity, 1))
+        keep = np.all(np.abs(self.solutions.imag) <= limit[:, None], axis=1)
         return self.solutions[keep].real
 
 

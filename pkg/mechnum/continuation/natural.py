@@ -34,6 +34,9 @@ bound; a solution that truly changes ten times faster than it did needs finer st
 PATH_POINTS_LIMIT = 10_000_000
 """The most points (steps times paths) of one :func:`solve_path`."""
 _SPEEDS = 3  # the steps before a point whose speed bounds its own (max_jump)
+# A move below sqrt(eps) (1 + |x|) is no jump, however fast: a path that stood still to round-off
+# (speeds of 1e-16) and starts to move is not leaving its branch.
+_VISIBLE = np.sqrt(np.finfo(float).eps)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -71,12 +74,12 @@ def _pair(fun, jac):
     def jacobian(p):
         return jac if jac is None or jac is True else (lambda z: jac(z, p))
 
-    def at(z, p):  # the Jacobian at converged points, for its determinant
+    def at(z, p):  # the Jacobian at converged points, for its determinant; calls of fun, jac
         if jac is True:
-            return np.asarray(fun(z, p)[1], dtype=float)
+            return np.asarray(fun(z, p)[1], dtype=float), 1, 1
         if jac is None:
-            return fd_jacobian(lambda w: fun(w, p), z)
-        return np.asarray(jac(z, p), dtype=float)
+            return fd_jacobian(lambda w: fun(w, p), z), z.shape[-1] + 1, 0
+        return np.asarray(jac(z, p), dtype=float), 0, 1
 
     return residual, jacobian, at
 
@@ -103,7 +106,9 @@ def solve_path(fun: Callable, params, x0, jac: Callable | bool | None = None, *,
     * the sign of ``det J`` (the Jacobian in ``x``) differs from the last accepted point's: a
       singular Jacobian, a fold or a bifurcation, lies between them; or
     * its speed ``||x_i - x_last|| / ||p_i - p_last||`` exceeds ``max_jump`` times the
-      fastest of the (up to three) steps before it (checked once the path has one step).
+      fastest of the (up to three) steps before it (checked once the path has one step), and
+      its move exceeds ``sqrt(eps) (1 + ||x_last||)`` (a path that stood still to round-off
+      may start to move).
 
     A jump is treated as a failure: the next step starts again from the last accepted point.
 
@@ -206,8 +211,10 @@ def solve_path(fun: Callable, params, x0, jac: Callable | bool | None = None, *,
                                  halvings=halvings)
         path.nfev, path.njev = path.nfev + res.nfev, path.njev + res.njev
         done = rows[res.converged]
-        det = np.linalg.det(at(res.x[res.converged], p[done])) if done.size else np.empty(0)
-        path.njev += bool(done.size)
+        det = np.empty(0)
+        if done.size:
+            J, nfev, njev = at(res.x[res.converged], p[done])
+            det, path.nfev, path.njev = np.linalg.det(J), path.nfev + nfev, path.njev + njev
         path.accept(i, p, rows, res, det)
         if not resume:
             path.alive &= path.status[i] == "converged"
@@ -267,7 +274,8 @@ class _Path:
         with np.errstate(divide="ignore", invalid="ignore"):
             speed = np.where(dp > 0, moved / dp, np.nan)
             fastest = np.max(np.where(np.isnan(self.speeds), -1.0, self.speeds), axis=1)
-            too_fast = (self.max_jump is not None) & (fastest >= 0) & (dp > 0) & (
+            visible = moved > _VISIBLE * (1.0 + np.linalg.norm(self.last, axis=1))
+            too_fast = (self.max_jump is not None) & (fastest >= 0) & (dp > 0) & visible & (
                 speed > (self.max_jump or 0.0) * fastest)
         flipped = (self.sign * np.sign(dets)) < 0
         jump = ok & (flipped | too_fast)
