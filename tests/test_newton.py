@@ -624,3 +624,109 @@ def test_results_follow_the_contract():
     with pytest.raises(ConvergenceError) as info:
         solve(atan_system, [2.0], atan_jac, maxiter=4)
     assert info.value.result.status == "maxiter" and not info.value.result.converged
+
+
+# --- property tests: the documented tolerance, or a failure reported ----------------------------
+
+@st.composite
+def dominant_systems(draw, batch=None):
+    """``A x + c s sin(x / s) = b`` with its root ``x*`` known and a start near it.
+
+    ``A`` is strictly diagonally dominant by a margin of 1 and ``c <= 0.5``, so the Jacobian
+    ``A + c diag(cos(x / s))`` is regular everywhere; the scale ``s`` (1e-12 to 1e6) sizes the
+    root, which is what a relative test must be indifferent to.
+    """
+    n = draw(st.integers(1, 4))
+    rows = batch or 1
+    floats = st.floats(-1.0, 1.0)
+    A = np.array(draw(st.lists(floats, min_size=rows * n * n, max_size=rows * n * n)))
+    A = A.reshape(rows, n, n)
+    A[:, np.arange(n), np.arange(n)] = np.abs(A).sum(axis=2) + 1.0
+    c = draw(st.floats(0.0, 0.5))
+    s = draw(st.sampled_from([1e-12, 1e-6, 1.0, 1e6]))
+    unit = st.floats(-10.0, 10.0).filter(lambda v: abs(v) > 0.1)
+    root = s * np.array(draw(st.lists(unit, min_size=rows * n, max_size=rows * n)))
+    root = root.reshape(rows, n)
+    shift = s * np.array(draw(st.lists(floats, min_size=rows * n, max_size=rows * n)))
+    b = np.einsum("bij,bj->bi", A, root) + c * s * np.sin(root / s)
+
+    def fun(x):
+        return np.einsum("...ij,...j->...i", A if x.ndim == 2 else A[0], x) + \
+            c * s * np.sin(x / s) - (b if x.ndim == 2 else b[0])
+
+    def jac(x):
+        return (A if x.ndim == 2 else A[0]) + c * np.cos(x / s)[..., None] * np.eye(n)
+
+    start = root + shift.reshape(rows, n)
+    return fun, jac, (start if batch else start[0]), (root if batch else root[0])
+
+
+def close_to_the_root(x, root, tol):
+    """The documented guarantee of the relative step test, with a margin of ten: the last full
+    step is below tol ||x||, and Newton's next error is far below that step."""
+    return np.linalg.norm(x - root) <= 10 * tol * max(np.linalg.norm(x), np.linalg.norm(root))
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems(), damping=st.booleans())
+def test_solve_meets_its_tolerance_or_says_why(system, damping):
+    fun, jac, x0, root = system
+    try:
+        res = solve(fun, x0, jac, damping=damping)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert res.converged and close_to_the_root(res.x, root, 1e-10)
+    assert res.full_step_norms[-1] <= 1e-10 * np.linalg.norm(res.x)
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems())
+def test_solve_residual_criterion_meets_its_tolerance_or_says_why(system):
+    fun, jac, x0, root = system
+    try:
+        res = solve(fun, x0, jac, criterion="residual", tol=1e-8 * max(1.0, np.abs(root).max()))
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert np.linalg.norm(fun(res.x)) <= 1e-8 * max(1.0, np.abs(root).max())
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems())
+def test_broyden_meets_its_tolerance_or_says_why(system):
+    fun, jac, x0, root = system
+    try:
+        res = broyden(fun, x0, jac)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert res.converged and close_to_the_root(res.x, root, 1e-10)
+
+
+@settings(max_examples=100, deadline=None)
+@given(system=dominant_systems(batch=5), damping=st.booleans())
+def test_solve_batch_meets_its_tolerance_or_says_why(system, damping):
+    fun, jac, x0, root = system
+    res = solve_batch(fun, x0, jac, damping=damping, raise_on_failure=False)
+    assert set(res.status) <= set(STATUSES)
+    for x, r, ok in zip(res.x, root, res.converged):
+        assert not ok or close_to_the_root(x, r, 1e-10)
+
+
+@settings(max_examples=40, deadline=None)
+@given(r=st.lists(st.floats(-3.0, 3.0), min_size=4, max_size=4).filter(
+    lambda v: abs(v[0] - v[1]) > 0.2 and abs(v[2] - v[3]) > 0.2), seed=st.integers(0, 1000))
+def test_solve_all_roots_meet_the_tolerance(r, seed):
+    # (x - r0)(x - r1) = 0 and (y - r2)(y - r3) = 0: four roots, each residual round-off
+    def fun(z):
+        return np.stack([(z[:, 0] - r[0]) * (z[:, 0] - r[1]),
+                         (z[:, 1] - r[2]) * (z[:, 1] - r[3])], axis=-1)
+
+    found = solve_all(fun, lambda rng, m: rng.uniform(-4, 4, (m, 2)), n_starts=100, check=1,
+                      rng=seed)
+    known = np.array([[a, b] for a in r[:2] for b in r[2:]])
+    assert set(found.status) <= set(STATUSES)
+    for root in found.roots:
+        assert np.abs(known - root).max(axis=1).min() <= 1e-10 * (1 + np.abs(root).max())
+    assert np.all(found.residual_norms <= 1e-12 * (1 + np.abs(known).max()) ** 2)

@@ -400,7 +400,9 @@ def solve(system: PolynomialSystem, *, rng=None, tol: float = TOL, same: float =
         status.append("lost" if end == "lost" else "converged" if path.s == 1.0 else "singular")
     ends, status = np.array(ends), np.array(status)
     solutions = np.array(found).reshape(-1, n)
-    order = np.lexsort(solutions.real.T[::-1]) if len(found) else np.arange(0)
+    # ordered by their real parts, rounded: the digits round-off leaves to a multiple root
+    # (1e-8) must not decide the order
+    order = np.lexsort(np.round(solutions.real, 6).T[::-1]) if len(found) else np.arange(0)
     counts = {e: int(np.sum(ends == e)) for e in ENDS}
     result = HomotopyResult(
         x=solutions[order], status=status, iterations=np.array([p.steps for p in paths]),
