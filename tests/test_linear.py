@@ -82,7 +82,7 @@ def test_sor_textbook_solution_and_speed_up():
     # Burden and Faires, Example 7.4.3: 7 decimals, an absolute test
     sor = linear.sor(TRI_A, TRI_B, 1.25, x0=np.ones(3), tol=1e-7, relative=False)
     gs = linear.gauss_seidel(TRI_A, TRI_B, x0=np.ones(3), tol=1e-7, relative=False)
-    assert_allclose(sor.x, [3, 4, -5], atol=1e-6)
+    assert_allclose(sor.x, [3, 4, -5], atol=1e-6, rtol=0)
     assert sor.iterations < gs.iterations / 2
 
 
@@ -203,7 +203,7 @@ def test_sparse_and_dense_give_the_same_iterates(method):
     sparse = getattr(linear, method)(A, b, **({"omega": 1.5} if method == "sor" else {}))
     assert sparse.iterations == dense.iterations
     assert_allclose(sparse.x, dense.x, rtol=0, atol=1e-12)
-    assert_allclose(A @ sparse.x, b, atol=1e-8)
+    assert_allclose(A @ sparse.x, b, atol=1e-9 * np.abs(b).max(), rtol=0)  # a relative stop
 
 
 def test_poisson_sor_at_young_omega():
@@ -216,7 +216,7 @@ def test_poisson_sor_at_young_omega():
     assert sor.iterations * 10 < gs.iterations  # O(m) sweeps against O(m^2)
     cg = linear.conjugate_gradient(A, b, tol=1e-10)
     assert cg.iterations < sor.iterations
-    assert_allclose(sor.x, cg.x, atol=1e-7)
+    assert_allclose(sor.x, cg.x, atol=1e-7, rtol=0)
 
 
 def test_poisson2d_structure():
@@ -504,6 +504,7 @@ def test_iterative_refinement_bad_input():
 @HYPOTHESIS
 @given(dominant_systems(), st.floats(-300, 300))
 @example(system=(np.array([[-1.4375]]), np.array([2.22507386e-313])), exponent=1.0)
+@example(system=(np.array([[-1.25]]), np.array([6.73643596e-167])), exponent=-152.0)
 def test_iterative_refinement_accuracy(system, exponent):
     A, b = system
     b = b * 10.0 ** exponent
@@ -646,7 +647,7 @@ def test_condition_number_matches_numpy(system, p):
 def test_poisson2d_is_spd_with_known_jacobi_radius(m):
     A = linear.poisson2d(m)
     assert A.shape == (m * m, m * m) and abs(A - A.T).max() == 0
-    assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0])
+    assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0], rtol=1e-12)
     if m <= 6:
         eig = np.linalg.eigvalsh(A.toarray())
         assert eig.min() > 0

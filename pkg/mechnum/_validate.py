@@ -21,9 +21,10 @@ ValueError: x0 must be finite, got [ 1. nan]
 import operator
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
-def shown(value) -> str:
+def shown(value: object) -> str:
     """A short text of ``value`` for an error message.
 
     Examples
@@ -40,7 +41,8 @@ def shown(value) -> str:
 _shown = shown  # the name other modules used before it was public
 
 
-def array(value, name, *, ndim=None, shape=None, finite=True):
+def array(value: ArrayLike, name: str, *, ndim: int | tuple | None = None,
+          shape: tuple | None = None, finite: bool = True) -> np.ndarray:
     """``value`` as a real float array, checked.
 
     Parameters
@@ -98,7 +100,8 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
     return out
 
 
-def scalar(value, name, *, positive=False, nonnegative=False):
+def scalar(value: ArrayLike, name: str, *, positive: bool = False,
+           nonnegative: bool = False) -> float:
     """``value`` as a finite real float, checked (optionally ``> 0`` or ``>= 0``).
 
     Examples
@@ -119,7 +122,7 @@ def scalar(value, name, *, positive=False, nonnegative=False):
     return out
 
 
-def positive(value, name):
+def positive(value: ArrayLike, name: str) -> np.ndarray:
     """``value`` as a float array whose every entry is finite and positive.
 
     Examples
@@ -133,7 +136,7 @@ def positive(value, name):
     return out
 
 
-def tolerance(value, name="tol"):
+def tolerance(value: ArrayLike, name: str = "tol") -> float:
     """A tolerance: a finite positive float.
 
     Examples
@@ -146,7 +149,8 @@ def tolerance(value, name="tol"):
     return scalar(value, name, positive=True)
 
 
-def maxiter(value, name="maxiter", minimum=1, maximum=None):
+def maxiter(value: object, name: str = "maxiter", minimum: int = 1,
+            maximum: int | None = None) -> int:
     """An iteration (or node, or start) count: an integer ``>= minimum`` (and ``<= maximum``).
 
     Floats with an integer value are accepted; ``inf``, NaN, fractions, booleans are not. Every
@@ -183,7 +187,7 @@ def maxiter(value, name="maxiter", minimum=1, maximum=None):
     return out
 
 
-def flag(value, name):
+def flag(value: object, name: str) -> bool:
     """A yes/no option: a ``bool`` (or numpy's), nothing that is merely truthy.
 
     Examples
@@ -200,7 +204,7 @@ def flag(value, name):
     return bool(value)
 
 
-def rng(value, name="rng"):
+def rng(value: object, name: str = "rng") -> np.random.Generator:
     """A random generator: ``None``, a non-negative integer seed, or a ``numpy.random.Generator``.
 
     Examples
@@ -221,7 +225,7 @@ def rng(value, name="rng"):
                      f"numpy.random.Generator, got {shown(value)}")
 
 
-def choice(value, options, name):
+def choice(value: object, options: tuple, name: str) -> object:
     """``value`` if it is one of ``options``.
 
     Examples

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 from itertools import product
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError
@@ -131,7 +132,7 @@ def _checked(homotopy, x, s):
     return H, Hx, Hs
 
 
-def track(homotopy: Callable, x0, *, tol: float = TOL, h0: float = 0.01,
+def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.01,
           max_steps: int = 20000) -> TrackResult:
     """Follow a solution of ``H(x, s) = 0`` from ``s = 0`` to ``s = 1``.
 
@@ -251,16 +252,16 @@ class HomotopyResult(Result):
     multiplicity: np.ndarray
 
     @property
-    def solutions(self):
+    def solutions(self) -> np.ndarray:
         """ndarray of complex, shape (k, n): the distinct finite solutions (``x``)."""
         return self.x
 
     @property
-    def steps(self):
+    def steps(self) -> np.ndarray:
         """ndarray of int, shape (paths,): accepted steps of each path (``iterations``)."""
         return self.iterations
 
-    def real(self, imag_tol: float = 1e-8):
+    def real(self, imag_tol: float = 1e-8) -> np.ndarray:
         """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays;
         below ``imag_tol ** (1 / m)`` for a root of multiplicity ``m``, which round-off
         blurs by the ``m``-th root of its size (a double root carries half the digits).
@@ -305,8 +306,8 @@ def _polish(system, x):
     return x, ok, not cond < _SINGULAR_COND
 
 
-def solve(system: PolynomialSystem, *, rng=None, tol: float = TOL, same: float = SAME,
-          raise_on_failure: bool = True) -> HomotopyResult:
+def solve(system: PolynomialSystem, *, rng: np.random.Generator | int | None = None,
+          tol: float = TOL, same: float = SAME, raise_on_failure: bool = True) -> HomotopyResult:
     """Every isolated finite solution of a square polynomial system, by a total-degree homotopy.
 
     Parameters

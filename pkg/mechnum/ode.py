@@ -17,8 +17,10 @@ nearly linear, and a guess of the whole solution (a shape, not only its start) s
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.errors import NonFiniteError
@@ -71,7 +73,7 @@ def _nodes(s):
     return s.tolist()  # Python floats: cheaper than numpy scalars in the loop
 
 
-def rk4(f: Callable, y0, s) -> np.ndarray:
+def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
     """Integrate ``dy/ds = f(s, y)`` from ``y(s[0]) = y0`` by classical RK4 on the nodes ``s``.
 
     One step from ``s_i`` to ``s_{i+1}`` with ``h = s_{i+1} - s_i`` is::
@@ -168,7 +170,8 @@ BVP_TOL = 1e-10
 the states are the caller's to scale to order one)."""
 
 
-def multiple_shooting(f: Callable, bc: Callable, s, y_guess, *, segments: int = 4,
+def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLike, *,
+                      segments: int = 4,
                       tol: float = BVP_TOL, maxiter: int = 50) -> "BVPSolution":
     """Solve ``y' = f(s, y)``, ``bc(y(s[0]), y(s[-1])) = 0`` by multiple shooting with RK4.
 
@@ -228,7 +231,7 @@ def multiple_shooting(f: Callable, bc: Callable, s, y_guess, *, segments: int = 
     tol = _validate.tolerance(tol)
     maxiter = _validate.maxiter(maxiter, maximum=MAXITER_LIMIT)
     starts = np.linspace(0, len(nodes) - 1, segments + 1).round().astype(int)
-    grids = [nodes[i:j + 1] for i, j in zip(starts[:-1], starts[1:])]
+    grids = [nodes[i:j + 1] for i, j in pairwise(starts)]
 
     def sweeps(Y):
         """Every segment from its start, with ``n`` complex-step copies of its state."""

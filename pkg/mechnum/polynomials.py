@@ -18,11 +18,13 @@ and solved by :mod:`mechnum.homotopy`.
 """
 
 import numbers
+from collections.abc import Sequence
 from dataclasses import dataclass
 from itertools import combinations
 from math import prod
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import NonFiniteError
@@ -52,7 +54,7 @@ def _coefficients(c, name="c"):
     return c
 
 
-def companion(c):
+def companion(c: ArrayLike) -> np.ndarray:
     """The companion matrix of ``c[0] + c[1] t + ... + c[n] t^n``, batched.
 
     Its characteristic polynomial is ``p / c[n]``, so its eigenvalues are the roots of ``p``:
@@ -85,7 +87,7 @@ def companion(c):
     return out
 
 
-def roots(c):
+def roots(c: ArrayLike) -> np.ndarray:
     """The roots of polynomials, as the eigenvalues of their companion matrices, batched.
 
     LAPACK balances the companion matrix and computes its eigenvalues by the QR algorithm, a
@@ -157,7 +159,7 @@ def _scaled(c):
     return e, np.ldexp(c, shift)
 
 
-def root_condition(c, r):
+def root_condition(c: ArrayLike, r: ArrayLike) -> np.ndarray:
     """Wilkinson's condition number of the simple roots ``r`` of ``c``.
 
     If every coefficient moves by at most a relative ``delta`` (``|dc_k| <= delta |c_k|``), a
@@ -200,7 +202,7 @@ def root_condition(c, r):
         return size / slope
 
 
-def sylvester(p, q):
+def sylvester(p: Sequence, q: Sequence) -> np.ndarray:
     """The Sylvester matrix of two polynomials; its determinant is their resultant.
 
     For ``p`` of degree ``m`` and ``q`` of degree ``n`` (ascending coefficients), it is the
@@ -287,7 +289,7 @@ class PolynomialSystem:
     terms: tuple
 
     @classmethod
-    def from_dicts(cls, equations):
+    def from_dicts(cls, equations: Sequence[dict]) -> "PolynomialSystem":
         """Build from one ``{exponent tuple: coefficient}`` per equation (sympy's
         ``Poly.as_dict()`` gives exactly that)."""
         terms = []
@@ -323,27 +325,27 @@ class PolynomialSystem:
         object.__setattr__(self, "_sum", (which == np.arange(len(self.terms))[:, None]) * 1.0)
 
     @property
-    def n(self):
+    def n(self) -> int:
         """The number of unknowns."""
         return self.terms[0][0].shape[1]
 
     @property
-    def degrees(self):
+    def degrees(self) -> tuple:
         """The total degree of each equation."""
         return tuple(int(e.sum(axis=1).max()) for e, _ in self.terms)
 
     @property
-    def supports(self):
+    def supports(self) -> list:
         """The exponent vectors of each equation (its Newton polytope's points)."""
         return [e for e, _ in self.terms]
 
-    def __call__(self, x):
+    def __call__(self, x: ArrayLike) -> np.ndarray:
         """The equations at ``x`` of shape ``(..., n)``: shape ``(..., len(terms))``."""
         x = np.asarray(x, dtype=complex)
         monomials = np.prod(x[..., None, :] ** self._exponents, axis=-1)
         return (monomials * self._coefficients) @ self._sum.T
 
-    def jacobian(self, x):
+    def jacobian(self, x: ArrayLike) -> np.ndarray:
         """The Jacobian at ``x`` of shape ``(..., n)``: shape ``(..., len(terms), n)``."""
         x = np.asarray(x, dtype=complex)
         E = self._exponents
@@ -355,7 +357,7 @@ class PolynomialSystem:
         slopes = E * np.prod(factors, axis=-1) * self._coefficients[:, None]
         return np.einsum("et,...tj->...ej", self._sum, slopes)
 
-    def homogenized(self):
+    def homogenized(self) -> "PolynomialSystem":
         """The system in ``n + 1`` unknowns ``(x0, x1, ..., xn)``, each term multiplied by
         ``x0`` to the power that makes its equation homogeneous of its degree."""
         return PolynomialSystem(tuple(
@@ -397,7 +399,7 @@ def _hull(points):
     return points[hull.vertices], hull.volume
 
 
-def mixed_volume(supports) -> int:
+def mixed_volume(supports: Sequence) -> int:
     """The mixed volume of the Newton polytopes of ``n`` supports in ``n`` unknowns: the BKK bound.
 
     Bernstein, Khovanskii and Kushnirenko: a system whose equations have these supports has at

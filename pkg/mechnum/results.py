@@ -31,6 +31,7 @@ array([ True, False])
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 STATUSES = (
     "converged",
@@ -66,7 +67,7 @@ STATUSES = (
 """
 
 
-def status_counts(status) -> dict:
+def status_counts(status: ArrayLike) -> dict:
     """How many systems (paths, starts) ended in each word of :data:`STATUSES`.
 
     Examples
@@ -110,7 +111,7 @@ class Result:
             raise ValueError(f"status must be one of {STATUSES}, not {sorted(unknown)}")
 
     @property
-    def converged(self):
+    def converged(self) -> bool | np.ndarray:
         """bool, or ndarray of bool for a batch: whether the status is ``"converged"``."""
         converged = np.asarray(self.status) == "converged"
         return bool(converged) if converged.ndim == 0 else converged

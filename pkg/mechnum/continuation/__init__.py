@@ -35,8 +35,7 @@ Examples
 ([1.0, 2.0, 3.0], ['converged', 'converged', 'converged'])
 """
 
-from mechnum.continuation.arclength import (CORRECTOR_TOL, STEPS_LIMIT, Branch,
-                                            pseudo_arclength)
+from mechnum.continuation.arclength import CORRECTOR_TOL, STEPS_LIMIT, Branch, pseudo_arclength
 from mechnum.continuation.natural import (MAX_JUMP, PATH_POINTS_LIMIT, PATH_TOL, PathResult,
                                           solve_path)
 

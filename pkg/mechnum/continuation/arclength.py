@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, SingularJacobianError
@@ -63,12 +64,12 @@ class Branch(Result):
     rejected: int
 
     @property
-    def u(self):
+    def u(self) -> np.ndarray:
         """ndarray, shape (m, n + 1): the points (the same array as ``x``)."""
         return self.x
 
     @property
-    def complete(self):
+    def complete(self) -> bool:
         """bool: False if the step fell below ``min_step`` before ``steps`` points or
         ``stop``."""
         return self.status == "converged"
@@ -147,7 +148,8 @@ def _fold(curve, u, t, h, v, t_h):
     return v
 
 
-def pseudo_arclength(fun: Callable, jac: Callable, u0, *, direction=None, step: float = 0.1,
+def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
+                     direction: ArrayLike | None = None, step: float = 0.1,
                      max_step: float | None = None, min_step: float = 1e-8,
                      steps: int = 200, tol: float = CORRECTOR_TOL, maxiter: int = 8,
                      stop: Callable | None = None) -> Branch:

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.newton.core import SEARCH_HALVINGS, fd_jacobian, inside
@@ -84,8 +85,9 @@ def _pair(fun, jac):
     return residual, jacobian, at
 
 
-def solve_path(fun: Callable, params, x0, jac: Callable | bool | None = None, *,
-               tol: float = PATH_TOL, maxiter: int = 10, domain: Callable | None = None,
+def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
+               jac: Callable | bool | None = None, *, tol: float = PATH_TOL,
+               maxiter: int = 10, domain: Callable | None = None,
                halvings: int = SEARCH_HALVINGS, criterion: str = "residual",
                resume: bool = True, max_jump: float | None = MAX_JUMP) -> PathResult:
     """Follow solutions of ``fun(x, p) = 0`` along a sequence of parameters, by continuation.
@@ -175,8 +177,10 @@ def solve_path(fun: Callable, params, x0, jac: Callable | bool | None = None, *,
     >>> elbow = np.arccos(r[0] ** 2 / 2 - 1)
     >>> path = solve_path(arm, np.column_stack([r * np.cos(phi), r * np.sin(phi)]),
     ...                   [-elbow / 2, elbow])
-    >>> path.status.tolist(), path.x[:, 1].round(3).tolist()
-    (['converged', 'converged', 'converged', 'branch-jump', 'converged'], [1.112, 0.782, 0.063, nan, 1.112])
+    >>> path.status.tolist()
+    ['converged', 'converged', 'converged', 'branch-jump', 'converged']
+    >>> path.x[:, 1].round(3).tolist()
+    [1.112, 0.782, 0.063, nan, 1.112]
     """
     x = _validate.array(x0, "x0", ndim=(1, 2))
     params = _validate.array(params, "params")
@@ -206,7 +210,8 @@ def solve_path(fun: Callable, params, x0, jac: Callable | bool | None = None, *,
             path.status[i:] = "lost"
             break
         start = path.prediction(i, p, rows, domain)
-        res = newton.solve_batch(residual(p[rows]), start, jacobian(p[rows]), tol=tol, maxiter=maxiter, criterion=criterion,
+        res = newton.solve_batch(residual(p[rows]), start, jacobian(p[rows]), tol=tol,
+                                 maxiter=maxiter, criterion=criterion,
                                  damping=True, domain=domain, raise_on_failure=False,
                                  halvings=halvings)
         path.nfev, path.njev = path.nfev + res.nfev, path.njev + res.njev

@@ -9,12 +9,13 @@ relaxation factor outside ``(0, 2)``, where ``rho(M_SOR) >= |omega - 1| >= 1``.
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import RelaxationFactorError, SingularJacobianError
 
 
-def check_matrix(A, square: bool = True):
+def check_matrix(A: ArrayLike | sp.sparray, square: bool = True) -> np.ndarray | sp.csr_array:
     """``A`` as a finite real float matrix, dense or compressed-row sparse, or a ValueError.
 
     Parameters
@@ -101,7 +102,7 @@ def _check_system(A, b):
     return A, b
 
 
-def condition_number(A, p=2):
+def condition_number(A: ArrayLike, p: float | str = 2) -> float:
     """The condition number ``||A|| ||A^+||`` in the norm ``p`` (dense ``A``).
 
     Parameters

@@ -9,20 +9,21 @@ LU factorisation in single precision, corrected by residuals computed in double 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve, qr, solve_triangular
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.linear.checks import _check_system, _dense, condition_number
 from mechnum.linear.krylov import conjugate_gradient
-from mechnum.linear.stationary import (IterationResult, StoppingRule, gauss_seidel, jacobi,
-                                       sor)
+from mechnum.linear.stationary import IterationResult, StoppingRule, gauss_seidel, jacobi, sor
 from mechnum.linear.sweeps import METHODS
 
 LEAST_SQUARES_METHODS = ("qr", "svd", "cholesky", "lu") + METHODS + ("cg",)
 #: Iterative refinement gives up when a correction is not at least this much smaller than the
 #: one before: the low-precision factorisation no longer contracts the error.
 REFINEMENT_CONTRACTION = 0.5
+_SUBNORMAL_FLOOR = 2 * np.finfo(float).smallest_subnormal
 
 
 @dataclass(frozen=True)
@@ -49,7 +50,8 @@ class LeastSquares:
     solver: IterationResult | None
 
 
-def least_squares(A, b, method="qr", omega=None, **solver_options):
+def least_squares(A: ArrayLike, b: ArrayLike, method: str = "qr", omega: float | None = None,
+                  **solver_options) -> "LeastSquares":
     """The least-squares solution of ``A x ~= b``: ``min ||A x - b||_2``.
 
     Parameters
@@ -135,8 +137,8 @@ REFINEMENT_TOL = 1e-9
 REFINEMENT_MAXITER = 100
 
 
-def iterative_refinement(A, b, *, factor_dtype=np.float32, tol: float = REFINEMENT_TOL,
-                         maxiter: int = 20) -> IterationResult:
+def iterative_refinement(A: ArrayLike, b: ArrayLike, *, factor_dtype: type = np.float32,
+                         tol: float = REFINEMENT_TOL, maxiter: int = 20) -> IterationResult:
     """Solve ``A x = b`` by an LU factorisation in low precision refined in double precision.
 
     Each step computes the residual ``r = b - A x`` in double precision, solves ``A d = r``
@@ -200,7 +202,8 @@ def iterative_refinement(A, b, *, factor_dtype=np.float32, tol: float = REFINEME
         history.append(x)
         residuals.append(np.linalg.norm(b - A @ x, np.inf))
         steps.append(np.linalg.norm(d, np.inf))
-        if steps[-1] <= rule.tol * np.linalg.norm(x, np.inf):
+        # a correction of a unit or two of the smallest subnormal is round-off, whatever x
+        if steps[-1] <= max(rule.tol * np.linalg.norm(x, np.inf), _SUBNORMAL_FLOOR):
             status = "converged"
             break
         if not (len(steps) < 2 or steps[-1] <= REFINEMENT_CONTRACTION * steps[-2]):

@@ -9,6 +9,7 @@ sparse, on which SOR at Young's factor and conjugate gradients are compared.
 import numba
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
@@ -40,7 +41,8 @@ def _check_symmetric(A):
         raise ValueError(f"conjugate gradients need a symmetric A: max |A - A^T| = {gap:.3g}")
 
 
-def conjugate_gradient(A, b, x0=None, *, tol: float = TOL, maxiter: int | None = None,
+def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+                       tol: float = TOL, maxiter: int | None = None,
                        keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` for a symmetric positive definite ``A`` by conjugate gradients.
 
@@ -119,7 +121,7 @@ def conjugate_gradient(A, b, x0=None, *, tol: float = TOL, maxiter: int | None =
     return result
 
 
-def poisson2d(m: int):
+def poisson2d(m: int) -> sp.csr_array:
     """The 5-point Laplacian on an ``m x m`` grid of interior nodes, as a sparse matrix.
 
     ``h^2`` times the discrete ``-(u_xx + u_yy)`` with zero boundary values, nodes numbered row

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError
@@ -281,8 +282,9 @@ def _solve(A, b, method, omega, x0, rule, keep_history):
     raise error(f"{name} {result.message}{rho}", result)
 
 
-def sor(A, b, omega: float, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
-        criterion: str = "step", norm: float = np.inf, relative: bool = True,
+def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, x0: ArrayLike | None = None, *,
+        tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
+        norm: float = np.inf, relative: bool = True,
         keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` by successive over-relaxation.
 
@@ -331,8 +333,9 @@ def sor(A, b, omega: float, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
     return _solve(A, b, "sor", omega, x0, rule, keep_history)
 
 
-def gauss_seidel(A, b, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
-                 criterion: str = "step", norm: float = np.inf, relative: bool = True,
+def gauss_seidel(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+                 tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
+                 norm: float = np.inf, relative: bool = True,
                  keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` by Gauss-Seidel (SOR with ``omega = 1``); arguments as :func:`sor`.
 
@@ -346,8 +349,9 @@ def gauss_seidel(A, b, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
     return _solve(A, b, "gauss_seidel", 1.0, x0, rule, keep_history)
 
 
-def jacobi(A, b, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
-           criterion: str = "step", norm: float = np.inf, relative: bool = True,
+def jacobi(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+           tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
+           norm: float = np.inf, relative: bool = True,
            keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` by Jacobi's method; arguments as :func:`sor`.
 
@@ -361,7 +365,8 @@ def jacobi(A, b, x0=None, *, tol: float = TOL, maxiter: int = 10_000,
     return _solve(A, b, "jacobi", 1.0, x0, rule, keep_history)
 
 
-def sor_sweep(A, b, omegas, x0=None, *, tol: float = TOL, maxiter: int = 100_000,
+def sor_sweep(A: ArrayLike | sp.sparray, b: ArrayLike, omegas: ArrayLike,
+              x0: ArrayLike | None = None, *, tol: float = TOL, maxiter: int = 100_000,
               criterion: str = "step", norm: float = np.inf,
               relative: bool = True) -> "SorSweep":
     """Run SOR for many relaxation factors: spectral radius and iteration count of each.

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
@@ -52,13 +53,13 @@ class BatchNewtonResult(Result):
     residual_norms: np.ndarray
 
     @property
-    def singular(self):
+    def singular(self) -> np.ndarray:
         """ndarray of bool: which systems stopped on a singular Jacobian."""
         return self.status == "singular"
 
 
-def solve_batch(fun: Callable, x0, jac: Callable | bool | None = None, *, tol: float = TOL,
-                maxiter: int = 50, criterion: str = "step", norm: float = 2,
+def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *,
+                tol: float = TOL, maxiter: int = 50, criterion: str = "step", norm: float = 2,
                 damping: bool = False, domain: Callable | None = None,
                 raise_on_failure: bool = True, max_step: float | None = None,
                 independent: bool = False, halvings: int = MAX_HALVINGS,

@@ -1,4 +1,4 @@
-"""What every Newton solver of :mod:`mechnum.newton` shares: the equations, the step, the line search.
+"""What every Newton solver of :mod:`mechnum.newton` shares: equations, step, line search.
 
 * :class:`Equations` wraps the caller's ``fun`` and ``jac`` (a callable, ``True`` when ``fun``
   returns ``(f, J)`` together, or ``None`` for forward differences), checks what they return and
@@ -16,9 +16,11 @@ Examples
 ([-1.0, 1.0], False)
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import NonFiniteError
@@ -84,7 +86,8 @@ class StoppingRule:
     relative: bool
 
     @classmethod
-    def checked(cls, tol, maxiter, criterion, norm, relative) -> "StoppingRule":
+    def checked(cls, tol: float, maxiter: int, criterion: str, norm: float,
+                relative: bool | None) -> "StoppingRule":
         """The rule from a solver's arguments, checked; ``relative=None`` is relative for the
         step (the iterates carry their scale) and absolute for the residual (the caller scales
         the equations; a reduction relative to ``f(x_0)`` is out of reach from a good start).
@@ -107,7 +110,7 @@ class StoppingRule:
         return f"residual <= {self.tol:g}" + (" ||f(x0)||" if self.relative else "")
 
 
-def norms(v, norm):
+def norms(v: np.ndarray, norm: float) -> np.ndarray:
     """``np.linalg.norm(v, norm, axis=-1)``, several times faster for a stack of short vectors
     (the sums over the short last axis are products with a vector of ones), and without
     overflow: a 2-norm whose squares overflow is computed again from ``v`` scaled by its
@@ -136,7 +139,7 @@ def norms(v, norm):
     return out
 
 
-def largest(a):
+def largest(a: np.ndarray) -> np.ndarray:
     """The largest entry along the last axis. (NumPy reduces a short last axis slowly, one row
     at a time: reduce the transposed copy along its first axis, many rows at once.)"""
     return np.ascontiguousarray(a.reshape(-1, a.shape[-1]).T).max(axis=0).reshape(a.shape[:-1])
@@ -156,7 +159,7 @@ def _real(value, what, shape):
     return out
 
 
-def fd_jacobian(fun, x, fx=None):
+def fd_jacobian(fun: Callable, x: ArrayLike, fx: ArrayLike | None = None) -> np.ndarray:
     """Forward-difference Jacobian of ``fun`` at ``x``, for one system or a batch.
 
     Column ``j`` is ``(f(x + h_j e_j) - f(x)) / h_j`` with ``h_j = sqrt(eps) max(1, |x_j|)``,
@@ -207,7 +210,7 @@ def fd_jacobian(fun, x, fx=None):
     return jac
 
 
-def differences(fun, x, fx):
+def differences(fun: Callable, x: np.ndarray, fx: np.ndarray) -> np.ndarray:
     """The forward differences of :func:`fd_jacobian`, unchecked (NaN or inf where ``fun`` is
     not finite: the solvers report that as a status)."""
     n = x.shape[-1]
@@ -243,7 +246,7 @@ class Equations:
     ([-1.0], [[2.0]], 1, 1)
     """
 
-    def __init__(self, fun, jac):
+    def __init__(self, fun: Callable, jac: Callable | bool | None) -> None:
         if not callable(fun):
             raise ValueError(f"fun must be callable, got {_validate.shown(fun)}")
         if not (jac is None or jac is True or callable(jac)):
@@ -251,7 +254,7 @@ class Equations:
                              f"(forward differences), got {_validate.shown(jac)}")
         self.fun, self.jac, self.nfev, self.njev = fun, jac, 0, 0
 
-    def value(self, x):
+    def value(self, x: np.ndarray) -> tuple:
         """``(f(x), J(x))`` if ``fun`` returns both, else ``(f(x), None)``."""
         out = self.fun(x)
         self.nfev += 1
@@ -264,7 +267,7 @@ class Equations:
         return (_real(out[0], "fun", x.shape),
                 _real(out[1], "fun's Jacobian", x.shape + x.shape[-1:]))
 
-    def jacobian(self, x, f, J=None):
+    def jacobian(self, x: np.ndarray, f: np.ndarray, J: np.ndarray | None = None) -> np.ndarray:
         """The Jacobian at ``x`` (where ``fun`` is ``f``): ``J`` if already known, else
         ``jac(x)`` or forward differences."""
         if J is not None:
@@ -276,7 +279,7 @@ class Equations:
         return _real(self.jac(x), "jac", x.shape + x.shape[-1:])
 
 
-def newton_step(jac, fx):
+def newton_step(jac: np.ndarray, fx: np.ndarray) -> tuple:
     """Solve ``J dx = -f`` for one system or a stack; flag the (numerically) singular ``J``.
 
     Besides an exactly singular ``J`` (LAPACK's zero pivot), a step is flagged when
@@ -328,7 +331,7 @@ def newton_step(jac, fx):
     return np.where(singular[..., None], 0.0, dx), singular, cond
 
 
-def bounded(dx, max_step):
+def bounded(dx: np.ndarray, max_step: float | None) -> tuple:
     """The steps ``dx`` (one per row), each shortened to at most ``max_step`` in its largest
     component, and the factor (``<= 1``) by which each was shortened.
 
@@ -354,7 +357,7 @@ class Trial:
     J: np.ndarray | None
     pending: np.ndarray
 
-    def take(self, ok, x, f, J):
+    def take(self, ok: np.ndarray, x: np.ndarray, f: np.ndarray, J: np.ndarray | None) -> None:
         """Accept the rows ``ok`` of the trial points ``x``, ``f``, ``J``."""
         self.x[ok], self.f[ok] = x[ok], f[ok]
         if self.J is not None and J is not None:
@@ -362,8 +365,10 @@ class Trial:
         self.pending &= ~ok
 
 
-def line_search(call, x, fx, J, dx, moving, rnorm, sure, norm, domain, *, shrink=None,
-                stacked=False, halvings=MAX_HALVINGS):
+def line_search(call: Callable, x: np.ndarray, fx: np.ndarray, J: np.ndarray | None,
+                dx: np.ndarray, moving: np.ndarray, rnorm: np.ndarray, sure: np.ndarray,
+                norm: float, domain: Callable | None, *, shrink: np.ndarray | None = None,
+                stacked: bool = False, halvings: int = MAX_HALVINGS) -> tuple:
     """Backtracking for the systems ``moving`` of a batch.
 
     ``alpha`` is halved from 1 until the trial point ``x + alpha dx`` lies in the ``domain``
@@ -412,7 +417,7 @@ def line_search(call, x, fx, J, dx, moving, rnorm, sure, norm, domain, *, shrink
     return state, np.where(state.pending, failed, ""), calls
 
 
-def inside(domain, points):
+def inside(domain: Callable | None, points: np.ndarray) -> np.ndarray:
     """``domain(points)`` checked: one bool per row (all True without a domain).
 
     Examples

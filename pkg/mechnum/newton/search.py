@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.newton.batch import solve_batch
@@ -30,7 +31,7 @@ distance between two roots that a mechanism can tell apart."""
 
 @dataclass(frozen=True, kw_only=True)
 class RootSet(Result):
-    """The outcome of :func:`solve_all`: the distinct roots found, and how hard they were looked for.
+    """The outcome of :func:`solve_all`: the distinct roots, and how hard they were looked for.
 
     Attributes
     ----------
@@ -66,18 +67,18 @@ class RootSet(Result):
     new_in_check: int
 
     @property
-    def roots(self):
+    def roots(self) -> np.ndarray:
         """ndarray, shape (r, n): the distinct roots (the same array as ``x``)."""
         return self.x
 
     @property
-    def status_counts(self):
+    def status_counts(self) -> dict:
         """dict: how many starts of both runs ended in each word of
         :data:`~mechnum.results.STATUSES`."""
         return status_counts(self.status)
 
     @property
-    def complete(self):
+    def complete(self) -> bool:
         """bool: whether the completeness check found no new root."""
         return self.new_in_check == 0
 
@@ -98,7 +99,8 @@ def _distinct(points, same):
 
 
 def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = None, *,
-              n_starts: int = 1000, check: int = 10, rng=None, starts=None,
+              n_starts: int = 1000, check: int = 10,
+              rng: np.random.Generator | int | None = None, starts: ArrayLike | None = None,
               tol: float = ROOT_TOL, maxiter: int = 50, domain: Callable | None = None,
               same: float = SAME, halvings: int = SEARCH_HALVINGS) -> RootSet:
     """Every root that damped Newton finds from many starts, deduplicated, with evidence.
@@ -157,8 +159,10 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     >>> jac = lambda z: np.stack([np.stack([2 * z[:, 0], 2 * z[:, 1]], -1),
     ...                           np.stack([z[:, 1], z[:, 0]], -1)], axis=1)
     >>> found = solve_all(fun, lambda rng, m: rng.uniform(-3, 3, (m, 2)), jac, n_starts=200, rng=0)
-    >>> found.roots.round(6).tolist(), found.complete
-    ([[-1.931852, -0.517638], [-0.517638, -1.931852], [0.517638, 1.931852], [1.931852, 0.517638]], True)
+    >>> found.roots.round(6).tolist()
+    [[-1.931852, -0.517638], [-0.517638, -1.931852], [0.517638, 1.931852], [1.931852, 0.517638]]
+    >>> found.complete, bool(found.hits.sum() == found.status_counts["converged"])
+    (True, True)
     """
     rng = _validate.rng(rng)
     n_starts = _validate.maxiter(n_starts, "n_starts", maximum=STARTS_LIMIT)

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError, SingularJacobianError
@@ -53,7 +54,7 @@ class NewtonResult(Result):
     full_step_norms: np.ndarray
 
 
-def solve(fun: Callable, x0, jac: Callable | bool | None = None, *, tol: float = TOL,
+def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
           maxiter: int = 50, criterion: str = "step", norm: float = 2,
           damping: bool = False, max_step: float | None = None, relative: bool | None = None,
           halvings: int = MAX_HALVINGS) -> NewtonResult:
@@ -150,7 +151,7 @@ def solve(fun: Callable, x0, jac: Callable | bool | None = None, *, tol: float =
                     damping, max_step, halvings, "Newton", "Jacobian")
 
 
-def broyden(fun: Callable, x0, jac: Callable | bool | None = None, *, tol: float = TOL,
+def broyden(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
             maxiter: int = 100, criterion: str = "step", norm: float = 2,
             relative: bool | None = None) -> NewtonResult:
     """Solve ``fun(x) = 0`` by Broyden's method: Newton's step with an updated Jacobian.
