@@ -730,6 +730,7 @@ def test_results_follow_the_contract():
 @pytest.mark.parametrize("call, message", [
     (lambda: linear.gauss_seidel(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
     (lambda: linear.sor_sweep(TRI_A, TRI_B, np.full(10_001, 1.2)), "bound on the work"),
+    (lambda: linear.sor_spectral_radii(TRI_A, np.full(10_001, 1.2)), "bound on the work"),
     (lambda: linear.conjugate_gradient(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
     (lambda: linear.iterative_refinement(TRI_A, TRI_B, maxiter=1000), "bound on the work"),
     (lambda: linear.poisson2d(10 ** 5), "bound on the work"),

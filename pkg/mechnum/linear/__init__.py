@@ -22,7 +22,7 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
   :func:`iterative_refinement`.
 """
 
-from mechnum.linear.checks import check_matrix, condition_number
+from mechnum.linear.checks import OMEGAS_LIMIT, check_matrix, condition_number
 from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION,
                                    REFINEMENT_MAXITER, REFINEMENT_TOL, LeastSquares,
                                    iterative_refinement, least_squares)
@@ -31,7 +31,7 @@ from mechnum.linear.spectra import (BLOCK_ENTRIES, OMEGA_GRID, OMEGA_XTOL, Optim
                                     iteration_matrix, optimal_omega, sor_spectral_radii,
                                     spectral_radius, young_omega)
 from mechnum.linear.stationary import (CHUNK, CRITERIA, DIAGNOSTIC_ORDER, DIVERGENCE_GROWTH,
-                                       MAXITER_LIMIT, NORMS, OMEGAS_LIMIT, TOL, IterationResult,
+                                       MAXITER_LIMIT, NORMS, TOL, IterationResult,
                                        SorSweep, StoppingRule, gauss_seidel, jacobi, sor,
                                        sor_sweep)
 from mechnum.linear.sweeps import METHODS, Splitting, splitting, sweep_by_components

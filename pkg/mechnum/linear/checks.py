@@ -14,6 +14,10 @@ from numpy.typing import ArrayLike
 from mechnum import _validate
 from mechnum.errors import RelaxationFactorError, SingularJacobianError
 
+#: The most relaxation factors one call takes (:func:`~mechnum.linear.sor_sweep` runs an
+#: iteration for each, :func:`~mechnum.linear.sor_spectral_radii` an eigenvalue problem).
+OMEGAS_LIMIT = 10_000
+
 
 def check_matrix(A: ArrayLike | sp.sparray, square: bool = True) -> np.ndarray | sp.csr_array:
     """``A`` as a finite real float matrix, dense or compressed-row sparse, or a ValueError.
@@ -84,6 +88,9 @@ def _relaxation_factors(omegas):
         omegas = _validate.array(omegas, "omegas", ndim=1)
     except ValueError as error:
         raise RelaxationFactorError(f"SOR needs relaxation factors in (0, 2): {error}")
+    if omegas.size > OMEGAS_LIMIT:
+        raise ValueError(f"at most {OMEGAS_LIMIT} relaxation factors (a bound on the work), got "
+                         f"{omegas.size}")
     for omega in omegas:
         _relaxation_factor(omega)
     return omegas
