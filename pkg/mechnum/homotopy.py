@@ -74,6 +74,10 @@ accurately than to keep them apart; the endpoints are polished on the system its
 SAME = 1e-6
 """Default distance below which two polished endpoints are one solution: far above the round-off
 of a simple root, far below the distance of two roots of a system scaled to unit size."""
+IMAG_TOL = 1e-8
+"""Default of :meth:`HomotopyResult.real`: a solution whose imaginary parts are below this is
+real. The polished solutions of a problem scaled to unit size carry round-off of 1e-15; the
+margin keeps a real root of condition up to 1e7 real."""
 ENDGAME = 1e-3
 """A path lost at ``s >= 1 - ENDGAME`` has reached the neighbourhood of a singular end (a
 multiple root, or a root at infinity): its endpoint is finished by Newton on the system."""
@@ -261,7 +265,7 @@ class HomotopyResult(Result):
         """ndarray of int, shape (paths,): accepted steps of each path (``iterations``)."""
         return self.iterations
 
-    def real(self, imag_tol: float = 1e-8) -> np.ndarray:
+    def real(self, imag_tol: float = IMAG_TOL) -> np.ndarray:
         """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays;
         below ``imag_tol ** (1 / m)`` for a root of multiplicity ``m``, which round-off
         blurs by the ``m``-th root of its size (a double root carries half the digits).
