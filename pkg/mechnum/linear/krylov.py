@@ -88,6 +88,11 @@ def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | 
     rule = StoppingRule(tol, 10 * b.size if maxiter is None else maxiter, "residual", 2, True)
     x = _initial_guess(x0, b)  # a new array: updated in place below
     keep = _keeps_history(A, keep_history)
+    # b and x scaled by a power of two near |b|: exact, and it keeps the squares of the dot
+    # products in range (b = 1e-162 would make b . b subnormal and alpha meaningless)
+    size = max(np.abs(b).max(), np.abs(x).max())
+    scale = 2.0 ** np.round(np.log2(size)) if size > 0 else 1.0
+    b, x = b / scale, x / scale
     r = b - A @ x
     p, rr, limit = r.copy(), _dot(r, r), rule.tol * np.sqrt(_dot(b, b))
     history, residuals, steps = [x.copy()], [np.sqrt(rr)], []
@@ -111,11 +116,12 @@ def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | 
     message = (f"conjugate gradients converged in {len(steps)} steps (residual <= {rule.tol:g}"
                f" ||b||)" if converged else
                f"conjugate gradients did not converge in {rule.maxiter} steps: residual "
-               f"{residuals[-1]:.3g} > {limit:.3g}")
-    result = IterationResult(x=x, status="converged" if converged else "maxiter",
+               f"{residuals[-1] * scale:.3g} > {limit * scale:.3g}")
+    result = IterationResult(x=x * scale, status="converged" if converged else "maxiter",
                              message=message, iterations=len(steps), nfev=len(steps) + 1,
-                             njev=0, history=np.array(history) if keep else None,
-                             residual_norms=np.array(residuals), step_norms=np.array(steps))
+                             njev=0, history=np.array(history) * scale if keep else None,
+                             residual_norms=np.array(residuals) * scale,
+                             step_norms=np.array(steps) * scale)
     if not converged:
         raise ConvergenceError(message, result)
     return result
