@@ -521,6 +521,7 @@ def test_iterative_refinement_accuracy(system, exponent):
 
 @HYPOTHESIS
 @given(spd_systems(), omegas)
+@example(system=(np.array([[0.5]]), np.array([5e-324])), omega=1.5)  # a subnormal solution
 def test_sor_converges_on_spd_for_every_omega(system, omega):
     A, b = system
     assert linear.spectral_radius(linear.iteration_matrix(A, "sor", omega)) < 1

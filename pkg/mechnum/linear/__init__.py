@@ -22,7 +22,7 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
   :func:`iterative_refinement`.
 """
 
-from mechnum.linear.checks import OMEGAS_LIMIT, check_matrix, condition_number
+from mechnum.linear.checks import OMEGAS_LIMIT, SUBNORMAL_FLOOR, check_matrix, condition_number
 from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION,
                                    REFINEMENT_MAXITER, REFINEMENT_TOL, LeastSquares,
                                    iterative_refinement, least_squares)
@@ -38,14 +38,14 @@ from mechnum.linear.sweeps import METHODS, Splitting, splitting, sweep_by_compon
 
 __all__ = [
     # checks
-    "check_matrix", "condition_number",
+    "check_matrix", "condition_number", "OMEGAS_LIMIT", "SUBNORMAL_FLOOR",
     # sweeps
     "METHODS", "sweep_by_components", "Splitting", "splitting",
     # spectra
     "OMEGA_GRID", "OMEGA_XTOL", "BLOCK_ENTRIES", "iteration_matrix", "spectral_radius",
     "sor_spectral_radii", "young_omega", "OptimalOmega", "optimal_omega",
     # stationary
-    "TOL", "MAXITER_LIMIT", "OMEGAS_LIMIT", "CRITERIA", "NORMS", "DIVERGENCE_GROWTH", "CHUNK",
+    "TOL", "MAXITER_LIMIT", "CRITERIA", "NORMS", "DIVERGENCE_GROWTH", "CHUNK",
     "DIAGNOSTIC_ORDER", "StoppingRule",
     "IterationResult", "sor", "gauss_seidel", "jacobi", "SorSweep", "sor_sweep",
     # krylov

@@ -14,6 +14,11 @@ from numpy.typing import ArrayLike
 from mechnum import _validate
 from mechnum.errors import RelaxationFactorError, SingularJacobianError
 
+#: A residual (or a refinement's correction) of at most two units of the smallest subnormal
+#: number is round-off, whatever the size of the solution: the relative tests accept it
+#: (``tol ||x||`` underflows to zero for a subnormal ``x``, which no step would then meet, and a
+#: subnormal solution's iterates may cycle through a few units).
+SUBNORMAL_FLOOR = 2 * np.finfo(float).smallest_subnormal
 #: The most relaxation factors one call takes (:func:`~mechnum.linear.sor_sweep` runs an
 #: iteration for each, :func:`~mechnum.linear.sor_spectral_radii` an eigenvalue problem).
 OMEGAS_LIMIT = 10_000

@@ -14,7 +14,7 @@ from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve, qr, solve_t
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.linear.checks import _check_system, _dense, condition_number
+from mechnum.linear.checks import SUBNORMAL_FLOOR, _check_system, _dense, condition_number
 from mechnum.linear.krylov import conjugate_gradient
 from mechnum.linear.stationary import IterationResult, StoppingRule, gauss_seidel, jacobi, sor
 from mechnum.linear.sweeps import METHODS
@@ -23,7 +23,6 @@ LEAST_SQUARES_METHODS = ("qr", "svd", "cholesky", "lu") + METHODS + ("cg",)
 #: Iterative refinement gives up when a correction is not at least this much smaller than the
 #: one before: the low-precision factorisation no longer contracts the error.
 REFINEMENT_CONTRACTION = 0.5
-_SUBNORMAL_FLOOR = 2 * np.finfo(float).smallest_subnormal
 
 
 @dataclass(frozen=True)
@@ -203,7 +202,7 @@ def iterative_refinement(A: ArrayLike, b: ArrayLike, *, factor_dtype: type = np.
         residuals.append(np.linalg.norm(b - A @ x, np.inf))
         steps.append(np.linalg.norm(d, np.inf))
         # a correction of a unit or two of the smallest subnormal is round-off, whatever x
-        if steps[-1] <= max(rule.tol * np.linalg.norm(x, np.inf), _SUBNORMAL_FLOOR):
+        if steps[-1] <= max(rule.tol * np.linalg.norm(x, np.inf), SUBNORMAL_FLOOR):
             status = "converged"
             break
         if not (len(steps) < 2 or steps[-1] <= REFINEMENT_CONTRACTION * steps[-2]):

@@ -14,7 +14,8 @@ depend on it:
 
 Both tests are relative by default: an absolute test stops a system whose solution is small
 (``A`` scaled by ``1e12``) after one sweep, far from its solution, and never stops one whose
-solution is large.
+solution is large. A relative test also stops once the residual is at the subnormal floor
+(:data:`~mechnum.linear.checks.SUBNORMAL_FLOOR`), below which nothing is representable.
 
 An iteration whose residual grows beyond :data:`DIVERGENCE_GROWTH` times its start, or
 overflows, is reported as diverging (:class:`~mechnum.errors.DivergenceError`). The compiled
@@ -31,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError
-from mechnum.linear.checks import _check_system, _relaxation_factors
+from mechnum.linear.checks import SUBNORMAL_FLOOR, _check_system, _relaxation_factors
 from mechnum.linear.spectra import iteration_matrix, sor_spectral_radii, spectral_radius
 from mechnum.linear.sweeps import _sweep, splitting
 from mechnum.results import Result
@@ -185,11 +186,12 @@ def _norm(v, p):
 def _run(csr, diagonal, b, x, omega, jacobi, rule, residuals, steps, history):
     """Up to ``steps.size`` sweeps in place; fills the norms (and ``history`` if it has rows).
 
-    ``rule = (norm code, stop on step, relative, tol, residual limit, divergence limit)``.
+    ``rule = (norm code, stop on step, relative, tol, residual limit, divergence limit,
+    residual floor)``.
     Returns ``(sweeps taken, state)``, the state being running, converged or diverged.
     """
     indptr, indices, data = csr
-    p, by_step, relative, tol, limit, blow_up = rule
+    p, by_step, relative, tol, limit, blow_up, floor = rule
     n = b.size
     old, work = np.empty(n), np.empty(n)
     for k in range(steps.size):
@@ -207,6 +209,8 @@ def _run(csr, diagonal, b, x, omega, jacobi, rule, residuals, steps, history):
             done = steps[k] / omega <= tol * (_norm(x, p) if relative else 1.0)
         else:
             done = residuals[k] <= limit
+        # a relative test met at the subnormal floor: nothing smaller is representable
+        done = done or residuals[k] <= floor
         if done:
             return k + 1, 1
         if not residuals[k] <= blow_up:  # growth, overflow or NaN
@@ -222,10 +226,10 @@ def _iterate(split, b, x, rule, keep_history):
     """Sweep ``split`` from ``x`` until ``rule`` stops it; ``(IterationResult, state)``."""
     A, n = split.A, b.size
     residual0, b_norm = _vector_norm(b - A @ x, rule.norm), _vector_norm(b, rule.norm)
-    limit = rule.tol * b_norm if rule.relative else rule.tol
+    limit = max(rule.tol * b_norm, SUBNORMAL_FLOOR) if rule.relative else rule.tol
     blow_up = DIVERGENCE_GROWTH * max(residual0, b_norm, np.finfo(float).tiny)
     compiled_rule = (_NORM_CODES[rule.norm], rule.criterion == "step", bool(rule.relative),
-                     rule.tol, limit, blow_up)
+                     rule.tol, limit, blow_up, SUBNORMAL_FLOOR if rule.relative else 0.0)
     x = x.copy()
     residuals, steps, history = [np.array([residual0])], [], [x[None].copy()]
     done, state = 0, _RUNNING
