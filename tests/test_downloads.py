@@ -65,7 +65,8 @@ def test_page_serves_the_wheel_and_the_chapters():
     wheel, chapters = served(WHEEL), served("mechnum-chapters.zip")
     assert wheel.exists() and chapters.exists()
     with zipfile.ZipFile(wheel) as w:
-        assert {"mechnum/__init__.py", "mechnum/exercises/__init__.py"} <= set(w.namelist())
+        assert {"mechnum/__init__.py", "mechnum/newton/__init__.py",
+                "mechnum/exercises/__init__.py"} <= set(w.namelist())
     toc = (ROOT / "_toc.yml").read_text(encoding="utf-8")
     with zipfile.ZipFile(chapters) as z:
         names = set(z.namelist())

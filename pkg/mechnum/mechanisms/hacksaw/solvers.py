@@ -34,7 +34,7 @@ PREDICTORS = ("previous", "velocity")
 MAX_POINTS = 1_000_000
 """The most points of a sweep (a point costs some 10 kB in the batched sweep's Jacobians)."""
 # Newton's stopping rule of the study: the Euclidean norm of the step (absolute), below ``tol``.
-_RULE = {"criterion": "step", "norm": 2}
+_RULE = {"criterion": "step", "norm": 2, "relative": False}
 # The old forms took the geometry later, with the study's as default.
 _MOVED = {"mech_type": Geometry, "name": "geometry", "default": STUDY}
 
