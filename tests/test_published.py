@@ -18,6 +18,7 @@ from mechnum.published import (
     read_published,
     read_registry,
     reproduction_table,
+    verdict_summary,
 )
 
 
@@ -100,12 +101,26 @@ def test_reproduction_table_renders_and_checks(tmp_path):
                     "000,\"Tab. 1, |x|\",q,0,,<1e-25,reproduced,ch1,,\n")
     table = reproduction_table("ch1", {"T": 1.9416259, "q": 1e-30}, path)
     assert table._repr_markdown_().splitlines()[2:] == [
-        "| Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |",
-        "| Tab. 1, \\|x\\| | q | 0 | <1e-25 | reproduced |  |"]
+        "| Sec. 4 | T |  | 1.942 s | 1.941626 | reproduced |",
+        "| Tab. 1, \\|x\\| | q |  | 0 | <1e-25 | reproduced |"]
     with pytest.raises(AssertionError, match="bounds it"):
         reproduction_table("ch1", {"T": 1.9416259, "q": 1e-3}, path)
     with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
         reproduction_table("ch9", {}, path)
+
+
+def test_verdict_summary_counts_checked_rows(tmp_path):
+    path = tmp_path / "registry.csv"
+    path.write_text(",".join(COLUMNS) + "\n000,Sec. 4,T,1.942,s,1.941626,reproduced,ch1,,\n"
+                    "002,Slide,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\n"
+                    "002,Slide,T3,1.883,s,1.941626,source-error,ch1,T-2T,slip\n")
+    values = {"T": 1.9416259, "T2": 1.9416259, "T3": 1.9416259}
+    assert verdict_summary("ch1", values, path)._repr_markdown_().splitlines()[2:] == [
+        "| reproduced | 1 |  |", "| source-error | 2 | T-2T |"]
+    with pytest.raises(AssertionError, match="the registry says"):
+        verdict_summary("ch1", {**values, "T": 1.95}, path)
+    with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
+        verdict_summary("ch9", {}, path)
 
 
 # --- the valid domain and just outside it (issue 13) -------------------------------------------

@@ -289,8 +289,10 @@ def reproduction_table(chapter: str, values: dict,
     """Check a chapter's registry rows against the package, and render them as a table.
 
     Every row of ``chapter`` is checked by :func:`check_row` with ``values[quantity]``; the
-    table shows, for each, where the study prints it, the quantity, the published and computed
-    numbers, the verdict and the finding.
+    table shows, for each, where the study prints it, the quantity, the finding that explains it
+    (first after the quantity, so that a reader who scrolls no further still sees it), the
+    published and computed numbers and the verdict. A lecture page shows the narrow
+    :func:`verdict_summary` instead; the full table belongs on the study page.
 
     Parameters
     ----------
@@ -319,19 +321,63 @@ def reproduction_table(chapter: str, values: dict,
     >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Sec. 4,T,1.942,s,1.941626,reproduced,"
     ...                     "ch1,,\\n000,Sec. 4,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\\n")
     >>> print(reproduction_table("ch1", {"T": 1.9416259, "T2": 1.9416259}, path))
-    | where | quantity | published | computed | verdict | finding |
+    | where | quantity | finding | published | computed | verdict |
     |---|---|---|---|---|---|
-    | Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |
-    | Sec. 4 | T2 | 1.883 s | 1.941626 | source-error | T-2T |
+    | Sec. 4 | T |  | 1.942 s | 1.941626 | reproduced |
+    | Sec. 4 | T2 | T-2T | 1.883 s | 1.941626 | source-error |
     """
+    lines = ["| where | quantity | finding | published | computed | verdict |",
+             "|---|---|---|---|---|---|"]
+    for row in _checked_rows(chapter, values, path):
+        published = f"{row['published']} {row['unit']}".strip()
+        lines.append(f"| {_cell(row['location'])} | {_cell(row['quantity'])} | {row['finding']} "
+                     f"| {_cell(published)} | {_cell(row['computed']) or '-'} | {row['verdict']} |")
+    return Markdown("\n".join(lines))
+
+
+def _checked_rows(chapter, values, path):
+    """The registry rows of ``chapter``, each checked by :func:`check_row` against ``values``."""
     rows = read_registry(path, chapter)
     if not rows:
         raise ValueError(f"the registry {path} has no row for the chapter {chapter!r}")
-    lines = ["| where | quantity | published | computed | verdict | finding |",
-             "|---|---|---|---|---|---|"]
     for row in rows:
         check_row(row, values.get(row["quantity"]))
-        published = f"{row['published']} {row['unit']}".strip()
-        lines.append(f"| {_cell(row['location'])} | {_cell(row['quantity'])} | {_cell(published)} "
-                     f"| {_cell(row['computed']) or '-'} | {row['verdict']} | {row['finding']} |")
+    return rows
+
+
+def verdict_summary(chapter: str, values: dict,
+                    path: str | PathLike = "published_values.csv") -> Markdown:
+    """Check a chapter's registry rows as :func:`reproduction_table` does, and count them.
+
+    The narrow table a lecture page shows (it fits the book's column): for each verdict, the
+    number of rows and the findings that explain them; the study page shows every row.
+
+    Parameters
+    ----------
+    chapter, values, path
+        As for :func:`reproduction_table`.
+
+    Returns
+    -------
+    Markdown
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Sec. 4,T,1.942,s,1.941626,reproduced,"
+    ...                     "ch1,,\\n000,Sec. 4,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\\n")
+    >>> print(verdict_summary("ch1", {"T": 1.9416259, "T2": 1.9416259}, path))
+    | verdict | rows | findings |
+    |---|---|---|
+    | reproduced | 1 |  |
+    | source-error | 1 | T-2T |
+    """
+    rows = _checked_rows(chapter, values, path)
+    lines = ["| verdict | rows | findings |", "|---|---|---|"]
+    for verdict in VERDICTS:
+        mine = [r for r in rows if r["verdict"] == verdict]
+        if mine:
+            findings = sorted({r["finding"] for r in mine if r["finding"]})
+            lines.append(f"| {verdict} | {len(mine)} | {', '.join(findings)} |")
     return Markdown("\n".join(lines))
