@@ -1,0 +1,251 @@
+"""Branch and prune: every root of a system in a box, each proven, or the boxes left undecided.
+
+:func:`roots` takes boxes from a stack (depth first) and tests each
+(:func:`mechnum.certify.krawczyk.test_box`): a box is **excluded** (the residual's enclosure, or
+its mean-value form, or Krawczyk's operator proves it holds no root), **proven** (Krawczyk's
+operator maps it, or the box enlarged around a root near its face, into its interior: exactly
+one root), or **bisected**. The direction of the cut is the one along which the residual's
+enclosure is widest, ``max_i |J_ij| width_j`` (the "smear"), or, where the Jacobian is not
+finite, the widest relative to the searched box. A box narrower than ``min_width`` of the
+searched box in that direction, or any box left when ``max_boxes`` have been tested, is kept as
+**undecided**: never dropped.
+"""
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechnum import _validate
+from mechnum.certify import krawczyk as kr
+from mechnum.certify.balls import as_array
+from mechnum.certify.certificate import EXCLUSIONS, Certificate, Leaf, distinct_roots
+from mechnum.results import Result
+
+MAX_BOXES = 100_000
+"""Default bound on the boxes tested."""
+MAX_BOXES_LIMIT = 10_000_000
+"""The largest ``max_boxes`` accepted (a bound on the work: about a day of tests)."""
+REFINEMENTS = 8
+# Krawczyk iterations that tighten a root's enclosure once it is proven (each at least halves
+# the width, and they converge quadratically: a few reach the rounding level).
+MIN_WIDTH = 1e-10
+"""Default: boxes are not cut below this fraction of the searched box's width."""
+MIN_WIDTH_RANGE = (1e-15, 0.5)
+"""The accepted range of ``min_width``: a box of 53-bit floats cannot be cut much below 1e-15
+of its width, and above 0.5 no box would be cut."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class Roots(Result):
+    """Every root of a system in a box, each proven, and what stayed undecided.
+
+    The fields of :class:`mechnum.results.Result` (``x``: the midpoints of the root
+    enclosures, ``(count, n)``; ``status``: ``"converged"`` when complete, ``"undecided"``
+    otherwise; ``iterations``: boxes tested; ``nfev``, ``njev``), and:
+
+    Attributes
+    ----------
+    roots : ndarray, shape (count, n, 2)
+        An enclosure of each root; each holds exactly one root of the system, and no two the
+        same one.
+    excluded : int
+        Leaves proven to hold no root.
+    undecided : ndarray, shape (u, n, 2)
+        Leaves that could be neither excluded nor proven (too narrow to cut, beyond
+        ``max_boxes``, or a root on the searched box's face): there may be roots in them.
+    complete : bool
+        ``undecided`` is empty: ``count`` is then the number of roots in the box, a theorem
+        (for the functions that ``residual`` and ``jacobian`` enclose).
+    count : int
+        ``len(roots)``.
+    boxes : int
+        Boxes tested (also ``iterations``).
+    seconds : float
+        Time of the search.
+    """
+
+    roots: np.ndarray
+    excluded: int
+    undecided: np.ndarray
+    complete: bool
+    count: int
+    boxes: int
+    seconds: float
+    searched: np.ndarray
+    leaves: tuple
+
+    @property
+    def evaluations(self):
+        """int: evaluations of the residual and of the Jacobian, ``nfev + njev``."""
+        return self.nfev + self.njev
+
+    def certificate(self, inputs=None):
+        """The leaves with the test each passed, as a :class:`Certificate`.
+
+        Parameters
+        ----------
+        inputs : dict, optional
+            What was searched, stored with the certificate (JSON-serialisable).
+        """
+        return Certificate(self.searched, self.leaves, self.roots, self.complete,
+                           dict(inputs or {}),
+                           {"boxes": self.boxes, "nfev": self.nfev, "njev": self.njev,
+                            "seconds": round(self.seconds, 3)})
+
+
+def _direction(box, J, widths):
+    """The coordinate to cut: the widest smear ``max_i |J_ij| w_j`` where ``J`` is finite,
+    else the widest relative to the searched box."""
+    w = box[:, 1] - box[:, 0]
+    relative = w / widths
+    if J is not None and all(v.is_finite() for row in J for v in row):
+        smear = np.array([max(float(abs(row[j]).upper()) for row in J) for j in range(len(w))])
+        smear = smear * w
+        if np.any(smear > 0):
+            return int(np.argmax(np.where(relative > 0, smear, -1.0)))
+    return int(np.argmax(relative))
+
+
+def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH):
+    """Every root of ``residual`` in a box, proven by interval arithmetic (branch and prune).
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(X) -> sequence of n arb``: an enclosure of ``f`` over the box ``X`` (a list of
+        ``n`` :class:`flint.arb` balls), for every point of it. It is called on boxes and on
+        points (balls of radius 0).
+    jacobian : callable
+        ``jacobian(X) -> n sequences of n arb``: an enclosure of ``f'`` over ``X``. ``f`` must
+        be continuously differentiable on every box searched.
+    box : array_like, shape (n, 2) or (m, n, 2)
+        The box ``[lo, hi]`` per coordinate, or ``m`` boxes searched one after the other (the
+        pieces of a domain on which ``f`` is smooth).
+    max_boxes : int, optional
+        The most boxes tested, ``<= MAX_BOXES_LIMIT``; the boxes left are undecided.
+    min_width : float, optional
+        Boxes are not cut below this fraction of the searched box's width, in
+        ``MIN_WIDTH_RANGE``; such a box is undecided.
+
+    Returns
+    -------
+    Roots
+        ``complete`` is True only when no box is undecided: then ``count`` is a theorem.
+        What is proven assumes only that ``residual`` and ``jacobian`` enclose ``f`` and
+        ``f'`` (Arb's outward rounding takes care of the rest).
+
+    Raises
+    ------
+    ValueError
+        If the box is not finite, has ``lo > hi``, or an argument is out of range.
+
+    Examples
+    --------
+    The circle ``x**2 + y**2 = 1`` meets the line ``y = x`` twice:
+
+    >>> f = lambda X: [X[0] ** 2 + X[1] ** 2 - 1, X[1] - X[0]]
+    >>> J = lambda X: [[2 * X[0], 2 * X[1]], [-1, 1]]
+    >>> r = roots(f, J, [[-2.0, 2.0], [-2.0, 2.0]])
+    >>> r.count, r.complete, r.status, np.round(r.x, 6).tolist()
+    (2, True, 'converged', [[-0.707107, -0.707107], [0.707107, 0.707107]])
+    """
+    boxes = np.asarray(box, dtype=float)
+    boxes = boxes[None] if boxes.ndim == 2 else boxes
+    if boxes.ndim != 3:
+        raise ValueError(f"box must be (n, 2) or (m, n, 2), got shape {boxes.shape}")
+    boxes = np.array([as_array(b) for b in boxes]).reshape(boxes.shape)
+    max_boxes = _validate.maxiter(max_boxes, "max_boxes", maximum=MAX_BOXES_LIMIT)
+    min_width = _validate.scalar(min_width, "min_width")
+    if not MIN_WIDTH_RANGE[0] <= min_width <= MIN_WIDTH_RANGE[1]:
+        raise ValueError(f"min_width must lie in {list(MIN_WIDTH_RANGE)}, got {min_width!r}")
+    start = time.perf_counter()
+    counter = {"nfev": 0, "njev": 0}
+    tested, parts = 0, []
+    for B in boxes:
+        widths = np.where(B[:, 1] > B[:, 0], B[:, 1] - B[:, 0], 1.0)
+        leaves, stack = [], [B]
+        while stack:
+            X = stack.pop()
+            if tested >= max_boxes:
+                leaves.append(Leaf(X, "undecided", reason="max_boxes reached"))
+                continue
+            tested += 1
+            leaf, J = _decide(residual, jacobian, X, counter)
+            if leaf is not None:
+                leaves.append(leaf)
+                continue
+            d = _direction(X, J, widths)
+            cut = 0.5 * X[d, 0] + 0.5 * X[d, 1]
+            if (X[d, 1] - X[d, 0]) < min_width * widths[d] or not X[d, 0] < cut < X[d, 1]:
+                leaves.append(Leaf(X, "undecided", reason="narrower than min_width"))
+                continue
+            left, right = X.copy(), X.copy()
+            left[d, 1] = right[d, 0] = cut
+            stack += [right, left]
+        parts.append(tuple(leaves))
+    return _result(boxes, parts, tested, counter, time.perf_counter() - start)
+
+
+def _decide(residual, jacobian, X, counter):
+    """The leaf that the tests make of ``X``, or None (cut it), and the Jacobian's enclosure."""
+    test, J, K = kr.test_box(residual, jacobian, kr.to_balls(X), counter)
+    if test in EXCLUSIONS:
+        return Leaf(X, test), J
+    T = X
+    if test == "contracting":
+        T = kr.inflate(X)
+        passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(T), counter)
+        if not passed:
+            return None, J
+    elif test != "krawczyk":
+        return None, J
+    return Leaf(X, "krawczyk", T, _tighten(residual, jacobian, _meet(kr.to_floats(K), T),
+                                            counter)), J
+
+
+def _tighten(residual, jacobian, E, counter):
+    """A tighter enclosure of the one root in ``E``: Krawczyk's operator iterated
+    (``E <- K(E) & E``, which keeps the root) while it halves the width, then the result
+    doubled and proven by one more test, ``K(C)`` inside ``C``. Returns ``E`` itself when
+    that test fails."""
+    F = E
+    for _ in range(REFINEMENTS):
+        K = kr.krawczyk_test(residual, jacobian, kr.to_balls(F), counter)[1]
+        if K is None:
+            break
+        new = _meet(kr.to_floats(K), F)
+        shrunk = np.all(new[:, 1] - new[:, 0] <= 0.5 * (F[:, 1] - F[:, 0]))
+        F = new
+        if not shrunk:
+            break
+    C = _meet(kr.inflate(F, 0.5), E)
+    if not np.array_equal(C, E) and kr.krawczyk_test(residual, jacobian, kr.to_balls(C),
+                                                     counter)[0]:
+        return C
+    return E
+
+
+def _meet(a, b):
+    return np.column_stack((np.maximum(a[:, 0], b[:, 0]), np.minimum(a[:, 1], b[:, 1])))
+
+
+def _result(boxes, parts, tested, counter, seconds):
+    leaves = [leaf for part in parts for leaf in part]
+    found, unsure = distinct_roots(leaves, boxes)
+    n = boxes.shape[1]
+    undecided = [leaf.box for leaf in leaves if leaf.test == "undecided"]
+    undecided += [leaf.box for leaf, _ in unsure]
+    enclosures = np.array(found).reshape(-1, n, 2)
+    complete = not undecided
+    excluded = sum(leaf.test in EXCLUSIONS for leaf in leaves)
+    status = "converged" if complete else "undecided"
+    message = (f"{len(found)} roots proven, {excluded} boxes excluded, "
+               f"{len(undecided)} undecided; {tested} boxes tested")
+    if complete:
+        message += ": the count is proven"
+    return Roots(x=enclosures.mean(axis=2), status=status, message=message, iterations=tested,
+                 nfev=counter["nfev"], njev=counter["njev"], roots=enclosures,
+                 excluded=excluded, undecided=np.array(undecided).reshape(-1, n, 2),
+                 complete=complete, count=len(found), boxes=tested, seconds=seconds,
+                 searched=boxes, leaves=tuple(parts))
