@@ -17,7 +17,7 @@ Examples
 >>> x = ball(0.9, 1.1)
 >>> lo, hi = bounds(cos(x))
 >>> bool(lo <= np.cos(1.1) < np.cos(0.9) <= hi), round(hi - lo, 6)
-(True, 0.17789)
+(True, 0.168014)
 """
 
 import math
