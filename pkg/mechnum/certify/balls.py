@@ -65,9 +65,11 @@ def ends(x):
 def monotone(f, *args):
     """Enclosure of ``f`` over balls on which it is monotone in each argument.
 
-    ``args`` are ``(ball, direction)`` pairs, ``direction`` +1 where ``f`` increases with that
+    ``args`` are ``(ball, direction)`` pairs (or ``((lo, hi), direction)`` with the endpoints
+    as exact balls, see :func:`span`), ``direction`` +1 where ``f`` increases with that
     argument and -1 where it decreases; ``f`` is evaluated at the two corners where it is
-    least and greatest, each as a ball, and the union of the two is returned.
+    least and greatest, each as a ball, and the union of the two is returned (a NaN ball,
+    which holds every number, where a corner's value is not finite).
 
     Examples
     --------
@@ -75,12 +77,30 @@ def monotone(f, *args):
     >>> bounds(r)[0] < 0.0 < 2.0 < bounds(r)[1] < 2.0 + 1e-8
     True
     """
-    low = [ends(x)[0] if d > 0 else ends(x)[1] for x, d in args]
-    high = [ends(x)[1] if d > 0 else ends(x)[0] for x, d in args]
+    spans = [x if isinstance(x, tuple) else ends(x) for x, _ in args]
+    low = [s[0] if d > 0 else s[1] for s, (_, d) in zip(spans, args)]
+    high = [s[1] if d > 0 else s[0] for s, (_, d) in zip(spans, args)]
     a = f(*low)
-    if all(x.rad() == 0 for x, _ in args):
+    if all(s[0] == s[1] for s in spans):
         return a
-    return a.union(f(*high))
+    b = f(*high)
+    if not (a.is_finite() and b.is_finite()):
+        return arb("nan")
+    return a.union(b)
+
+
+def span(x, lo=None, hi=None):
+    """The endpoints of the ball ``x`` as exact balls, cut to ``[lo, hi]`` (floats or balls):
+    the interval of a quantity known to lie there, whose ball's rounding pokes beyond (a
+    ball from 0 to 0.3 has the centre 0.15 and a radius rounded up, below 0)."""
+    a, b = ends(x)
+    if lo is not None and bool(a < lo):
+        a = arb(lo)
+    if hi is not None and bool(b > hi):
+        b = arb(hi)
+    if bool(a > b):
+        a = b
+    return a, b
 
 
 def _extrema_between(lo, hi, period, phase):
@@ -122,10 +142,7 @@ def expm1(x):
 
 def sqrt(x):
     """``sqrt`` over the ball ``x``, whose negative part (rounding of a square) is cut at 0."""
-    lo, hi = ends(x)
-    if bool(lo < 0):
-        lo = arb(0)
-    return monotone(lambda y: y.sqrt(), (lo.union(hi), 1))
+    return monotone(lambda y: y.sqrt(), (span(x, 0), 1))
 
 
 def nonnegative(x):
@@ -134,23 +151,27 @@ def nonnegative(x):
     return arb(0).union(hi) if bool(lo < 0) else x
 
 
+def _carlson(f, direction, args):
+    """A Carlson function over balls of non-negative arguments, monotone in each (their
+    negative rounding cut at 0)."""
+    return monotone(lambda *p: f(*(acb(x) for x in p)).real,
+                    *((span(x, 0), direction) for x in args))
+
+
 def rf(x, y, z):
     """Carlson's ``R_F(x, y, z)`` over balls of non-negative arguments: it decreases in each
     (DLMF 19.16.1), so two evaluations enclose it."""
-    return monotone(lambda a, b, c: acb.elliptic_rf(acb(a), acb(b), acb(c)).real,
-                    (x, -1), (y, -1), (z, -1))
+    return _carlson(acb.elliptic_rf, -1, (x, y, z))
 
 
 def rd(x, y, z):
     """Carlson's ``R_D(x, y, z) = R_J(x, y, z, z)``, decreasing in each argument."""
-    return monotone(lambda a, b, c: acb.elliptic_rj(acb(a), acb(b), acb(c), acb(c)).real,
-                    (x, -1), (y, -1), (z, -1))
+    return _carlson(lambda a, b, c: acb.elliptic_rj(a, b, c, c), -1, (x, y, z))
 
 
 def rg(x, y, z):
     """Carlson's ``R_G(x, y, z)``, increasing in each argument (DLMF 19.16.3)."""
-    return monotone(lambda a, b, c: acb.elliptic_rg(acb(a), acb(b), acb(c)).real,
-                    (x, 1), (y, 1), (z, 1))
+    return _carlson(acb.elliptic_rg, 1, (x, y, z))
 
 
 def hull(values):
