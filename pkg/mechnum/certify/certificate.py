@@ -22,7 +22,7 @@ import numpy as np
 from mechnum.certify import krawczyk as kr
 from mechnum.errors import MechnumError
 
-EXCLUSIONS = ("residual", "mean-value", "krawczyk-exclusion")
+EXCLUSIONS = ("residual", "exclude", "mean-value", "krawczyk-exclusion")
 TESTS = EXCLUSIONS + ("krawczyk", "undecided")
 FORMAT = "mechnum-certificate-1"
 
@@ -41,7 +41,8 @@ class Leaf:
     box : ndarray, shape (n, 2)
         The leaf (float intervals).
     test : str
-        ``"residual"``, ``"mean-value"``, ``"krawczyk-exclusion"`` (no root), ``"krawczyk"``
+        ``"residual"``, ``"exclude"``, ``"mean-value"``, ``"krawczyk-exclusion"`` (no root),
+        ``"krawczyk"``
         (exactly one root in ``test_box``) or ``"undecided"``.
     test_box : ndarray, shape (n, 2) or None
         For ``"krawczyk"``: the box on which Krawczyk's test passed (it contains ``box``).
@@ -238,7 +239,7 @@ class Verified:
     seconds: float
 
 
-def _check_leaf(leaf, residual, jacobian, counter):
+def _check_leaf(leaf, residual, jacobian, counter, exclude):
     """Re-run the leaf's test; the reason it fails, or None."""
     if leaf.test not in TESTS:
         return f"an unknown test {leaf.test!r}"
@@ -264,6 +265,8 @@ def _check_leaf(leaf, residual, jacobian, counter):
     if leaf.test == "residual":
         counter["nfev"] += 1
         return None if kr.residual_excludes(kr.values_of(residual, X)) else "the residual does not exclude 0"
+    if leaf.test == "exclude":
+        return None if exclude is not None and exclude(X) else "the exclusion test fails"
     J = kr.matrix_of(jacobian, X)
     yb, _ = kr.midpoint(X)
     fy = kr.values_of(residual, yb)
@@ -277,7 +280,7 @@ def _check_leaf(leaf, residual, jacobian, counter):
     return None
 
 
-def verify(certificate, residual, jacobian):
+def verify(certificate, residual, jacobian, exclude=None):
     """Re-check a certificate: every leaf's test, the cover, the roots.
 
     Parameters
@@ -286,6 +289,8 @@ def verify(certificate, residual, jacobian):
         From :meth:`mechnum.certify.Roots.certificate` or :meth:`Certificate.load`.
     residual, jacobian : callable
         The functions the certificate was made with (see :func:`mechnum.certify.roots`).
+    exclude : callable, optional
+        The exclusion test the search was given, if any.
 
     Returns
     -------
@@ -313,7 +318,7 @@ def verify(certificate, residual, jacobian):
         if not _covers(part, box):
             raise CertificateError(f"the leaves of box {b} do not cover it: {box.tolist()}")
         for i, leaf in enumerate(part):
-            problem = _check_leaf(leaf, residual, jacobian, counter)
+            problem = _check_leaf(leaf, residual, jacobian, counter, exclude)
             if problem:
                 raise CertificateError(f"leaf {i} of box {b}, {leaf.box.tolist()} "
                                        f"({leaf.test}): {problem}")

@@ -144,35 +144,38 @@ def to_floats(values):
     return np.array([bounds(v) for v in values])
 
 
-def test_box(residual, jacobian, X, counter):
+def test_box(residual, jacobian, X, counter, exclude=None):
     """Run the tests on the box of balls ``X``.
 
-    Returns ``(test, J, K)``: ``test`` is ``"residual"``, ``"mean-value"`` or
-    ``"krawczyk-exclusion"`` (no root in ``X``), ``"krawczyk"`` (exactly one, in ``K``),
+    Returns ``(test, J, K, value)``: ``test`` is ``"residual"``, ``"exclude"`` (the caller's
+    own test), ``"mean-value"`` or ``"krawczyk-exclusion"`` (no root in ``X``), ``"krawczyk"`` (exactly one, in ``K``),
     ``"contracting"`` (Krawczyk's operator contracts but ``K(X)`` is not inside ``X``: a root
     near a face) or None (undecided); ``J`` is the Jacobian's enclosure (None when the first
-    test sufficed). ``counter`` (a dict with ``nfev``, ``njev``) counts the evaluations.
+    test sufficed), ``value`` the residual's enclosure. ``counter`` (a dict with ``nfev``,
+    ``njev``) counts the evaluations.
     """
     value = values_of(residual, X)
     counter["nfev"] += 1
     if residual_excludes(value):
-        return "residual", None, None
+        return "residual", None, None, value
+    if exclude is not None and exclude(X):
+        return "exclude", None, None, value
     J = matrix_of(jacobian, X)
     counter["njev"] += 1
     yb, _ = midpoint(X)
     fy = values_of(residual, yb)
     counter["nfev"] += 1
     if mean_value_excludes(fy, J, X, yb):
-        return "mean-value", J, None
+        return "mean-value", J, None, value
     Y = preconditioner(J)
     if Y is None:
-        return None, J, None
+        return None, J, None, value
     K, norm = krawczyk(fy, J, X, yb, Y)
     if disjoint(K, X):
-        return "krawczyk-exclusion", J, K
+        return "krawczyk-exclusion", J, K, value
     if inside(K, X):
-        return "krawczyk", J, K
-    return ("contracting" if norm < CONTRACTING else None), J, K
+        return "krawczyk", J, K, value
+    return ("contracting" if norm < CONTRACTING else None), J, K, value
 
 
 def krawczyk_test(residual, jacobian, X, counter):

@@ -5,8 +5,8 @@
 its mean-value form, or Krawczyk's operator proves it holds no root), **proven** (Krawczyk's
 operator maps it, or the box enlarged around a root near its face, into its interior: exactly
 one root), or **bisected**. The direction of the cut is the one along which the residual's
-enclosure is widest, ``max_i |J_ij| width_j`` (the "smear"), or, where the Jacobian is not
-finite, the widest relative to the searched box. A box narrower than ``min_width`` of the
+widens most the residual's component nearest to excluding 0 (its "smear" ``|J_ij| width_j``),
+or else the widest relative to the searched box. A box narrower than ``min_width`` of the
 searched box in that direction, or any box left when ``max_boxes`` have been tested, is kept as
 **undecided**: never dropped.
 """
@@ -94,20 +94,24 @@ class Roots(Result):
                             "seconds": round(self.seconds, 3)})
 
 
-def _direction(box, J, widths):
-    """The coordinate to cut: the widest smear ``max_i |J_ij| w_j`` where ``J`` is finite,
-    else the widest relative to the searched box."""
+def _direction(box, J, value, widths):
+    """The coordinate to cut: in the residual's component nearest to excluding 0 (largest
+    ``|mid| / rad`` of its enclosure), the coordinate that widens it most (largest
+    ``|J_ij| width_j``, the smear); where the Jacobian's enclosure is not finite, the widest
+    coordinate relative to the searched box."""
     w = box[:, 1] - box[:, 0]
     relative = w / widths
     if J is not None and all(v.is_finite() for row in J for v in row):
-        smear = np.array([max(float(abs(row[j]).upper()) for row in J) for j in range(len(w))])
-        smear = smear * w
+        near = [float(abs(v.mid()) / v.rad()) if v.is_finite() and v.rad() > 0 else 0.0
+                for v in value]
+        i = int(np.argmax(near))
+        smear = np.array([float(abs(v).upper()) for v in J[i]]) * w
         if np.any(smear > 0):
             return int(np.argmax(np.where(relative > 0, smear, -1.0)))
     return int(np.argmax(relative))
 
 
-def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH):
+def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, exclude=None):
     """Every root of ``residual`` in a box, proven by interval arithmetic (branch and prune).
 
     Parameters
@@ -127,6 +131,10 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH):
     min_width : float, optional
         Boxes are not cut below this fraction of the searched box's width, in
         ``MIN_WIDTH_RANGE``; such a box is undecided.
+    exclude : callable, optional
+        ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
+        box ``X`` holds no root (tried after the residual's enclosure; :func:`verify` needs it
+        too).
 
     Returns
     -------
@@ -171,11 +179,11 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH):
                 leaves.append(Leaf(X, "undecided", reason="max_boxes reached"))
                 continue
             tested += 1
-            leaf, J = _decide(residual, jacobian, X, counter)
+            leaf, J, value = _decide(residual, jacobian, X, counter, exclude)
             if leaf is not None:
                 leaves.append(leaf)
                 continue
-            d = _direction(X, J, widths)
+            d = _direction(X, J, value, widths)
             cut = 0.5 * X[d, 0] + 0.5 * X[d, 1]
             if (X[d, 1] - X[d, 0]) < min_width * widths[d] or not X[d, 0] < cut < X[d, 1]:
                 leaves.append(Leaf(X, "undecided", reason="narrower than min_width"))
@@ -187,21 +195,22 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH):
     return _result(boxes, parts, tested, counter, time.perf_counter() - start)
 
 
-def _decide(residual, jacobian, X, counter):
-    """The leaf that the tests make of ``X``, or None (cut it), and the Jacobian's enclosure."""
-    test, J, K = kr.test_box(residual, jacobian, kr.to_balls(X), counter)
+def _decide(residual, jacobian, X, counter, exclude):
+    """The leaf that the tests make of ``X``, or None (cut it), with the Jacobian's and the
+    residual's enclosures."""
+    test, J, K, value = kr.test_box(residual, jacobian, kr.to_balls(X), counter, exclude)
     if test in EXCLUSIONS:
-        return Leaf(X, test), J
+        return Leaf(X, test), J, value
     T = X
     if test == "contracting":
         T = kr.inflate(X)
         passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(T), counter)
         if not passed:
-            return None, J
+            return None, J, value
     elif test != "krawczyk":
-        return None, J
+        return None, J, value
     return Leaf(X, "krawczyk", T, _tighten(residual, jacobian, _meet(kr.to_floats(K), T),
-                                            counter)), J
+                                            counter)), J, value
 
 
 def _tighten(residual, jacobian, E, counter):

@@ -37,7 +37,7 @@ Examples
 [True, True]
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from flint import acb, arb
 
@@ -59,12 +59,18 @@ class RodBall:
         Clamp moment ``m(0)`` (N m).
     jacobian : list of 5 lists of 2 arb, or None
         ``d (tip_x, tip_y, force_x, force_y, moment) / d (psi, t)``.
+    R : arb or None
+        The force's magnitude (N).
+    direction : arb or None
+        The force's direction (rad): ``psi`` in the local frame, ``psi + angle`` when placed.
     """
 
     tip: list
     force: list
     moment: arb
     jacobian: list = None
+    R: arb = None
+    direction: arb = None
 
 
 def _quotient(num, den):
@@ -176,10 +182,10 @@ def clamped_pinned(EI, L, psi, t, mode, sign, *, jacobian=False):
     parts = [_side(EI, L, (a, b, w, v, dv_w, spans), cos, sin, 2 * int(mode) - 1, sign, sa,
                    jacobian) for sa in sides]
     if len(parts) == 1:
-        return parts[0]
+        return replace(parts[0], direction=psi)
     first, second = parts
     join = [x.union(y) for x, y in zip(_flat(first), _flat(second))]
-    return _unflat(join, jacobian)
+    return replace(_unflat(join, jacobian), R=first.R.union(second.R), direction=psi)
 
 
 def _flat(rod):
@@ -223,13 +229,15 @@ def _side(EI, L, chart, cos, sin, j, sign, sa, jacobian):
         inv_lam = inv_k / ((j - sgn) + sgn * share[0].union(share[1]))
         D_over, vb_over = D * inv_lam, bv * inv_lam
     u, w2 = 1 - 2 * D_over, 2 * sign * vb_over
-    tip = [L * (u * cos + w2 * sin), L * (u * sin - w2 * cos)]
-    R = EI * Lam * Lam / (L * L)
-    force = [R * cos, R * sin]
+    mul = B.mul
+    tip = [L * (mul(u, cos) + mul(w2, sin)), L * (mul(u, sin) - mul(w2, cos))]
+    lam_span = B.span(Lam, 0)                    # Lambda >= 0: its square from the ends
+    R = EI * B.monotone(lambda x: x * x, (lam_span, 1)) / (L * L)
+    force = [mul(R, cos), mul(R, sin)]
     vb = sign * bv
     moment = 2 * EI * vb * Lam / L
     if not jacobian:
-        return RodBall(tip, force, moment)
+        return RodBall(tip, force, moment, R=R)
 
     # the rates of regular._waves, then of regular._closed_form (column 0: psi, 1: t); the
     # rates in |v| are multiplied by dv/dt = sign w (dv/dtau / w) with the 1 / w cancelled
@@ -259,7 +267,7 @@ def _side(EI, L, chart, cos, sin, j, sign, sa, jacobian):
         J[0][i] = L * (u_d * cos + w2_d * sin)
         J[1][i] = L * (u_d * sin - w2_d * cos)
         J[4][i] = 2 * EI * (vb_d[i] * Lam + vb * Lam_d[i]) / L
-    return RodBall(tip, force, moment, J)
+    return RodBall(tip, force, moment, J, R)
 
 
 def place(rod, origin, angle):
@@ -279,4 +287,5 @@ def place(rod, origin, angle):
         tip_cols = [rot(rod.jacobian[0][i], rod.jacobian[1][i]) for i in range(2)]
         force_cols = [rot(rod.jacobian[2][i], rod.jacobian[3][i]) for i in range(2)]
         J = [[col[row] for col in cols] for cols in (tip_cols, force_cols) for row in (0, 1)]
-    return RodBall([x0 + tx, y0 + ty], [fx, fy], rod.moment, J)
+    return RodBall([x0 + tx, y0 + ty], [fx, fy], rod.moment, J, rod.R,
+                   rod.direction + arb(float(angle)))

@@ -3,13 +3,18 @@
 :func:`certify_pinned` searches the regular chart ``(psi, t)`` of :mod:`mechnum.rods.regular`
 of each mode with :func:`mechnum.certify.roots`, the closed form enclosed by
 :mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
-branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``. What lies beyond
-``|t| = T_MAX`` (``q > Q_MAX = 600``: rods pulled by more than ``(Q_MAX / 2)**2 EI / L**2`` or
-so) is not searched: those rods are straight to within ``(2 pi mode + 2) L / Lambda`` of their
-length (``Lambda = L sqrt(R / EI) > Q_MAX / 2``), so their tips lie more than
-``L (1 - (2 pi mode + 2) / 300)`` from the clamp, and :func:`certify_pinned` checks that the
-target is nearer than that (else it says so in the result's ``message``, which is then not
-``complete``).
+branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
+
+**Beyond the chart** (``|t| > T_MAX``, ``q > Q_MAX = 600``) the rods are excluded analytically.
+On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >= I``), and
+``I = (v / k) R_F(w a**2 / k**2, 1, w) >= v R_F(w, 1, w) = v arccosh(w**-1/2) / (1 - w)**1/2
+>= v q / 2`` (``R_F`` decreases in each argument, ``k <= 1``; DLMF 19.2.17), so a rod with
+``q >= Q_MAX`` has ``Lambda >= TAIL_LAMBDA``. Its tip is ``L Rot(psi) (1 - 2 D / Lambda,
+-2 v b / Lambda)`` with ``|D| <= mode pi`` (``D`` is a sum of ``2 mode`` quarter-wave
+E-integrals, each at most ``pi / 2``) and ``v b <= 1``: it lies within
+``tail_reach(mode, Lambda) = (2 pi mode + 2) / Lambda`` times ``L`` of ``L (cos psi, sin psi)``,
+farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is reached by no
+rod of the tail.
 """
 
 from dataclasses import dataclass
@@ -23,9 +28,17 @@ from mechnum.rods import balls, regular
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
 """The chart's closed domain on the branch ``t > 0`` (mirrored for ``t < 0``)."""
-# Lambda = lambda L of a rod at the chart's edge q = Q_MAX is at least about Q_MAX / 2 - 1
-# (Lambda ~ q / 2 + log 4 - ... for large q): a lower bound used for the tail beyond the chart.
-TAIL_LAMBDA = regular.Q_MAX / 2.0 - 1.0
+TAIL_LAMBDA = 0.5 * regular.Q_MAX * float(np.sqrt(-np.expm1(-regular.Q_MAX))) * (1 - 1e-12)
+"""A lower bound of ``Lambda = lambda L`` of every rod beyond the chart (``q > Q_MAX``), with a
+margin for rounding: ``v q / 2`` at ``q = Q_MAX`` (see the module)."""
+
+
+def tail_reach(mode, lam=TAIL_LAMBDA):
+    """``(2 pi mode + 2) / Lambda``: how far (over ``L``) the tip of a rod of that ``mode`` with
+    ``lambda L >= Lambda`` may lie from ``L (cos psi, sin psi)``."""
+    return (2.0 * np.pi * mode + 2.0) / lam
+
+
 MAX_BOXES = 200_000
 
 
@@ -155,8 +168,111 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
         parts.append(part)
         for psi, t in part.x:
             rows.append((psi, float(regular.k_rel_from_t(psi, t)), mode))
-    reach = 1.0 - (2.0 * np.pi * max(modes, default=1) + 2.0) / TAIL_LAMBDA
+    reach = 1.0 - tail_reach(max(modes, default=1))
     extra = "" if np.hypot(*target) < reach * L else (
         f"; the target is farther than {reach:.3f} L: rods beyond the chart are not excluded")
     solutions = np.array(rows, dtype=float).reshape(-1, 3)
     return combine(parts, solutions, [None] * len(rows), extra)
+
+
+def placed(EI, L, X, i, mode, origin, angle, jacobian):
+    """Rod ``i`` of a box of balls ``X = (psi_1, t_1, psi_2, t_2, ...)``, placed at its clamp
+    (:func:`mechnum.rods.balls.place`)."""
+    rod = balls.clamped_pinned(EI, L, X[2 * i], X[2 * i + 1], mode, branch_of(X, i),
+                               jacobian=jacobian)
+    return balls.place(rod, origin, angle)
+
+
+def stiffness(rod):
+    """The tip stiffness ``d force / d tip = J_force J_tip^-1`` of a placed rod (2 x 2 balls,
+    symmetrised): the Hessian of the rod's energy as a function of its pinned tip, along its
+    branch of equilibria."""
+    (a, b), (c, d) = rod.jacobian[0], rod.jacobian[1]
+    det = a * d - b * c
+    inv = [[d / det, -b / det], [-c / det, a / det]]
+    F = rod.jacobian[2:4]
+    K = [[F[r][0] * inv[0][col] + F[r][1] * inv[1][col] for col in range(2)] for r in range(2)]
+    off = K[0][1].union(K[1][0])
+    return [[K[0][0], off], [off, K[1][1]]]
+
+
+def enclosed(root):
+    """The balls of a root's enclosure ``(n, 2)``."""
+    return [certify.ball(lo, hi) for lo, hi in root]
+
+
+def verdict(reduced):
+    """Stability from the reduced Hessian (balls) of an equilibrium: False where it is proven
+    to have a negative eigenvalue (the equilibrium is then unstable, whatever the rods' own
+    pinned-tip index: the index is the sum of the rods' pinned-tip indices and the reduced
+    Hessian's, by Haynsworth's inertia additivity), None otherwise (a positive definite
+    reduced Hessian proves stability only with every rod stable with its tip pinned, which is
+    not enclosed here)."""
+    return False if certify.definite(reduced) is False else None
+
+
+def _box(values):
+    """Float bounds ``[(lo, hi), ...]`` of balls."""
+    return [certify.bounds(v) for v in values]
+
+
+def _norm_range(box):
+    """``(min, max)`` of ``|x|`` over a float box ``[(lo, hi), (lo, hi)]`` (arb, outward)."""
+    near = [0.0 if lo <= 0.0 <= hi else min(abs(lo), abs(hi)) for lo, hi in box]
+    far = [max(abs(lo), abs(hi)) for lo, hi in box]
+    low = (arb(near[0]) ** 2 + arb(near[1]) ** 2).sqrt()
+    high = (arb(far[0]) ** 2 + arb(far[1]) ** 2).sqrt()
+    return low.lower(), high.upper()
+
+
+def _arc(box):
+    """The directions ``(lo, hi)`` (arb points, ``hi - lo < pi``) of a float box that excludes
+    the origin, or None."""
+    (x0, x1), (y0, y1) = box
+    if x0 <= 0.0 <= x1 and y0 <= 0.0 <= y1:
+        return None
+    centre = arb.atan2(arb(0.5 * (y0 + y1)), arb(0.5 * (x0 + x1)))
+    rel = []
+    for x in (x0, x1):
+        for y in (y0, y1):
+            d = arb.atan2(arb(y), arb(x)) - centre
+            d = d - 2 * balls.B.PI if bool(d > balls.B.PI) else d
+            d = d + 2 * balls.B.PI if bool(d < -balls.B.PI) else d
+            rel.append(d)
+    lo = min((d.lower() for d in rel), key=float)
+    hi = max((d.upper() for d in rel), key=float)
+    return (centre + lo).lower(), (centre + hi).upper()
+
+
+def _arcs_meet(a, b):
+    """Whether two arcs ``(lo, hi)`` (each narrower than ``2 pi``) may meet modulo ``2 pi``."""
+    two_pi = 2 * balls.B.PI
+    for k in (-2, -1, 0, 1, 2):
+        if not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1])):
+            return True
+    return False
+
+
+def forces_exclude(rods, load):
+    """Whether ``sum of the rods' forces = load`` is impossible over a box, in polar form.
+
+    For each rod ``i`` the others' forces give the box ``c = load - sum_{j != i} n_j`` that
+    ``n_i`` must lie in; ``n_i`` is an annular sector (its magnitude ``R_i`` and direction
+    enclosed), so the equation fails when ``R_i`` misses the range of ``|c|`` or its direction
+    misses the directions of ``c``. Much stronger than the Cartesian enclosure of
+    ``R (cos, sin)`` when ``R`` spans decades.
+    """
+    for i, rod in enumerate(rods):
+        c = [arb(float(load[k])) - sum((r.force[k] for j, r in enumerate(rods) if j != i),
+                                       arb(0)) for k in range(2)]
+        if not all(v.is_finite() for v in c) or rod.R is None:
+            continue
+        box = _box(c)
+        low, high = _norm_range(box)
+        if rod.R.is_finite() and (bool(rod.R < low) or bool(rod.R > high)):
+            return True
+        arc = _arc(box)
+        if arc is not None and rod.direction.is_finite() and rod.direction.rad() < 3:
+            if not _arcs_meet(balls.B.ends(rod.direction), arc):
+                return True
+    return False
