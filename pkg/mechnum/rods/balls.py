@@ -33,7 +33,7 @@ Examples
 >>> from mechnum.rods import regular
 >>> rod = clamped_pinned(1.0, 1.0, ball(2.0, 2.001), ball(0.5, 0.501), 1, 1)
 >>> exact = regular.clamped_pinned_regular(1.0, 1.0, 2.0005, 0.5005).tip
->>> [bounds(x)[0] < e < bounds(x)[1] for x, e in zip(rod.tip, exact)]
+>>> [bool(bounds(x)[0] < e < bounds(x)[1]) for x, e in zip(rod.tip, exact)]
 [True, True]
 """
 

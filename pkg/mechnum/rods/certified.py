@@ -92,6 +92,26 @@ def branch_boxes(n_rods):
     return np.array(out)
 
 
+AROUND = 1e-6
+"""Half-width of the boxes searched around given chart points, relative to the chart's
+ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
+
+
+def around_boxes(points, n_rods):
+    """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``."""
+    points = _validate.array(points, "around", ndim=2)
+    if points.shape[1] != 2 * n_rods:
+        raise ValueError(f"around must be (k, {2 * n_rods}) chart points, got {points.shape}")
+    scale = np.tile([TWO_PI, regular.T_MAX], n_rods) * AROUND
+    return np.stack((points - scale, points + scale), axis=-1)
+
+
+def around_note(around):
+    """The message of a search around given points (its count is a lower bound)."""
+    return "" if around is None else (
+        f"; searched around {len(around)} given points only: the count is a lower bound")
+
+
 def branch_of(X, i):
     """The sign of ``t`` of rod ``i`` on the box of balls ``X`` (boxes lie on one side)."""
     return 1 if bool(X[2 * i + 1].upper() > 0) else -1
@@ -150,9 +170,12 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
 
     Examples
     --------
+    Chapter 3's target in mode 1: one equilibrium, a looped rod in strong tension (``k_rel``
+    within ``1e-8`` of -1) that a grid in ``k_rel`` cannot reach:
+
     >>> r = certify_pinned(1.0, 1.0, [0.8, 0.1], modes=(1,))
-    >>> r.count, r.complete
-    (0, True)
+    >>> r.count, r.complete, np.round(r.solutions[0, [0, 2]], 4).tolist()
+    (1, True, [0.1173, 1.0])
     """
     EI = _validate.scalar(EI, "EI", positive=True)
     L = _validate.scalar(L, "L", positive=True)

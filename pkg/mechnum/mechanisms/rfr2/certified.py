@@ -48,10 +48,10 @@ def system(mech, theta, modes=(1, 1)):
     --------
     >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
     >>> f, J, rods, exclude = system(TABLE7, TABLE7_THETA)
-    >>> X = [certify.ball(1.9, 2.0), certify.ball(-0.01, 0.0), certify.ball(4.8, 4.9),
-    ...      certify.ball(0.8, 0.9)]
-    >>> [bool(v.contains(0)) for v in f(X)]
-    [True, True, True, True]
+    >>> X = [certify.ball(1.96, 1.97), certify.ball(-0.06, -0.05), certify.ball(4.81, 4.82),
+    ...      certify.ball(0.85, 0.86)]                  # holds a root: no test excludes it
+    >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
+    ([True, True, True, True], False)
     """
     theta = _validate.array(theta, "theta", shape=(2,))
     modes = _modes(modes)
@@ -101,10 +101,10 @@ def tail_excluded(mech, modes=(1, 1)):
     eps = max(eps, certified.tail_reach(modes[1]) + certified.tail_reach(modes[0], min(
         other, certified.TAIL_LAMBDA)))
     gap = float(np.hypot(*(mech.origins[1] - mech.origins[0])))
-    return gap < mech.L * (2.0 - 2.0 * F / R - eps) * (1 - 1e-9)
+    return bool(gap < mech.L * (2.0 - 2.0 * F / R - eps) * (1 - 1e-9))
 
 
-def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES):
+def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
     Parameters
@@ -116,6 +116,11 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES):
         Buckling modes of rod 1 and rod 2 (in [1, 10]).
     max_boxes : int, optional
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
+    around : array_like, shape (k, 4), optional
+        Chart points (for example ``forward_elliptic(...).chart``) to search around instead of
+        the whole chart (boxes of :func:`mechnum.rods.certified.around_boxes`): each
+        equilibrium found there is proven, alone in its box, and the count is a lower bound
+        (``complete`` is then False).
 
     Returns
     -------
@@ -129,13 +134,16 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES):
     Examples
     --------
     >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
-    >>> r = certify_forward(TABLE7, TABLE7_THETA)          # doctest: +SKIP
-    >>> r.count, r.complete                                 # doctest: +SKIP
-    (3, True)
+    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
+    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
+    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.chart)
+    >>> r.count, r.complete, bool(np.abs(r.solutions - sampled.solutions).max() < 1e-12)
+    (3, False, True)
     """
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, theta, modes)
-    part = certify.roots(f, J, certified.branch_boxes(2), max_boxes=max_boxes, exclude=exclude)
+    boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
+    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude)
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
@@ -145,6 +153,6 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES):
         K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
         stable.append(certified.verdict([[K1[i][j] + K2[i][j] for j in range(2)]
                                          for i in range(2)]))
-    extra = "" if tail_excluded(mech, modes) else (
-        "; rods beyond the chart (q > Q_MAX) are not excluded")
+    extra = certified.around_note(around) + ("" if tail_excluded(mech, modes) else (
+        "; rods beyond the chart (q > Q_MAX) are not excluded"))
     return certified.combine([part], solutions, stable, extra)
