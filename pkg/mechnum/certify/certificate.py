@@ -13,11 +13,13 @@ A certificate serialises to JSON (:meth:`Certificate.to_json`): floats are writt
 Python's shortest round-trip ``repr``, so every leaf comes back bit for bit.
 """
 
+import itertools
 import json
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from flint import arb
 
 from mechnum.certify import krawczyk as kr
 from mechnum.errors import MechnumError
@@ -64,6 +66,29 @@ def _within(inner, outer):
     return bool(np.all(inner[:, 0] >= outer[:, 0]) and np.all(inner[:, 1] <= outer[:, 1]))
 
 
+def _in_test_ball(E, T):
+    """Whether the float box ``E`` lies in the balls of the test box ``T`` (the set on which
+    Krawczyk's test was proven: it holds ``T`` and a little more, the rounding of its radii)."""
+    for (lo, hi), x in zip(E, kr.to_balls(T)):
+        if bool(arb(float(lo)) < x.lower()) or bool(arb(float(hi)) > x.upper()):
+            return False
+    return True
+
+
+def _in_union(E, boxes):
+    """Whether the box ``E`` lies in the union of ``boxes``: cut ``E`` along every face of the
+    boxes it meets, and every cell must lie in one of them."""
+    near = [B for B in boxes if _overlap(E, B)]
+    cuts = [sorted({lo, hi} | {x for B in near for x in B[d] if lo < x < hi})
+            for d, (lo, hi) in enumerate(E)]
+    for cell in itertools.product(*(zip(c[:-1], c[1:]) if len(c) > 1 else [(c[0], c[0])]
+                                     for c in cuts)):
+        cell = np.array(cell)
+        if not any(_within(cell, B) for B in near):
+            return False
+    return True
+
+
 def _overlap(a, b):
     return bool(np.all(a[:, 0] <= b[:, 1]) and np.all(b[:, 0] <= a[:, 1]))
 
@@ -75,7 +100,9 @@ def distinct_roots(leaves, boxes):
     enclosure misses them all (the leaf holds no root), counted when the enclosure lies in one
     of them, and undecided when the enclosure straddles a box's boundary. Two enclosures hold
     the same root when one lies in the other's test box (which holds exactly one root); they
-    hold different ones when they are disjoint; anything else stays undecided.
+    hold different ones when they are disjoint; anything else stays undecided. An enclosure
+    across the face between two searched boxes counts when it is the same root as one counted
+    inside a box.
 
     Returns
     -------
@@ -83,7 +110,7 @@ def distinct_roots(leaves, boxes):
         Sorted by their midpoints (first coordinate first).
     undecided : list of (Leaf, str)
     """
-    found, undecided = [], []
+    found, undecided, straddling = [], [], []
     for leaf in leaves:
         if leaf.test != "krawczyk":
             continue
@@ -91,10 +118,11 @@ def distinct_roots(leaves, boxes):
         if not any(_overlap(E, B) for B in boxes):
             continue
         if not any(_within(E, B) for B in boxes):
-            undecided.append((leaf, "its root's enclosure straddles the searched box's face"))
-            continue
+            if not _in_union(E, boxes):
+                straddling.append(leaf)
+                continue
         for root in found:
-            if _within(E, root[1]) or _within(root[0], T):
+            if _in_test_ball(E, root[1]) or _in_test_ball(root[0], T):
                 root[0] = np.column_stack((np.maximum(E[:, 0], root[0][:, 0]),
                                            np.minimum(E[:, 1], root[0][:, 1])))
                 break
@@ -103,6 +131,10 @@ def distinct_roots(leaves, boxes):
                 break
         else:
             found.append([E, T])
+    for leaf in straddling:             # the same root as a counted one, or undecided
+        E, T = leaf.enclosure, leaf.test_box
+        if not any(_in_test_ball(E, root[1]) or _in_test_ball(root[0], T) for root in found):
+            undecided.append((leaf, "its root's enclosure straddles the searched box's face"))
     found = [E for E, _ in found]
     order = np.lexsort(np.array([E.mean(axis=1) for E in found]).T[::-1]) if found else []
     return [found[i] for i in order], undecided

@@ -29,6 +29,7 @@ MAX_BOXES_LIMIT = 10_000_000
 REFINEMENTS = 8
 # Krawczyk iterations that tighten a root's enclosure once it is proven (each at least halves
 # the width, and they converge quadratically: a few reach the rounding level).
+NARROW = 1e-3
 MIN_WIDTH = 1e-10
 """Default: boxes are not cut below this fraction of the searched box's width."""
 MIN_WIDTH_RANGE = (1e-15, 0.5)
@@ -98,7 +99,8 @@ def _direction(box, J, value, widths):
     """The coordinate to cut: in the residual's component nearest to excluding 0 (largest
     ``|mid| / rad`` of its enclosure), the coordinate that widens it most (largest
     ``|J_ij| width_j``, the smear); where the Jacobian's enclosure is not finite, the widest
-    coordinate relative to the searched box."""
+    coordinate relative to the searched box (also where the smear's choice is already
+    ``NARROW`` times narrower than that one: cutting it again would not help)."""
     w = box[:, 1] - box[:, 0]
     relative = w / widths
     if J is not None and all(v.is_finite() for row in J for v in row):
@@ -106,8 +108,9 @@ def _direction(box, J, value, widths):
                 for v in value]
         i = int(np.argmax(near))
         smear = np.array([float(abs(v).upper()) for v in J[i]]) * w
-        if np.any(smear > 0):
-            return int(np.argmax(np.where(relative > 0, smear, -1.0)))
+        j = int(np.argmax(np.where(relative > 0, smear, -1.0)))
+        if smear[j] > 0 and relative[j] >= NARROW * relative.max():
+            return j
     return int(np.argmax(relative))
 
 
@@ -215,24 +218,24 @@ def _decide(residual, jacobian, X, counter, exclude):
 
 def _tighten(residual, jacobian, E, counter):
     """A tighter enclosure of the one root in ``E``: Krawczyk's operator iterated
-    (``E <- K(E) & E``, which keeps the root) while it halves the width, then the result
-    doubled and proven by one more test, ``K(C)`` inside ``C``. Returns ``E`` itself when
-    that test fails."""
-    F = E
+    (``F <- K(F) & F``, which keeps the root) while it halves a width; the last ``F`` that the
+    operator maps into its own interior is returned (it holds the root, and one evaluation
+    re-proves it), or ``E`` itself."""
+    F, proven = E, E
     for _ in range(REFINEMENTS):
-        K = kr.krawczyk_test(residual, jacobian, kr.to_balls(F), counter)[1]
+        passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(F), counter)
         if K is None:
             break
+        if passed:
+            proven = F
         new = _meet(kr.to_floats(K), F)
-        shrunk = np.all(new[:, 1] - new[:, 0] <= 0.5 * (F[:, 1] - F[:, 0]))
+        if np.any(new[:, 0] > new[:, 1]):          # cannot happen: F holds the root
+            break
+        shrunk = np.any(new[:, 1] - new[:, 0] <= 0.5 * (F[:, 1] - F[:, 0]))
         F = new
         if not shrunk:
             break
-    C = _meet(kr.inflate(F, 0.5), E)
-    if not np.array_equal(C, E) and kr.krawczyk_test(residual, jacobian, kr.to_balls(C),
-                                                     counter)[0]:
-        return C
-    return E
+    return proven
 
 
 def _meet(a, b):
