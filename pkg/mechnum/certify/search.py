@@ -77,6 +77,16 @@ class Roots(Result):
     leaves: tuple
 
     @property
+    def undecided_fraction(self):
+        """float: the undecided leaves' share of the searched volume (0 when complete)."""
+        def volume(boxes):
+            boxes = np.asarray(boxes)
+            return float(np.prod(boxes[..., 1] - boxes[..., 0], axis=-1).sum()) if len(
+                boxes) else 0.0
+        total = volume(self.searched)
+        return volume(self.undecided) / total if total > 0 else 0.0
+
+    @property
     def evaluations(self):
         """int: evaluations of the residual and of the Jacobian, ``nfev + njev``."""
         return self.nfev + self.njev
@@ -255,7 +265,7 @@ def _result(boxes, parts, tested, counter, seconds):
     message = (f"{len(found)} roots proven, {excluded} boxes excluded, "
                f"{len(undecided)} undecided; {tested} boxes tested")
     if complete:
-        message += ": the count is proven"
+        message += ": the count in the searched boxes is proven"
     return Roots(x=enclosures.mean(axis=2), status=status, message=message, iterations=tested,
                  nfev=counter["nfev"], njev=counter["njev"], roots=enclosures,
                  excluded=excluded, undecided=np.array(undecided).reshape(-1, n, 2),

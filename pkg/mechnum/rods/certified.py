@@ -219,6 +219,23 @@ def stiffness(rod):
     return [[K[0][0], off], [off, K[1][1]]]
 
 
+def memoised(rods):
+    """``rods(X, jacobian)`` remembering its last answer: the residual, the exclusion test and
+    the Jacobian of one box share one evaluation of the rods (a Jacobian's evaluation also
+    serves the residual)."""
+    last = {}
+
+    def cached(X, jacobian):
+        key = tuple((float(x.mid()), float(x.rad())) for x in X)
+        if last.get("key") == key and (last["jacobian"] or not jacobian):
+            return last["rods"]
+        out = rods(X, jacobian)
+        last.update(key=key, jacobian=jacobian, rods=out)
+        return out
+
+    return cached
+
+
 def enclosed(root):
     """The balls of a root's enclosure ``(n, 2)``."""
     return [certify.ball(lo, hi) for lo, hi in root]

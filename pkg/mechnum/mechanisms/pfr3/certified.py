@@ -61,6 +61,7 @@ def system(mech, lambdas, modes=(1, 1, 1)):
     F = [arb(float(v)) for v in mech.force]
     M, a = arb(float(mech.moment)), arb(float(mech.a))
 
+    @certified.memoised
     def rods(X, jacobian):
         return [certified.placed(mech.EI, mech.L, X, i, modes[i], origin[i],
                                  mech.clamp_angles[i], jacobian) for i in range(3)]

@@ -58,6 +58,7 @@ def system(mech, theta, modes=(1, 1)):
     inv_L, inv_f = 1 / arb(mech.L), arb(mech.L) ** 2 / arb(mech.EI)
     F = [arb(float(v)) for v in mech.force]
 
+    @certified.memoised
     def rods(X, jacobian):
         return [certified.placed(mech.EI, mech.L, X, i, modes[i], mech.origins[i], theta[i],
                                  jacobian) for i in range(2)]
