@@ -1,15 +1,15 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`mechnum.certify.Certificate` as JSON: the inputs, the searched boxes, the
+Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: the inputs, the searched boxes, the
 leaves with the test each passed, the root enclosures and the work done. Re-check one with
-:func:`mechnum.certify.verify` and the residual of the same ``system`` (see each entry below).
+:func:`~mechnum.certify.certificate.verify` and the residual of the same ``system`` (see each entry below).
 
 * ``ch3_pinned_mode{1,2,3}.json``: Chapter 3's pinned rod (``EI = L = 1``, tip ``(0.8, 0.1)``),
-  the chart of each mode searched whole (:func:`mechnum.rods.certify_pinned`): complete.
+  the chart of each mode searched whole (:func:`~mechnum.rods.certified.certify_pinned`): complete.
 * ``ch5_table7_modes11.json``: Table 7's mode ``(1, 1)`` equilibria, each proven in a box around
-  the sampled one (:func:`mechnum.mechanisms.rfr2.certify_forward` with ``around``).
+  the sampled one (:func:`~mechnum.mechanisms.rfr2.certify_forward` with ``around``).
 * ``ch6_table8_modes111.json``: Table 8's mode ``(1, 1, 1)`` equilibria, likewise
-  (:func:`mechnum.mechanisms.pfr3.certify_forward` with ``around``); Chapter 6 verifies it.
+  (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` with ``around``); Chapter 6 verifies it.
 """
 
 import pathlib

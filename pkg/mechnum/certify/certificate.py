@@ -9,7 +9,7 @@ and checks that the leaves **cover** the box: merging, like a stack, every two c
 leaves that are the two halves of a box must end with the searched box itself. Then the roots
 are re-derived from the Krawczyk leaves (:func:`distinct_roots`) and must be the stored count.
 
-A certificate serialises to JSON (:meth:`Certificate.to_json`): floats are written with
+A certificate serialises to JSON (:meth:`~mechnum.certify.certificate.Certificate.to_json`): floats are written with
 Python's shortest round-trip ``repr``, so every leaf comes back bit for bit.
 """
 
@@ -318,9 +318,9 @@ def verify(certificate, residual, jacobian, exclude=None):
     Parameters
     ----------
     certificate : Certificate
-        From :meth:`mechnum.certify.Roots.certificate` or :meth:`Certificate.load`.
+        From :meth:`~mechnum.certify.search.Roots.certificate` or :meth:`~mechnum.certify.certificate.Certificate.load`.
     residual, jacobian : callable
-        The functions the certificate was made with (see :func:`mechnum.certify.roots`).
+        The functions the certificate was made with (see :func:`~mechnum.certify.search.roots`).
     exclude : callable, optional
         The exclusion test the search was given, if any.
 

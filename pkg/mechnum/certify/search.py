@@ -1,6 +1,6 @@
 """Branch and prune: every root of a system in a box, each proven, or the boxes left undecided.
 
-:func:`roots` takes boxes from a stack (depth first) and tests each
+:func:`~mechnum.certify.search.roots` takes boxes from a stack (depth first) and tests each
 (:func:`mechnum.certify.krawczyk.test_box`): a box is **excluded** (the residual's enclosure, or
 its mean-value form, or Krawczyk's operator proves it holds no root), **proven** (Krawczyk's
 operator maps it, or the box enlarged around a root near its face, into its interior: exactly
@@ -41,7 +41,7 @@ of its width, and above 0.5 no box would be cut."""
 class Roots(Result):
     """Every root of a system in a box, each proven, and what stayed undecided.
 
-    The fields of :class:`mechnum.results.Result` (``x``: the midpoints of the root
+    The fields of ``mechnum.results.Result`` (``x``: the midpoints of the root
     enclosures, ``(count, n)``; ``status``: ``"converged"`` when complete, ``"undecided"``
     otherwise; ``iterations``: boxes tested; ``nfev``, ``njev``), and:
 
@@ -92,7 +92,7 @@ class Roots(Result):
         return self.nfev + self.njev
 
     def certificate(self, inputs=None):
-        """The leaves with the test each passed, as a :class:`Certificate`.
+        """The leaves with the test each passed, as a :class:`~mechnum.certify.certificate.Certificate`.
 
         Parameters
         ----------
@@ -131,7 +131,7 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
     ----------
     residual : callable
         ``residual(X) -> sequence of n arb``: an enclosure of ``f`` over the box ``X`` (a list of
-        ``n`` :class:`flint.arb` balls), for every point of it. It is called on boxes and on
+        ``n`` ``flint.arb`` balls), for every point of it. It is called on boxes and on
         points (balls of radius 0).
     jacobian : callable
         ``jacobian(X) -> n sequences of n arb``: an enclosure of ``f'`` over ``X``. ``f`` must
@@ -146,7 +146,7 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
         ``MIN_WIDTH_RANGE``; such a box is undecided.
     exclude : callable, optional
         ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
-        box ``X`` holds no root (tried after the residual's enclosure; :func:`verify` needs it
+        box ``X`` holds no root (tried after the residual's enclosure; :func:`~mechnum.certify.certificate.verify` needs it
         too).
 
     Returns

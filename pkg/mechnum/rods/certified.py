@@ -1,7 +1,7 @@
 """Every clamped-pinned equilibrium that reaches a point, proven (Chapter 3's pinned rod).
 
 :func:`certify_pinned` searches the regular chart ``(psi, t)`` of :mod:`mechnum.rods.regular`
-of each mode with :func:`mechnum.certify.roots`, the closed form enclosed by
+of each mode with :func:`~mechnum.certify.search.roots`, the closed form enclosed by
 :mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
 branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
 
@@ -23,6 +23,7 @@ import numpy as np
 from flint import arb
 
 from mechnum import _validate, certify
+from mechnum.certify.search import Roots
 from mechnum.rods import balls, regular
 
 TWO_PI = 2.0 * np.pi
@@ -43,7 +44,7 @@ MAX_BOXES = 200_000
 
 
 @dataclass(frozen=True, kw_only=True)
-class Certified(certify.Roots):
+class Certified(Roots):
     """A certified search of an application, with the solutions in the package's coordinates.
 
     Attributes
@@ -54,7 +55,7 @@ class Certified(certify.Roots):
         ``(psi_i, k_rel_i)`` per rod).
     stable : list of (bool or None)
         Per solution: True (proven stable), False (proven unstable), None (not decided).
-    parts : tuple of mechnum.certify.Roots
+    parts : tuple of mechnum.certify.search.Roots
         The searches (one per mode, or one for a mechanism), each with its certificate.
     """
 
@@ -64,7 +65,7 @@ class Certified(certify.Roots):
 
 
 def combine(parts, solutions, stable, extra=""):
-    """One :class:`Certified` of several searches (their counts and work added)."""
+    """One :class:`~mechnum.rods.certified.Certified` of several searches (their counts and work added)."""
     roots = np.concatenate([p.roots for p in parts]) if parts else np.zeros((0, 2, 2))
     undecided = np.concatenate([p.undecided for p in parts])
     complete = all(p.complete for p in parts) and not extra
@@ -144,7 +145,7 @@ def pinned_system(EI, L, target, mode):
 def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`mechnum.rods.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.elliptic.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,

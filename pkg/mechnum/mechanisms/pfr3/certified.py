@@ -1,6 +1,6 @@
 """Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
 
-:func:`certify_forward` is the certified counterpart of
+:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
 :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: the same six reduced equations
 (:func:`~mechnum.mechanisms.pfr3.model.forward_system`: the tips form the platform, ``d_1 / b_1
 = d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
