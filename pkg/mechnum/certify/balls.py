@@ -184,6 +184,18 @@ def mul(x, y):
     return hull([a * c, a * d, b * c, b * d])
 
 
+def meet(x, y):
+    """The intersection of two balls known to hold the same number (each an enclosure of it);
+    a NaN ball where they are disjoint (which a correct pair never is)."""
+    if not x.is_finite():
+        return y
+    if not y.is_finite():
+        return x
+    (a, b), (c, d) = ends(x), ends(y)
+    lo, hi = (a if bool(a > c) else c), (b if bool(b < d) else d)
+    return arb("nan") if bool(lo > hi) else lo.union(hi)
+
+
 def hull(values):
     """The union of balls."""
     out = values[0]

@@ -124,7 +124,24 @@ def _direction(box, J, value, widths):
     return int(np.argmax(relative))
 
 
-def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, exclude=None):
+def _cut(X, J, value, widths, split):
+    """The coordinate and the value to cut ``X`` at: the caller's ``split`` where it gives one
+    inside the box (and not within a tenth of the width of a face), else the midpoint of
+    :func:`_direction`'s coordinate."""
+    if split is not None:
+        suggestion = split(kr.to_balls(X))
+        if suggestion is not None:
+            d, cut = suggestion
+            lo, hi = X[d]
+            margin = 0.1 * (hi - lo)
+            if lo + margin < cut < hi - margin:
+                return d, float(cut)
+    d = _direction(X, J, value, widths)
+    return d, 0.5 * X[d, 0] + 0.5 * X[d, 1]
+
+
+def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, exclude=None,
+          split=None):
     """Every root of ``residual`` in a box, proven by interval arithmetic (branch and prune).
 
     Parameters
@@ -148,6 +165,11 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
         ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
         box ``X`` holds no root (tried after the residual's enclosure; :func:`~mechnum.certify.certificate.verify` needs it
         too).
+    split : callable, optional
+        ``split(X) -> (d, value)`` or None: where the caller would cut the box ``X`` (for
+        example at the edge of the directions that a force balance allows, so that one half is
+        excluded at once); used when ``value`` lies inside the box, else the search's own
+        choice.
 
     Returns
     -------
@@ -196,8 +218,7 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
             if leaf is not None:
                 leaves.append(leaf)
                 continue
-            d = _direction(X, J, value, widths)
-            cut = 0.5 * X[d, 0] + 0.5 * X[d, 1]
+            d, cut = _cut(X, J, value, widths, split)
             if (X[d, 1] - X[d, 0]) < min_width * widths[d] or not X[d, 0] < cut < X[d, 1]:
                 leaves.append(Leaf(X, "undecided", reason="narrower than min_width"))
                 continue
@@ -229,8 +250,8 @@ def _decide(residual, jacobian, X, counter, exclude):
 def _tighten(residual, jacobian, E, counter):
     """A tighter enclosure of the one root in ``E``: Krawczyk's operator iterated
     (``F <- K(F) & F``, which keeps the root) while it halves a width; the last ``F`` that the
-    operator maps into its own interior is returned (it holds the root, and one evaluation
-    re-proves it), or ``E`` itself."""
+    operator maps into its own interior is returned, widened threefold where that is proven
+    too (it holds the root, and one evaluation re-proves it), or ``E`` itself."""
     F, proven = E, E
     for _ in range(REFINEMENTS):
         passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(F), counter)
@@ -245,6 +266,11 @@ def _tighten(residual, jacobian, E, counter):
         F = new
         if not shrunk:
             break
+    # a margin: the box three times as wide, proven too, so that a re-check whose rounding
+    # differs in the last bits (another machine's preconditioner) still passes
+    wider = _meet(kr.inflate(proven, 1.0), E)
+    if kr.krawczyk_test(residual, jacobian, kr.to_balls(wider), counter)[0]:
+        return wider
     return proven
 
 

@@ -231,6 +231,10 @@ def _side(EI, L, chart, cos, sin, j, sign, sa, jacobian):
     u, w2 = 1 - 2 * D_over, 2 * sign * vb_over
     mul = B.mul
     tip = [L * (mul(u, cos) + mul(w2, sin)), L * (mul(u, sin) - mul(w2, cos))]
+    # every tangent angle lies within 2 arcsin(k) of psi - pi (theta = psi - 2 arccos(k sin
+    # phi)), so the tip is within 2 k L of -L (cos psi, sin psi): tight where k -> 0
+    spread = arb(0, 1) * (2 * B.sqrt(m)).upper() * L
+    tip = [B.meet(tip[0], -L * cos + spread), B.meet(tip[1], -L * sin + spread)]
     lam_span = B.span(Lam, 0)                    # Lambda >= 0: its square from the ends
     R = EI * B.monotone(lambda x: x * x, (lam_span, 1)) / (L * L)
     force = [mul(R, cos), mul(R, sin)]

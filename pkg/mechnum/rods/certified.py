@@ -294,6 +294,14 @@ def _arcs_meet(a, b):
     return False
 
 
+def _allowed(rods, load, i):
+    """The box ``load - sum_{j != i} n_j`` that rod ``i``'s force must lie in (floats), or
+    None where it is not finite."""
+    c = [arb(float(load[k])) - sum((r.force[k] for j, r in enumerate(rods) if j != i), arb(0))
+         for k in range(2)]
+    return _box(c) if all(v.is_finite() for v in c) else None
+
+
 def forces_exclude(rods, load):
     """Whether ``sum of the rods' forces = load`` is impossible over a box, in polar form.
 
@@ -304,11 +312,9 @@ def forces_exclude(rods, load):
     ``R (cos, sin)`` when ``R`` spans decades.
     """
     for i, rod in enumerate(rods):
-        c = [arb(float(load[k])) - sum((r.force[k] for j, r in enumerate(rods) if j != i),
-                                       arb(0)) for k in range(2)]
-        if not all(v.is_finite() for v in c) or rod.R is None:
+        box = _allowed(rods, load, i)
+        if box is None or rod.R is None:
             continue
-        box = _box(c)
         low, high = _norm_range(box)
         if rod.R.is_finite() and (bool(rod.R < low) or bool(rod.R > high)):
             return True
@@ -317,3 +323,26 @@ def forces_exclude(rods, load):
             if not _arcs_meet(balls.B.ends(rod.direction), arc):
                 return True
     return False
+
+
+def forces_split(rods, load, X):
+    """Where to cut the box ``X`` of chart coordinates ``(psi_1, t_1, ...)``: at an edge of the
+    directions that the force balance leaves rod ``i`` (see :func:`forces_exclude`), when that
+    edge lies inside ``psi_i``'s range; the half beyond it is then excluded at once. The rod
+    whose allowed arc is the smallest share of its ``psi`` range is cut; None if none."""
+    best = None
+    for i, rod in enumerate(rods):
+        box = _allowed(rods, load, i)
+        arc = _arc(box) if box is not None else None
+        if arc is None or rod.direction.rad() >= 3:
+            continue
+        lo, hi = (float(x) for x in balls.B.ends(rod.direction))
+        offset = lo - float(X[2 * i].lower())                  # direction = psi + angle
+        a0, a1 = float(arc[0]), float(arc[1])
+        k = np.round((0.5 * (lo + hi) - 0.5 * (a0 + a1)) / TWO_PI)
+        a0, a1 = a0 + k * TWO_PI, a1 + k * TWO_PI
+        share = (min(hi, a1) - max(lo, a0)) / max(hi - lo, 1e-300)
+        for edge in (a0, a1):
+            if lo < edge < hi and (best is None or share < best[0]):
+                best = (share, 2 * i, edge - offset)
+    return None if best is None else best[1:]

@@ -113,6 +113,10 @@ def system(mech, lambdas, modes=(1, 1, 1)):
                 return True
         return False
 
+    def split(X):
+        return certified.forces_split(rods(X, False), mech.force, X)
+
+    exclude.split = split
     return residual, jacobian, rods, exclude
 
 
@@ -172,7 +176,8 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, lambdas, modes)
     boxes = certified.branch_boxes(3) if around is None else certified.around_boxes(around, 3)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude)
+    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
+                         split=exclude.split)
     z = part.x
     solutions = z.copy()
     if len(z):

@@ -78,6 +78,10 @@ def system(mech, theta, modes=(1, 1)):
     def exclude(X):
         return certified.forces_exclude(rods(X, False), mech.force)
 
+    def split(X):
+        return certified.forces_split(rods(X, False), mech.force, X)
+
+    exclude.split = split
     return residual, jacobian, rods, exclude
 
 
@@ -144,7 +148,8 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, theta, modes)
     boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude)
+    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
+                         split=exclude.split)
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
