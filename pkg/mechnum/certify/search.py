@@ -64,6 +64,10 @@ class Roots(Result):
         Boxes tested (also ``iterations``).
     seconds : float
         Time of the search.
+    searched : ndarray, shape (m, n, 2)
+        The searched boxes.
+    leaves : tuple of tuple of mechnum.certify.certificate.Leaf
+        Each searched box's leaves, in depth-first order (:meth:`certificate`).
     """
 
     roots: np.ndarray

@@ -66,8 +66,10 @@ class Certified(Roots):
 
 def combine(parts, solutions, stable, extra=""):
     """One :class:`~mechnum.rods.certified.Certified` of several searches (their counts and work added)."""
-    roots = np.concatenate([p.roots for p in parts]) if parts else np.zeros((0, 2, 2))
-    undecided = np.concatenate([p.undecided for p in parts])
+    n = parts[0].roots.shape[1] if parts else 2
+    roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
+    undecided = np.concatenate([p.undecided for p in parts] + [np.zeros((0, n, 2))])
+    searched = np.concatenate([p.searched for p in parts] + [np.zeros((0, n, 2))])
     complete = all(p.complete for p in parts) and not extra
     count = sum(p.count for p in parts)
     message = "; ".join(p.message for p in parts) + extra
@@ -77,7 +79,7 @@ def combine(parts, solutions, stable, extra=""):
                      roots=roots, excluded=sum(p.excluded for p in parts),
                      undecided=undecided, complete=complete, count=count,
                      boxes=sum(p.boxes for p in parts), seconds=sum(p.seconds for p in parts),
-                     searched=np.concatenate([p.searched for p in parts]),
+                     searched=searched,
                      leaves=sum((p.leaves for p in parts), ()), solutions=solutions,
                      stable=list(stable), parts=tuple(parts))
 

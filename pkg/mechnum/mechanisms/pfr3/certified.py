@@ -42,7 +42,8 @@ def _modes(modes):
 
 
 def system(mech, lambdas, modes=(1, 1, 1)):
-    """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes.
+    """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes
+    (``exclude.split``: the cut of :func:`mechnum.rods.certified.forces_split`).
 
     Examples
     --------

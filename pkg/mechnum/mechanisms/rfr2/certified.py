@@ -42,7 +42,8 @@ def _modes(modes):
 def system(mech, theta, modes=(1, 1)):
     """``residual, jacobian`` of the 2RFR's closed form over boxes, for :mod:`mechnum.certify`,
     with ``rods(X, jacobian)`` (both rods, placed) and ``exclude(X)`` (the force balance in
-    polar form, :func:`mechnum.rods.certified.forces_exclude`).
+    polar form, :func:`mechnum.rods.certified.forces_exclude`), whose attribute ``split`` is
+    the cut that :func:`mechnum.rods.certified.forces_split` suggests.
 
     Examples
     --------
