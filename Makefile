@@ -9,7 +9,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
 .PHONY: book book-student downloads grade pdf test unit lint explore notebooks notebooks-other-machine html-check bench \
-	execute lab clean
+	execute lab clean certify
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -98,6 +98,10 @@ test: lint unit notebooks notebooks-other-machine book book-student html-check
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
 		--benchmark-columns=min,median,max,rounds
+
+# Recompute every stored certificate (interval proofs of equilibria) into book/certificates/.
+certify: $(STAMP)
+	$(BIN)/python book/certificates/make_certificates.py
 
 # Re-execute chapters in place after editing them (all of them, or NB=book/<chapter>.ipynb),
 # without the execution timings that would dirty the diff.

@@ -60,6 +60,7 @@ from mechnum.rods.elliptic import (
     k_rel_for_force,
     pinned_equilibria,
 )
+from mechnum.rods.certified import certify_pinned
 from mechnum.rods.loading import DeadLoad
 from mechnum.rods.shooting import (
     Rod,
@@ -72,7 +73,7 @@ from mechnum.rods.shooting import (
     tip_jacobian,
 )
 
-__all__ = ["DeadLoad", "EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
+__all__ = ["DeadLoad", "certify_pinned", "EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
            "clamped_pinned", "elliptic_k", "elliptic_parameters", "equations", "integrate",
            "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
            "shoot_pinned_multiple", "tip_jacobian"]

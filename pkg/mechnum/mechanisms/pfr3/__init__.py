@@ -17,6 +17,7 @@ are pinned to the vertices of a rigid triangular platform, which carries a force
 * :func:`draw` draws an equilibrium.
 """
 
+from mechnum.mechanisms.pfr3.certified import certify_forward
 from mechnum.mechanisms.pfr3.drawing import draw
 from mechnum.mechanisms.pfr3.equilibria import (Equilibria, crossings, forward_elliptic, sampler,
                                                 shapes, stability, verify)

@@ -57,6 +57,7 @@ The package's modules:
 # which the tests, Chapter 5 and the three-rod mechanism use.
 from mechnum.mechanisms.rfr2.analysis import (EIGEN_SEGMENTS, IVP_RTOL, SEGMENTS, SHAPE_NODES,
                                               crossings, eigenvalues, shapes, stability, verify)
+from mechnum.mechanisms.rfr2.certified import certify_forward
 from mechnum.mechanisms.rfr2.continuation import Path, forward_map, forward_path, inverse_path
 from mechnum.mechanisms.rfr2.drawing import draw
 from mechnum.mechanisms.rfr2.elliptic import (START_T, Equilibria, _sample, forward_elliptic,
@@ -93,4 +94,6 @@ __all__ = [
     "draw",
     # study
     "TABLE7_PUBLISHED", "recover_inputs", "reproduce",
+    # certified
+    "certify_forward",
 ]
