@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.rods.stability import block_terms, symmetric
+from mechnum.rods.stability import RodBlock, block_terms, symmetric
 
 
 def constrained_index_with_body(blocks, dense: ArrayLike, constraints: ArrayLike) -> int:
@@ -64,9 +64,12 @@ def constrained_index_with_body(blocks, dense: ArrayLike, constraints: ArrayLike
     >>> constrained_index_with_body([block], [[0.0]], G)
     0
     """
+    if not all(isinstance(block, RodBlock) for block in blocks):
+        raise ValueError(f"blocks must be RodBlocks (from rod_block), got "
+                         f"{[type(b).__name__ for b in blocks]}")
     dense = symmetric(dense, "dense")
     G = _validate.array(constraints, "constraints", ndim=2)
-    rods = sum(len(b.diagonal) for b in blocks if hasattr(b, "diagonal"))
+    rods = sum(len(b.diagonal) for b in blocks)
     k, c = len(dense), len(G)
     if G.shape[1] != rods + k or c >= G.shape[1]:
         raise ValueError(f"dense {dense.shape} and constraints {G.shape} must be (k, k) and "

@@ -168,10 +168,10 @@ def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike
     >>> bool(np.isfinite(clamped_pinned(1.0, 1.0, 2.0, 1 - 1e-16).tip).all())
     True
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
-    k, k_min = elliptic_k(psi, k_rel)
-    psi, k_rel, mode = np.asarray(psi, dtype=float), np.asarray(k_rel, dtype=float), as_modes(mode)
+    EI, L, mode = _validate.positive(EI, "EI"), _validate.positive(L, "L"), as_modes(mode)
+    psi, k_rel = _validate.array(psi, "psi"), _validate.array(k_rel, "k_rel")
     batch_shape(EI=EI.shape, L=L.shape, psi=psi.shape, k_rel=k_rel.shape, mode=mode.shape)
+    k, k_min = elliptic_k(psi, k_rel)
     if nodes is not None:
         nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
     one_minus_kmin = _one_minus_k_min(psi)

@@ -230,12 +230,13 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
 
     A rod with no moment at its tip is pinned there. Its clamp moment and force give a first
     guess of the equilibrium (:func:`mechnum.rods.elliptic_parameters`, in the rod's clamp
-    frame); Newton in the regular chart then finds the equilibrium of that mode through the
-    rod's own tip, and the rod is that equilibrium if their clamp moments and forces agree to
-    ``tol`` (relative to ``max(|m0|, R L, EI / L)`` and ``max(R, EI / L**2)``). Otherwise it is
-    a spurious solution of the discrete (RK4) equations: at a step ``h`` with ``lambda h`` near
-    1 or beyond, or in tension strong enough that RK4's error, amplified along the rod, moves
-    its tail. A rod whose moment never vanishes (``|k| >= 1``) is spurious at once.
+    frame); Gauss-Newton in the regular chart then finds the equilibrium of that mode nearest
+    to the rod (its tip, force and clamp moment together, relative to ``L``, ``max(R, EI /
+    L**2)`` and ``max(|m0|, R L, EI / L)``), and the rod is that equilibrium if they agree to
+    ``tol``. Otherwise it is a spurious solution of the discrete (RK4) equations: at a step
+    ``h`` with ``lambda h`` near 1 or beyond, or in tension strong enough that RK4's error,
+    amplified along the rod, moves its tail. A rod whose moment never vanishes (``|k| >= 1``)
+    is spurious at once.
 
     Parameters
     ----------
@@ -283,14 +284,44 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
         return outcome("spurious", str(error))
     mode = max(float(mode), 1.0)
     k_start = np.copysign(np.clip(abs(k_rel), 1e-12, 1.0 - 1e-16), k_rel)
-    z = _polish(EI, L, point, mode, np.array([[psi, regular.t_from_k_rel(psi, k_start)]]),
-                1e-13, POLISH_MAXITER)
-    if not len(z):
-        return outcome("spurious", f"no equilibrium of mode {mode:.0f} through its tip near it")
-    near = regular.closed_form(EI, L, z[0, 0], z[0, 1], mode, jacobian=False)
-    gap = max(abs(float(near.clamp_moment) - m0) / M, np.abs(near.force - force).max() / F)
+    scales = np.array([L, L, F, F, M])
+    target = np.array([*point, *force, m0])
+
+    def gaps(z):              # the rod against the equilibrium z: tip, force, clamp moment
+        near = regular.closed_form(EI, L, z[0], z[1], mode)
+        value = np.array([*near.tip, *near.force, float(near.clamp_moment)])
+        return (value - target) / scales, near.jacobian / scales[:, None]
+
+    z = _nearest(gaps, np.array([psi, float(regular.t_from_k_rel(psi, k_start))]))
+    gap = float(np.abs(gaps(z)[0]).max())
     if gap > tol:
-        return outcome("spurious", f"the equilibrium of mode {mode:.0f} through its tip is "
-                                   f"{gap:.2g} away (relative)", gap=gap)
-    return outcome("elastica", "an equilibrium to RK4's error", z[0, 0],
-                   regular.k_rel_from_t(z[0, 0], z[0, 1]), mode, gap)
+        return outcome("spurious", f"the nearest equilibrium of mode {mode:.0f} is {gap:.2g} "
+                                   f"away (relative)", gap=gap)
+    return outcome("elastica", "an equilibrium to RK4's error", z[0],
+                   regular.k_rel_from_t(z[0], z[1]), mode, gap)
+
+
+def _nearest(gaps, z):
+    """Gauss-Newton from ``z`` on ``gaps(z) -> (residual, Jacobian)`` in the chart, each step
+    halved until it decreases the residual and keeps ``psi`` and ``t`` in the chart (``t`` of
+    its start's sign): the chart point nearest to a rod in the least-squares sense. Both the
+    tip and the force enter it, so it is well posed where either alone is not (the force of a
+    nearly straight rod is ill-determined by its tip)."""
+    def inside(z):
+        return 0 < z[0] < TWO_PI and 0 < z[1] * sign <= regular.T_MAX
+
+    sign = np.sign(z[1])
+    r, J = gaps(z)
+    for _ in range(POLISH_MAXITER):
+        step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        for _ in range(30):
+            if inside(z + step) and np.linalg.norm(gaps(z + step)[0]) < np.linalg.norm(r):
+                break
+            step = 0.5 * step
+        else:
+            return z
+        z = z + step
+        r, J = gaps(z)
+        if np.abs(step).max() <= 1e-14 * (1.0 + np.abs(z).max()):
+            return z
+    return z

@@ -26,6 +26,10 @@ from mechnum.errors import DivergenceError
 
 STEP = 1e-30
 """The complex step: ``f(x + i h) = f(x) + i h f'(x) + O(h**2)``, with no cancellation."""
+ANGLE_MAX = 1e12
+"""Largest tangent angle (rad) a sweep may reach: beyond it the angle's rounding (``1e-4`` rad)
+leaves its cosine with fewer than four digits, and the rod is noise (a force far too large for
+the step)."""
 MAX_NODES = 100_000
 """Most nodes of a rod (a bound on the work: RK4's error on ``1e5`` nodes is below rounding for
 every load that single shooting resolves)."""
@@ -264,8 +268,9 @@ def _inputs(EI, L, m0, force, theta0, origin, nodes):
 
 
 def _finite(states, EI, L, force, nodes):
-    """``states``, or a DivergenceError if the sweep overflowed (the load beyond RK4's step)."""
-    if not np.isfinite(states).all():
+    """``states`` (last axis ``x, y, theta, m``), or a DivergenceError if the sweep overflowed
+    or lost its angles' digits (a load far beyond RK4's step)."""
+    if not np.isfinite(states).all() or np.abs(states[..., 2]).max(initial=0.0) > ANGLE_MAX:
         lam_h = np.sqrt(np.hypot(force[..., 0], force[..., 1]) / EI) * L / (nodes - 1)
         raise DivergenceError(f"the RK4 sweep overflowed: the force is too large for {nodes} "
                               f"nodes (lambda h = sqrt(|n| / EI) L / (nodes - 1) up to "
@@ -305,7 +310,8 @@ def integrate(EI: ArrayLike, L: ArrayLike, m0: ArrayLike, force: ArrayLike, *,
         If an input is not finite, ``EI`` or ``L`` is not positive, the shapes do not
         broadcast, or ``nodes`` is out of range.
     DivergenceError
-        If the sweep overflows (a force far too large for the step).
+        If the sweep overflows or its angle passes :data:`ANGLE_MAX` (a force far too large
+        for the step).
 
     Examples
     --------
@@ -378,5 +384,7 @@ def tip_jacobian(EI: ArrayLike, L: ArrayLike, m0: ArrayLike, force: ArrayLike, *
             nodes, trig=np, keep=False)], axis=-1)                         # (..., 3, 4)
     tip = _finite(end[..., 0, :].real, EI, L, force, nodes)
     tip[..., :2] += origin
-    J = _finite(np.swapaxes(end.imag, -1, -2) / STEP, EI, L, force, nodes)
+    J = np.swapaxes(end.imag, -1, -2) / STEP
+    if not np.isfinite(J).all():
+        _finite(np.full(4, np.nan), EI, L, force, nodes)
     return tip, J

@@ -174,9 +174,13 @@ def _risk(EI, L, force, h, segments=1):
         return lam * L / segments + 4.0 * np.log(lam * h)
 
 
-def _nodes_needed(lam_L):
-    """Nodes at which ``lambda L + 4 ln(lambda h) = RESOLVE_LOG`` (the error's suggestion)."""
-    return int(math.ceil(1.0 + lam_L * math.exp((lam_L - RESOLVE_LOG) / 4.0)))
+def _advice(lam_L, what="multiple shooting or the closed form"):
+    """What resolves a rod of ``lambda L`` (per segment): the nodes at which ``lambda L +
+    4 ln(lambda h) = RESOLVE_LOG``, if single shooting's rounding floor allows it."""
+    if ROUNDOFF_FACTOR * _EPS * math.exp(lam_L) > MAX_FLOOR:
+        return f"it is beyond single shooting at any node count: use {what}"
+    nodes = int(math.ceil(1.0 + lam_L * math.exp((lam_L - RESOLVE_LOG) / 4.0)))
+    return f"use more nodes (about {nodes}) or {what}"
 
 
 def _check_resolved(EI, L, result, segments=1):
@@ -191,9 +195,8 @@ def _check_resolved(EI, L, result, segments=1):
             lam_L = math.sqrt(verdict.R / EI) * L
             raise UnresolvedRodError(
                 f"rod {i}: RK4 on {nodes} nodes cannot resolve it (lambda h = "
-                f"{verdict.lambda_h:.3g}, lambda L = {lam_L:.3g}): {verdict.reason}; use more "
-                f"nodes (about {_nodes_needed(lam_L / segments)}), multiple shooting or the "
-                f"closed form", result)
+                f"{verdict.lambda_h:.3g}, lambda L = {lam_L:.3g}): {verdict.reason}; "
+                f"{_advice(lam_L / segments)}", result)
 
 
 def _cantilever_start(EI, L, forces, theta0):
@@ -346,8 +349,8 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
             f"shoot_cantilever: RK4 on {nodes} nodes cannot resolve the rod under the force "
             f"{batch[i].tolist()} (P L^2/EI = {lam_L ** 2:.4g}, lambda h = "
             f"{lam_L / (nodes - 1):.3g}): Newton from the closed form's clamp moment ended on "
-            f"a rod whose tip is {off[i]:.2g} L from the closed form's; use more nodes (about "
-            f"{_nodes_needed(lam_L)}) or rods.cantilever", result)
+            f"a rod whose tip is {off[i]:.2g} L from the closed form's; "
+            f"{_advice(lam_L, 'rods.cantilever')}", result)
     return result
 
 
