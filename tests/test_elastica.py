@@ -25,7 +25,7 @@ def test_bending_stiffness_is_that_of_a_solid_circular_section():
 def test_study_loop_reaches_the_mode_2_equilibrium_of_the_closed_form():
     res = el.study_shooting()
     assert res.max_residual <= el.TOL and np.array_equal(res.history[0], el.GUESS)
-    psi, k_rel, mode, _ = rods.elliptic_parameters(el.EI, el.LENGTH, res.rod.clamp_moment,
+    _psi, _k_rel, mode, _ = rods.elliptic_parameters(el.EI, el.LENGTH, res.rod.clamp_moment,
                                                    res.rod.force)
     assert mode == 2
     exact = rods.pinned_equilibria(el.EI, el.LENGTH, el.TARGET, modes=(2,))
@@ -51,18 +51,18 @@ def test_a_zero_guess_is_a_singular_jacobian_not_a_linalg_error():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(guess=[0.1, np.nan, 0.1]), "guess must be finite"),
-    (dict(guess=[0.1, 0.1]), "guess must have shape \\(3,\\)"),
-    (dict(guess=[0.1, 0.1, 1j]), "guess must be real"),
-    (dict(target=[0.8]), "target must have shape \\(2,\\)"),
-    (dict(EI=0.0), "EI must be positive"),
-    (dict(L=-1.0), "L must be positive"),
-    (dict(nodes=1), "nodes must be an integer >= 2"),
-    (dict(nodes=1e6), "nodes must be an integer <= 10000"),
-    (dict(maxiter=10 ** 9), "maxiter must be an integer <= 1000"),
-    (dict(EI=1.0, ei=1.0), "not both"),
-    (dict(tol=-1e-7), "tol must be positive"),
-    (dict(maxiter=np.inf), "maxiter must be an integer"),
+    ({"guess": [0.1, np.nan, 0.1]}, "guess must be finite"),
+    ({"guess": [0.1, 0.1]}, "guess must have shape \\(3,\\)"),
+    ({"guess": [0.1, 0.1, 1j]}, "guess must be real"),
+    ({"target": [0.8]}, "target must have shape \\(2,\\)"),
+    ({"EI": 0.0}, "EI must be positive"),
+    ({"L": -1.0}, "L must be positive"),
+    ({"nodes": 1}, "nodes must be an integer >= 2"),
+    ({"nodes": 1e6}, "nodes must be an integer <= 10000"),
+    ({"maxiter": 10 ** 9}, "maxiter must be an integer <= 1000"),
+    ({"EI": 1.0, "ei": 1.0}, "not both"),
+    ({"tol": -1e-7}, "tol must be positive"),
+    ({"maxiter": np.inf}, "maxiter must be an integer"),
 ])
 def test_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):

@@ -105,12 +105,12 @@ def test_a_point_near_the_reach_leaks_no_warning():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(n_psi=10 ** 6), "n_psi must be an integer <= 100000"),
-    (dict(n_psi=1000, n_k=1000), "n_psi \\* n_k must be at most"),
-    (dict(n_k=0), "n_k must be"),
-    (dict(chart="psi"), "chart must be one of"),
-    (dict(modes=(0,)), "mode must be"),
-    (dict(tol=-1.0), "tol must be positive"),
+    ({"n_psi": 10 ** 6}, "n_psi must be an integer <= 100000"),
+    ({"n_psi": 1000, "n_k": 1000}, "n_psi \\* n_k must be at most"),
+    ({"n_k": 0}, "n_k must be"),
+    ({"chart": "psi"}, "chart must be one of"),
+    ({"modes": (0,)}, "mode must be"),
+    ({"tol": -1.0}, "tol must be positive"),
 ])
 def test_bad_input_of_the_search(kwargs, match):
     with pytest.raises(ValueError, match=match):

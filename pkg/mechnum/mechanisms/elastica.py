@@ -7,7 +7,7 @@ along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) 
 one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
-loop, on the package's RK4 rod (:func:`mechnum.rods.integrate`).
+loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`).
 
 The thesis's budget (its Section 14 and Tabla 9) is study material, not a method: it moves to
 the chapter's study page, and :func:`budget` is deprecated (it warns, and goes in release 0.3);
@@ -241,8 +241,10 @@ def reproduce(nodes: int = NODES) -> dict:
 
     ``q`` of the study's (43) is recovered from rods found by RK4 shooting (on ``nodes``
     nodes, ``2 <= nodes <=`` :data:`MAX_NODES`; 61 as in the study, whose ``q`` deviate from
-    the odd integers by RK4's error, falling like ``nodes**-4``): the study's own example (mode 2), a cantilever (mode 1) and the mode-3
-    equilibrium through the same pinned point; the budget rows come from :func:`budget`.
+    the odd integers by RK4's error, falling like ``nodes**-4``): the study's own example
+    (mode 2), a cantilever (mode 1) and the mode-3 equilibrium of least force through the same
+    pinned point. The budget rows come from the hours and rates of :func:`budget` (until the
+    study page computes them).
 
     Examples
     --------

@@ -34,12 +34,13 @@ force direction relative to the clamped tangent.
 
 Modules, each importing only those before it: :mod:`mechnum.rods.rod` (the rod, its equations,
 the RK4 sweeps :func:`integrate` and :func:`tip_jacobian`), :mod:`mechnum.rods.jacobi` (Jacobi's
-amplitude from the complementary modulus), :mod:`mechnum.rods.cantilever` (the growing branch in
+amplitude from the complementary modulus), :mod:`mechnum.rods.growing` (the growing branch in
 a chart that holds every digit, behind :func:`cantilever`), :mod:`mechnum.rods.regular` (the
 closed form in the regular chart ``(psi, t)``, its Jacobian and shapes),
 :mod:`mechnum.rods.elliptic` (the closed form in the study's chart ``(psi, k_rel)`` and its
 inverses), :mod:`mechnum.rods.pinned` (every equilibrium through a point, and what a shot rod
-is), :mod:`mechnum.rods.shooting` (the shooting solvers, single and multiple),
+is), :mod:`mechnum.rods.shooting` and :mod:`mechnum.rods.multiple` (the shooting solvers,
+single and multiple),
 :mod:`mechnum.rods.stability` and :mod:`mechnum.rods.bodies` (the second variation),
 :mod:`mechnum.rods.crossing` and :mod:`mechnum.rods.loading` (a cantilever's equilibria under a
 growing dead load, for continuation); the main names are importable from :mod:`mechnum.rods`.
@@ -51,7 +52,7 @@ more than one rod (the cost of a sweep is per numpy call, not per rod).
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.rods.cantilever import closed_form
+from mechnum.rods.growing import closed_form
 from mechnum.rods.elliptic import (
     TWO_PI,
     EllipticRod,
@@ -63,6 +64,7 @@ from mechnum.rods.elliptic import (
     k_rel_for_force,
 )
 from mechnum.rods.loading import DeadLoad
+from mechnum.rods.multiple import shoot_pinned_multiple
 from mechnum.rods.pinned import Classification, classify, pinned_equilibria
 from mechnum.rods.rod import MAX_NODES, Rod, equations, integrate, tip_jacobian
 from mechnum.rods.shooting import (
@@ -71,7 +73,6 @@ from mechnum.rods.shooting import (
     UnresolvedRodError,
     shoot_cantilever,
     shoot_pinned,
-    shoot_pinned_multiple,
 )
 
 __all__ = ["SHOOTING_TOL", "TWO_PI", "Classification", "DeadLoad", "EllipticRod",
@@ -94,7 +95,7 @@ def cantilever(EI: float, L: float, force: ArrayLike, method: str = "elliptic", 
 
     The closed form is evaluated in a chart that holds every digit at every load, from
     ``1e-200`` (linear beam theory, ``v = P L**3 / (3 EI)`` to rounding) to ``P L**2 / EI``
-    near ``1e5`` (see :mod:`mechnum.rods.cantilever`); ``nodes=2`` asks for the clamp and the
+    near ``1e5`` (see :mod:`mechnum.rods.growing`); ``nodes=2`` asks for the clamp and the
     tip only, the fastest call.
 
     Parameters

@@ -5,9 +5,10 @@ When rods hold a rigid body (a platform), the configuration is the rods' angles 
 pose, tied together by constraints (each rod's tip at its pin on the body). The Hessian of the
 Lagrangian is block diagonal: one tridiagonal block per rod
 (:func:`mechnum.rods.stability.rod_block`) and a small dense block ``D`` for the pose (the
-body's own terms, for example the work of the constraint forces as the body turns). The Hessian of the pose is often singular (a free
-translation costs no energy by itself), so the count of
-:func:`mechnum.rods.stability.constrained_index`, which factors the whole Hessian, does not apply.
+body's own terms, for example the work of the constraint forces as the body turns). The Hessian
+of the pose is often singular (a free translation costs no energy by itself), so the count of
+:func:`mechnum.rods.stability.constrained_index`, which factors the whole Hessian, does not
+apply.
 Here the Schur complement is taken on the rods' blocks only. With ``G = [G_r, G_d]`` the
 constraints' Jacobian (columns of the rods' angles, then of the dense variables), the bordered
 matrix ``K = [[H_r, 0, G_r^T], [0, D, G_d^T], [G_r, G_d, 0]]`` has (Haynsworth) the inertia of

@@ -7,7 +7,7 @@ and evaluates it through the regular chart of :mod:`mechnum.rods.regular`, which
 digit where the study's formulas do not (``k_rel -> 0``, ``|k_rel| -> 1``, ``psi = pi``):
 :func:`clamped_pinned` converts ``k_rel`` to the chart's ``t`` exactly
 (:func:`mechnum.rods.regular.t_from_k_rel`). Its inverses: :func:`k_rel_for_force` (the
-growing branch that carries a force, in the chart of :mod:`mechnum.rods.cantilever`) and
+growing branch that carries a force, in the chart of :mod:`mechnum.rods.growing`) and
 :func:`elliptic_parameters` (the rod that starts from a clamp moment and a force).
 """
 
@@ -21,7 +21,7 @@ from scipy.special import elliprf
 from mechnum import _validate
 from mechnum.errors import MechnumError
 from mechnum.rods import regular
-from mechnum.rods.cantilever import growing_branch
+from mechnum.rods.growing import growing_branch
 from mechnum.rods.jacobi import amplitude
 from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape
 
@@ -205,7 +205,7 @@ def k_rel_for_force(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, R: ArrayLike,
     rounding, see :data:`AXIAL`). This function solves ``lambda L = F(phi2, k) - F(phi1, k)``
     on that half (for ``psi = pi``, ``k_rel > 0``) by Newton's method safeguarded with
     bisection, in a variable ``zeta`` in which the equation is smooth and well conditioned at
-    every load (:func:`mechnum.rods.cantilever.growing_branch`), and checks its residual. On
+    every load (:func:`mechnum.rods.growing.growing_branch`), and checks its residual. On
     the other half ``R`` is not monotone and one force has several ``k_rel`` (the study's
     Ilustracion 10).
 

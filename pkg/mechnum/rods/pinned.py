@@ -17,9 +17,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
-from mechnum.errors import MechnumError
 from mechnum.rods import regular
-from mechnum.rods.elliptic import TWO_PI, elliptic_parameters
+from mechnum.rods.elliptic import TWO_PI
 from mechnum.rods.rod import Rod, as_modes
 
 MAX_GRID = 100_000
@@ -28,6 +27,7 @@ memory (the closed form on ``2e5`` points takes some 50 MB)."""
 POLISH_MAXITER = 25
 """Newton's most steps from a candidate cell: one next to a root takes 3 to 6 (at the thesis's
 point), the others wander until they stop."""
+_EPS = np.finfo(float).eps
 TIP_ACCEPT = 1e-10
 """A root is kept if its tip is within ``1e-10 L`` of the point."""
 SAME = 1e-8
@@ -229,14 +229,16 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
     """The clamped-pinned equilibrium that a rod (found by shooting) approximates, if any.
 
     A rod with no moment at its tip is pinned there. Its clamp moment and force give a first
-    guess of the equilibrium (:func:`mechnum.rods.elliptic_parameters`, in the rod's clamp
-    frame); Gauss-Newton in the regular chart then finds the equilibrium of that mode nearest
-    to the rod (its tip, force and clamp moment together, relative to ``L``, ``max(R, EI /
+    guess of the equilibrium (its chart point, as :func:`mechnum.rods.elliptic.elliptic_parameters`
+    finds it, in the rod's clamp frame; its mode, one more than the sign changes of its moment
+    before the tip); Gauss-Newton in the regular chart then finds the equilibrium of that mode
+    nearest to the rod (its tip, force and clamp moment together, relative to ``L``, ``max(R, EI /
     L**2)`` and ``max(|m0|, R L, EI / L)``), and the rod is that equilibrium if they agree to
     ``tol``. Otherwise it is a spurious solution of the discrete (RK4) equations: at a step
     ``h`` with ``lambda h`` near 1 or beyond, or in tension strong enough that RK4's error,
-    amplified along the rod, moves its tail. A rod whose moment never vanishes (``|k| >= 1``)
-    is spurious at once.
+    amplified along the rod, moves its tail (a rod whose moment never vanishes, ``|k| >= 1``,
+    is spurious unless RK4's error put it there, just across the edge of the family from a
+    looped equilibrium).
 
     Parameters
     ----------
@@ -276,14 +278,17 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
 
     if abs(m0) <= tol * M and abs(force[1]) <= tol * F and abs(point[1]) <= tol * L:
         return outcome("straight", "no moment at the clamp and an axial force")
-    try:
-        psi, k_rel, mode, _ = elliptic_parameters(EI, L, m0, force)
-    except MechnumError as error:          # NotAnElasticaError: |k| >= 1
-        return outcome("spurious", str(error))
-    except ValueError as error:            # a force along the clamped tangent, with a moment
-        return outcome("spurious", str(error))
-    mode = max(float(mode), 1.0)
-    k_start = np.copysign(np.clip(abs(k_rel), 1e-12, 1.0 - 1e-16), k_rel)
+    psi = float(np.mod(np.arctan2(force[1], force[0]), TWO_PI))
+    if psi == 0.0:
+        return outcome("spurious", "a moment at the clamp and a force along the clamped tangent")
+    # the start: psi, and t from v = k cos(phi1) / sin(psi/2) (elliptic_parameters' v, taken
+    # just inside the family where RK4's error put the rod across its edge, |k| >= 1); the
+    # mode: one more than the moment's sign changes before the tip
+    v = abs(m0) / (2.0 * EI * np.sqrt(R / EI) * np.sin(0.5 * psi))
+    q = min(-np.log(max((1.0 - min(v, 1.0)) * (1.0 + min(v, 1.0)), _EPS)), regular.Q_MAX)
+    t0 = np.copysign(max(np.sqrt(q / (1.0 + q)), 1e-8), m0 if m0 else 1.0)
+    m = rod.m[:-1][np.abs(rod.m[:-1]) > _EPS * M]
+    mode = 1.0 + np.count_nonzero(np.diff(np.sign(m)))
     scales = np.array([L, L, F, F, M])
     target = np.array([*point, *force, m0])
 
@@ -292,11 +297,12 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
         value = np.array([*near.tip, *near.force, float(near.clamp_moment)])
         return (value - target) / scales, near.jacobian / scales[:, None]
 
-    z = _nearest(gaps, np.array([psi, float(regular.t_from_k_rel(psi, k_start))]))
+    z = _nearest(gaps, np.array([psi, t0]))
     gap = float(np.abs(gaps(z)[0]).max())
     if gap > tol:
+        edge = "; its moment never vanishes (|k| >= 1)" if v >= 1 else ""
         return outcome("spurious", f"the nearest equilibrium of mode {mode:.0f} is {gap:.2g} "
-                                   f"away (relative)", gap=gap)
+                                   f"away (relative){edge}", gap=gap)
     return outcome("elastica", "an equilibrium to RK4's error", z[0],
                    regular.k_rel_from_t(z[0], z[1]), mode, gap)
 

@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike
 from scipy.special import elliprd, elliprf
 
 from mechnum import _validate
-from mechnum.rods.cantilever import branch_shape, chart_tip
+from mechnum.rods.growing import branch_shape, chart_tip
 from mechnum.rods.jacobi import amplitude
 from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape
 
@@ -429,7 +429,7 @@ def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: Array
     rods of the growing branch of mode 1 under a load ``lambda L <`` :data:`SMALL_LOAD`,
     whose positions the study's formulas find as differences of nearly equal integrals divided
     by ``lambda`` (all digits lost as the load tends to zero), are drawn in the cantilever's
-    chart instead (:func:`mechnum.rods.cantilever.branch_shape`). The clamp is at the origin
+    chart instead (:func:`mechnum.rods.growing.branch_shape`). The clamp is at the origin
     and the last node at :func:`clamped_pinned_regular`'s tip, exactly.
 
     Parameters

@@ -160,7 +160,7 @@ def equations(EI: ArrayLike, force: ArrayLike):
     nx, ny = _validate.array(force, "force", shape=(2,))
 
     def f(s, state):
-        x, y, theta, m = np.asarray(state)
+        theta, m = np.asarray(state)[2:]
         c, sn = np.cos(theta), np.sin(theta)
         return np.stack((c, sn, m / EI, nx * sn - ny * c))
 

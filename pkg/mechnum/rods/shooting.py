@@ -3,7 +3,7 @@
 The shooting solvers wrap damped Newton (:func:`mechnum.newton.solve`, or ``solve_batch`` for a
 batch of rods) around the RK4 sweeps of :mod:`mechnum.rods.rod` and their complex-step
 Jacobians, from a start that lands on the intended equilibrium: the closed form of the growing
-branch (:mod:`mechnum.rods.cantilever`) by default. They return a :class:`Shooting`, a result
+branch (:mod:`mechnum.rods.growing`) by default. They return a :class:`Shooting`, a result
 of the package's contract (:mod:`mechnum.results`).
 
 **What shooting can resolve.** The tip depends on the clamp moment through the whole rod, and
@@ -32,9 +32,8 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.ode import multiple_shooting
 from mechnum.results import Result
-from mechnum.rods.cantilever import closed_form, pinned_start
+from mechnum.rods.growing import closed_form, pinned_start
 from mechnum.rods.pinned import RESOLVED, classify
 from mechnum.rods.rod import MAX_NODES, Rod, as_vectors, integrate, tip_states
 
@@ -151,8 +150,20 @@ def _reshaped(rod, batch):
                  for name in ("s", "x", "y", "theta", "m", "force")))
 
 
-def _result(what, res, p, start, rod, batch, tol, counts):
-    """The :class:`Shooting` of a converged Newton ``res`` (single or batch)."""
+def shooting_result(what: str, res, p: np.ndarray, start: np.ndarray, rod: Rod,
+                    batch: tuple, tol: float, counts) -> Shooting:
+    """The :class:`Shooting` of a converged Newton ``res`` (one system or a batch), for the
+    solvers built on shooting: ``p`` and ``start`` of shape ``(n, k)``, ``rod`` with a leading
+    axis of ``n`` rods, reshaped to ``batch``; ``counts`` has ``nfev`` and ``njev``.
+
+    Examples
+    --------
+    >>> res = shoot_cantilever(1.0, 1.0, [[0.0, 1.0], [0.0, 2.0]])
+    >>> again = shooting_result("again", res.newton, res.x, res.start, res.rod, (2,), 1e-13,
+    ...                         res)
+    >>> again.status.tolist(), again.x.shape
+    (['converged', 'converged'], (2, 1))
+    """
     status, iterations = getattr(res, "status", "converged"), np.reshape(res.iterations, batch)
     most = int(np.max(iterations, initial=0))
     if batch == ():         # one rod: a word and an int, as scipy's results have
@@ -179,12 +190,19 @@ def _advice(lam_L, what="multiple shooting or the closed form"):
     4 ln(lambda h) = RESOLVE_LOG``, if single shooting's rounding floor allows it."""
     if ROUNDOFF_FACTOR * _EPS * math.exp(lam_L) > MAX_FLOOR:
         return f"it is beyond single shooting at any node count: use {what}"
-    nodes = int(math.ceil(1.0 + lam_L * math.exp((lam_L - RESOLVE_LOG) / 4.0)))
+    nodes = math.ceil(1.0 + lam_L * math.exp((lam_L - RESOLVE_LOG) / 4.0))
     return f"use more nodes (about {nodes}) or {what}"
 
 
-def _check_resolved(EI, L, result, segments=1):
-    """Raise :class:`UnresolvedRodError` if a rod at risk is no equilibrium to RK4's error."""
+def check_resolved(EI: float, L: float, result: Shooting, segments: int = 1) -> None:
+    """Raise :class:`UnresolvedRodError` if a rod of ``result`` at risk (:data:`RISK`, with
+    ``lambda L`` per segment) is no equilibrium to RK4's error
+    (:func:`mechnum.rods.pinned.classify`): the check of every solver built on shooting.
+
+    Examples
+    --------
+    >>> check_resolved(1.0, 1.0, shoot_pinned(1.0, 1.0, [0.8, 0.1], [4.0, -20.0, 2.0]))
+    """
     nodes = result.rod.s.shape[-1]
     rods = Rod(*(np.reshape(getattr(result.rod, name), (-1, nodes))
                  for name in ("s", "x", "y", "theta", "m")), result.rod.force.reshape(-1, 2))
@@ -323,8 +341,13 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
         start = np.broadcast_to(m0.reshape(-1), batch.shape[:1]).copy()
     tips = _Tips(EI, L, theta0, nodes, lambda p: (p[:, 0], batch), (0,))
     scale = max(float(np.abs(batch).max(initial=0.0)) * L, EI / L)
-    fun = lambda p: tips(p)[0][:, 3:] / scale                       # noqa: E731
-    jac = lambda p: tips(p, jac=True)[1][:, 3:, :] / scale          # noqa: E731
+
+    def fun(p):
+        return tips(p)[0][:, 3:] / scale
+
+    def jac(p):
+        return tips(p, jac=True)[1][:, 3:, :] / scale
+
     x0 = start[:, None]
     floor = _floor(jac(x0), np.ones(1), np.ones(1), x0 / scale)
     try:
@@ -336,10 +359,10 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
         x0 = _bracket(lambda m0: float(fun(np.array([[m0]]))[0, 0]), float(x0[0, 0]), scale)
         res, p, tol = _solve(fun, jac, x0, tol, floor, maxiter, "shoot_cantilever")
     rod = integrate(EI, L, p[:, 0], batch, theta0=theta0, nodes=nodes)
-    result = _result("shoot_cantilever", res, p, start[:, None], rod, force.shape[:-1], tol,
+    result = shooting_result("shoot_cantilever", res, p, start[:, None], rod, force.shape[:-1], tol,
                      tips)
     if exact is None:
-        _check_resolved(EI, L, result)
+        check_resolved(EI, L, result)
         return result
     off = np.abs(rod.tip - exact).max(axis=-1, initial=0.0) / L
     if np.any(off > RESOLVED):
@@ -379,10 +402,10 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = 
 
     The unknowns are ``p = (m0, n_x, n_y)``; damped Newton drives the residual
     ``((x(L) - x_t) / L, (y(L) - y_t) / L, m(L) L / EI)`` to zero with the exact Jacobian of
-    :func:`mechnum.rods.tip_jacobian`. A pinned point has many equilibria (buckling modes, both
-    senses of bending, loops in tension: :func:`mechnum.rods.pinned_equilibria`): the start
+    :func:`mechnum.rods.rod.tip_jacobian`. A pinned point has many equilibria (buckling modes, both
+    senses of bending, loops in tension: :func:`mechnum.rods.pinned.pinned_equilibria`): the start
     selects one. The default start is the closed-form cantilever (mode 1, the growing branch)
-    whose tip is at the point (:func:`mechnum.rods.cantilever.pinned_start`): it leads to the
+    whose tip is at the point (:func:`mechnum.rods.growing.pinned_start`): it leads to the
     mode-1 rod where the point admits one and Newton reaches it (a point near the reach ``L``
     in near tension may defeat it: the force of a nearly straight rod is ill-determined by its
     tip).
@@ -436,128 +459,6 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = 
         start = np.broadcast_to(guess.reshape(-1, 3), points.shape[:1] + (3,)).copy()
     res, p, tol, tips = _pinned(EI, L, points, start, theta0, nodes, tol, maxiter, damping)
     rod = integrate(EI, L, p[:, 0], p[:, 1:], theta0=theta0, nodes=nodes)
-    result = _result("shoot_pinned", res, p, start, rod, tip.shape[:-1], tol, tips)
-    _check_resolved(EI, L, result)
+    result = shooting_result("shoot_pinned", res, p, start, rod, tip.shape[:-1], tol, tips)
+    check_resolved(EI, L, result)
     return result
-
-
-def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, segments: int = 4,
-                          theta0: float = 0.0, tol: float = 1e-10,
-                          maxiter: int = 50) -> Shooting:
-    """A pinned rod by multiple shooting (:func:`mechnum.ode.multiple_shooting`) from a shape.
-
-    The state ``(x, y, theta, m, n_x, n_y)`` (the force as two states with ``n' = 0``) is
-    integrated by RK4 on ``guess``'s nodes, cut into ``segments``; the unknowns are the states
-    at the segments' starts, the equations the clamp ``(0, 0, theta0)``, the pinned tip with
-    ``m(L) = 0``, and continuity. The start is a whole shape, so the equilibrium found is the
-    one that shape resembles, and each segment amplifies rounding by ``exp(lambda L /
-    segments)`` only.
-
-    The sketch must bend as the rod sought does: its angles and moments select the
-    equilibrium. A sketch with no moment will do (Newton finds the moments), a straight one
-    will not: along a straight line the axial force moves nothing to first order, so its
-    Jacobian is singular (or nearly, and Newton wanders), and the solver raises.
-
-    Parameters
-    ----------
-    EI, L : float
-        Bending stiffness (N m^2) and length (m), positive.
-    tip : array_like, shape (2,)
-        The pinned point (m), within ``L`` of the clamp.
-    guess : Rod
-        A guess of the rod: its nodes (``N >= 2``, equally spaced from 0 to ``L``), shape,
-        moments and force (a zero force will do).
-    segments : int, optional
-        Number of segments, ``1 <= segments <= N - 1`` (1 is plain shooting).
-    theta0, tol, maxiter
-        Clamp angle (rad); Newton's residual tolerance and most iterations (at most
-        :data:`MAX_ITER`).
-
-    Returns
-    -------
-    Shooting
-        ``newton`` is the :class:`~mechnum.newton.NewtonResult` of the segments' states,
-        ``x`` the solution's ``(m0, n_x, n_y)`` and ``start`` the guess's.
-
-    Raises
-    ------
-    ValueError
-        If an input is malformed or the point is out of reach.
-    ConvergenceError, SingularJacobianError
-        If Newton fails (from a straight sketch, for one).
-    UnresolvedRodError
-        If the rod found is no equilibrium to RK4's error.
-
-    Examples
-    --------
-    A sketch that dips below the chord and comes back up, with no moment and no force, finds
-    the mode-2 rod of that shape through the thesis's point (``k_rel < 0``: it bends down
-    first):
-
-    >>> s = np.linspace(0.0, 1.0, 61)
-    >>> y = 0.1 * s - 0.15 * np.sin(np.pi * s)
-    >>> sketch = Rod(s, 0.8 * s, y, np.arctan2(np.gradient(y, s), 0.8), np.zeros(61),
-    ...              np.zeros(2))
-    >>> res = shoot_pinned_multiple(1.0, 1.0, [0.8, 0.1], sketch, segments=6)
-    >>> np.round(res.rod.force, 3).tolist(), round(float(res.rod.clamp_moment), 3)
-    ([-19.589, -7.054], -3.684)
-    """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
-    tip = _validate.array(tip, "tip", shape=(2,))
-    if np.hypot(*tip) > L:
-        raise ValueError(f"the pinned point {tip!r} is farther than L = {L} from the clamp")
-    theta0 = _validate.scalar(theta0, "theta0")
-    maxiter = _validate.maxiter(maxiter, maximum=MAX_ITER)
-    if not isinstance(guess, Rod):
-        raise ValueError(f"guess must be a Rod (a sketch of the shape), got {type(guess)}")
-    s = _validate.array(guess.s, "guess.s", ndim=1)
-    states = [_validate.array(getattr(guess, name), f"guess.{name}", shape=s.shape)
-              for name in ("x", "y", "theta", "m")]
-    force = _validate.array(guess.force, "guess.force", shape=(2,))
-    if s.size < 2 or not np.allclose(s, np.linspace(0.0, L, s.size), rtol=0, atol=1e-12 * L):
-        raise ValueError(f"guess.s must be {s.size} >= 2 equally spaced nodes from 0 to L = {L}")
-
-    def rhs(_, z):      # (x / L, y / L, theta, m, n_x, n_y), in sigma = s / L
-        out = np.zeros_like(z)
-        c, sn = np.cos(z[..., 2]), np.sin(z[..., 2])
-        out[..., 0], out[..., 1], out[..., 2] = c, sn, z[..., 3] * (L / EI)
-        out[..., 3] = L * (z[..., 4] * sn - z[..., 5] * c)
-        return out
-
-    counts = _Counts()
-
-    def bc(za, zb):
-        counts.add(np.iscomplexobj(za) or np.iscomplexobj(zb))
-        return np.array([za[0], za[1], za[2] - theta0, zb[0] - tip[0] / L, zb[1] - tip[1] / L,
-                         zb[3] * L / EI])
-
-    Z = np.column_stack((states[0] / L, states[1] / L, states[2], states[3],
-                         np.broadcast_to(force, (s.size, 2))))
-    sol = multiple_shooting(rhs, bc, s / L, Z, segments=segments, tol=tol, maxiter=maxiter)
-    y = sol.y
-    rod = Rod(s, y[:, 0] * L, y[:, 1] * L, y[:, 2], y[:, 3], y[0, 4:].copy())
-    x = np.array([y[0, 3], *y[0, 4:]])
-    result = _result("shoot_pinned_multiple", sol.newton, x[None], np.array([[states[3][0],
-                                                                               *force]]),
-                     Rod(*(np.asarray(v)[None] for v in (rod.s, rod.x, rod.y, rod.theta,
-                                                         rod.m, rod.force))), (), tol, counts)
-    _check_resolved(EI, L, result, segments)
-    return result
-
-
-class _Counts:
-    """Calls of the residual and of the Jacobian of multiple shooting, told apart by the
-    boundary conditions' arguments (complex in the Jacobian's complex steps: 12 per call)."""
-
-    def __init__(self):
-        self.nfev, self._complex = 0, 0
-
-    def add(self, complex_step):
-        if complex_step:
-            self._complex += 1
-        else:
-            self.nfev += 1
-
-    @property
-    def njev(self):
-        return self._complex // 12

@@ -1,13 +1,16 @@
 """The growing branch of a cantilever in closed form: a chart that holds every digit.
 
+(The module of the cantilever's chart; it is not called ``cantilever`` because
+:func:`mechnum.rods.cantilever` is the function that a reader calls.)
+
 A cantilever clamped along +x under a tip force ``n = R (cos psi, sin psi)`` has, among its
 equilibria, the one that grows continuously from the unloaded rod (mode 1, bending towards the
 force): the **growing branch**. This module evaluates it in Carlson's symmetric integrals, in a
 variable ``zeta`` in which every quantity is smooth and free of cancellation, from loads of
 ``1e-200`` (linear beam theory to rounding) to ``P L**2 / EI`` near ``1e5``; the study's formulas
-(:func:`mechnum.rods.clamped_pinned`) lose the small loads and the large ones. It serves
+(:func:`mechnum.rods.elliptic.clamped_pinned`) lose the small loads and the large ones. It serves
 :func:`mechnum.rods.cantilever`, the default starts of the shooting solvers
-(:func:`clamp_moments`, :func:`pinned_start`), :func:`mechnum.rods.k_rel_for_force`
+(:func:`closed_form`, :func:`pinned_start`), :func:`mechnum.rods.elliptic.k_rel_for_force`
 (:func:`growing_branch`) and the shapes of nearly unloaded rods (:func:`branch_shape`).
 """
 
@@ -324,28 +327,44 @@ def _rf_excess(a, b, v, w):
     eighth order in the deviations) gives the excess from the ``delta`` alone. Beyond, the
     plain difference loses at most ``eps / _SERIES`` of the excess.
     """
-    aa = np.abs(a)
     deltas = (-(v * a) ** 2, (v * b) ** 2, v * v * (b * b * w - a * a))
     mean = sum(deltas) / 3.0
     A = a * a + mean
+    if np.ndim(a) == np.ndim(v) == np.ndim(w) == 0:    # one rod on floats: the hot path
+        if a == 0.0:
+            return -1.0
+        X, Y = ((mean - delta) / A for delta in deltas[:2])
+        if max(abs(X), abs(Y), abs(X + Y)) > _SERIES:
+            return _rf_far(a, b, v, w)
+        return _rf_near(abs(a), mean, A, X, Y)
     with np.errstate(divide="ignore", invalid="ignore"):       # a = 0 is answered below
         X, Y = ((mean - delta) / A for delta in deltas[:2])
-        Z = -X - Y
-        E2, E3 = X * Y - Z * Z, X * Y * Z
-        series = (-E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0
-                  - 5.0 * E2 ** 3 / 208.0 + 3.0 * E3 * E3 / 104.0 + E2 * E2 * E3 / 16.0)
-        root = np.sqrt(A)
-        near = (aa * series - mean / (aa + root)) / root  # |a| A**-1/2 (1 + series) - 1
-        k2 = a * a + (b * v) ** 2
-        far = aa * elliprf(w * a * a, k2, w * k2) - 1.0
-    out = np.where(np.maximum(np.maximum(np.abs(X), np.abs(Y)), np.abs(Z)) > _SERIES, far, near)
+        out = np.where(np.maximum(np.maximum(np.abs(X), np.abs(Y)), np.abs(X + Y)) > _SERIES,
+                       _rf_far(a, b, v, w), _rf_near(np.abs(a), mean, A, X, Y))
     return np.where(a == 0, -1.0, out)
+
+
+def _rf_far(a, b, v, w):
+    """The excess of :func:`_rf_excess` as a plain difference."""
+    k2 = a * a + (b * v) ** 2
+    return np.abs(a) * elliprf(w * a * a, k2, w * k2) - 1.0
+
+
+def _rf_near(aa, mean, A, X, Y):
+    """The excess of :func:`_rf_excess` from Carlson's series about ``A``."""
+    Z = -X - Y
+    E2, E3 = X * Y - Z * Z, X * Y * Z
+    series = (-E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0
+              - 5.0 * E2 ** 3 / 208.0 + 3.0 * E3 * E3 / 104.0 + E2 * E2 * E3 / 16.0)
+    root = np.sqrt(A)
+    return (aa * series - mean / (aa + root)) / root   # |a| A**-1/2 (1 + series) - 1
 
 
 class _Branch:
     """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and the
-    default start of :func:`mechnum.rods.shoot_pinned`: the force direction's ``a`` (signed as
-    ``n_y``) and ``b``, ``Lam = lambda L`` and ``(c, d) = (cos psi, sin psi)``.
+    default start of :func:`mechnum.rods.shooting.shoot_pinned`: the force direction's ``a``
+    (signed as ``n_y``) and ``b``, ``v``, ``s = sqrt(1 - v**2)``, ``Lam = lambda L`` and
+    ``(c, d) = (cos psi, sin psi)``.
 
     In the force's frame, the point at arc fraction ``sigma`` lies ``L (sigma c + along)``
     along the force and ``-2 sign(a) b L (v - eta) / Lam`` across it, with ``along = 2 (b
@@ -419,26 +438,6 @@ def _growing_tip(psi, Lam):
     return (*rod.tip(), rod.moment(rod.v))
 
 
-def clamp_moments(EI: float, L: float, forces: np.ndarray, theta0: float) -> np.ndarray:
-    """The clamp moments of the growing-branch cantilevers under ``forces``, shape (batch, 2),
-    clamped at the angle ``theta0`` (unchecked): the default start of
-    :func:`mechnum.rods.shoot_cantilever`.
-
-    Examples
-    --------
-    >>> forces = np.array([[0.0, 1.0], [-1.0, 0.0]])
-    >>> np.round(clamp_moments(1.0, 1.0, forces, 0.0), 5).tolist()
-    [0.94357, 0.0]
-    """
-    c, s = math.cos(theta0), math.sin(theta0)
-    m0 = np.zeros(len(forces))
-    for i, (nx, ny) in enumerate(forces.tolist()):
-        local = (c * nx + s * ny, c * ny - s * nx)
-        if local[1] != 0:
-            m0[i] = closed_form(EI, L, local).m[0]
-    return m0
-
-
 @functools.cache
 def _transverse_table():
     """``(y(L) / L, P L**2 / EI)`` of cantilevers under a transverse tip load ``P`` at
@@ -449,7 +448,7 @@ def _transverse_table():
 
 def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.ndarray:
     """The closed-form cantilevers through points: the default start of
-    :func:`mechnum.rods.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3), unchecked.
+    :func:`mechnum.rods.shooting.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3), unchecked.
 
     A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
     branch) under its tip force. Damped Newton drives the closed form's tip to the point in
@@ -477,8 +476,8 @@ def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.n
     for i, (px, py) in enumerate(points.tolist()):
         X, Y = (c * px + s * py) / L, (c * py - s * px) / L   # the point in the clamp's frame
 
-        def fun(n):      # n of shape (2,), or (1, 2) in the line search
-            return np.reshape(np.subtract(growing(n.ravel())[:2], (X, Y)), n.shape)
+        def fun(n, point=(X, Y)):      # n of shape (2,), or (1, 2) in the line search
+            return np.reshape(np.subtract(growing(n.ravel())[:2], point), n.shape)
 
         n = np.array([0.0, math.copysign(np.interp(abs(Y), deflections, loads), Y)])
         try:
