@@ -82,7 +82,7 @@ class StudyShooting:
     max_residual: float
 
     @property
-    def iterations(self):
+    def iterations(self) -> int:
         """Newton steps taken."""
         return len(self.history) - 1
 

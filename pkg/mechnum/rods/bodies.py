@@ -21,6 +21,8 @@ with ``O(N)`` work per rod (banded solves, and LAPACK's bisection for the negati
 of each tridiagonal block) and a dense eigenproblem of size ``k + c`` only.
 """
 
+from collections.abc import Sequence
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -28,7 +30,8 @@ from mechnum import _validate
 from mechnum.rods.stability import RodBlock, block_terms, symmetric
 
 
-def constrained_index_with_body(blocks, dense: ArrayLike, constraints: ArrayLike) -> int:
+def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
+                                constraints: ArrayLike) -> int:
     """The index of rods' Hessians and a body's dense Hessian on the constraints' null space.
 
     Parameters

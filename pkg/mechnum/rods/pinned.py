@@ -11,6 +11,7 @@ use). :func:`pinned_equilibria` samples the chart and polishes the candidates;
 spurious: a solution of the discrete equations near which no equilibrium lies.
 """
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -94,8 +95,9 @@ def _candidates(tips, point):
     return np.nonzero((dist <= change) | (dist <= nearest))
 
 
-def pinned_equilibria(EI: float, L: float, tip: ArrayLike, modes=(1, 2, 3), *, n_psi: int = 120,
-                      n_k: int = 60, tol: float = 1e-13, chart: str = "k_rel") -> np.ndarray:
+def pinned_equilibria(EI: float, L: float, tip: ArrayLike, modes: Iterable[int] = (1, 2, 3), *,
+                      n_psi: int = 120, n_k: int = 60, tol: float = 1e-13,
+                      chart: str = "k_rel") -> np.ndarray:
     """Every clamped-pinned equilibrium of the given modes whose tip is at ``tip``.
 
     For each mode the regular chart ``(psi, t)`` (:mod:`mechnum.rods.regular`) is sampled on a

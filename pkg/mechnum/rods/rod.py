@@ -16,7 +16,9 @@ side, their RK4 stages need only the stages of ``theta``.
 
 import cmath
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from types import ModuleType
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -125,7 +127,7 @@ def batch_shape(**shapes: tuple) -> tuple:
         raise ValueError(f"the batch shapes of {named} do not broadcast to one shape") from None
 
 
-def equations(EI: ArrayLike, force: ArrayLike):
+def equations(EI: ArrayLike, force: ArrayLike) -> Callable[[float, np.ndarray], np.ndarray]:
     """The rod's equations (the study's (78)) as ``f(s, state)``, for any ODE or BVP solver.
 
     ``state = (x, y, theta, m)`` along the **first** axis (shape ``(4,)`` for one point,
@@ -167,7 +169,8 @@ def equations(EI: ArrayLike, force: ArrayLike):
     return f
 
 
-def sweep(EI, L, m0, nx, ny, theta0, nodes, *, trig=math, keep=True):
+def sweep(EI, L, m0, nx, ny, theta0, nodes: int, *, trig: ModuleType = math,
+          keep: bool = True) -> tuple[list, list, list, list]:
     """The RK4 sweep of rods clamped at the origin, unchecked: lists of ``x, y, theta, m``.
 
     The stages are those of :func:`mechnum.ode.rk4` for ``(x / L, y / L, theta, m)`` in
@@ -204,7 +207,8 @@ def sweep(EI, L, m0, nx, ny, theta0, nodes, *, trig=math, keep=True):
     return [v * L for v in xs], [v * L for v in ys], ts, ms
 
 
-def tip_states(EI, L, m0, force, theta0, nodes, columns=(0, 1, 2)):
+def tip_states(EI: float, L: float, m0: np.ndarray, force: np.ndarray, theta0: float, nodes: int,
+               columns: Sequence[int] = (0, 1, 2)) -> tuple[np.ndarray, np.ndarray | None]:
     """Tip states and their complex-step derivatives, unchecked (for shooting's Newton).
 
     ``EI``, ``L``, ``theta0`` are floats, ``m0`` of shape ``(batch,)`` and ``force`` of shape

@@ -76,9 +76,9 @@ class Shooting(Result):
 
     Attributes
     ----------
-    x : ndarray, shape (..., k)
-        The unknowns at the solution: ``m0`` for a cantilever (``k = 1``), ``(m0, n_x, n_y)``
-        for a pinned rod (``k = 3``).
+    x : ndarray, shape (...) or (..., 3)
+        The unknowns at the solution: ``m0`` for a cantilever, ``(m0, n_x, n_y)`` for a pinned
+        rod (one per rod of a batch).
     status, message, iterations, nfev, njev
         As in :class:`mechnum.results.Result` (one status and iteration count per rod of a
         batch; ``nfev`` and ``njev`` count RK4 sweeps of the residual and of the Jacobian).
@@ -86,7 +86,7 @@ class Shooting(Result):
         The rod at the solution.
     newton : NewtonResult or BatchNewtonResult
         The iteration on the requested grid.
-    start : ndarray, shape (..., k)
+    start : ndarray, shape (...) or (..., 3)
         The unknowns that iteration started from.
     """
 
@@ -150,11 +150,12 @@ def _reshaped(rod, batch):
                  for name in ("s", "x", "y", "theta", "m", "force")))
 
 
-def shooting_result(what: str, res, p: np.ndarray, start: np.ndarray, rod: Rod,
-                    batch: tuple, tol: float, counts) -> Shooting:
+def shooting_result(what: str, res: object, p: np.ndarray, start: np.ndarray, rod: Rod,
+                    batch: tuple, tol: float, counts: object) -> Shooting:
     """The :class:`Shooting` of a converged Newton ``res`` (one system or a batch), for the
-    solvers built on shooting: ``p`` and ``start`` of shape ``(n, k)``, ``rod`` with a leading
-    axis of ``n`` rods, reshaped to ``batch``; ``counts`` has ``nfev`` and ``njev``.
+    solvers built on shooting: ``p`` and ``start`` of shape ``(n,)`` or ``(n, k)``, ``rod``
+    with a leading axis of ``n`` rods, reshaped to ``batch``; ``counts`` has ``nfev`` and
+    ``njev``.
 
     Examples
     --------
@@ -162,7 +163,7 @@ def shooting_result(what: str, res, p: np.ndarray, start: np.ndarray, rod: Rod,
     >>> again = shooting_result("again", res.newton, res.x, res.start, res.rod, (2,), 1e-13,
     ...                         res)
     >>> again.status.tolist(), again.x.shape
-    (['converged', 'converged'], (2, 1))
+    (['converged', 'converged'], (2,))
     """
     status, iterations = getattr(res, "status", "converged"), np.reshape(res.iterations, batch)
     most = int(np.max(iterations, initial=0))
@@ -359,8 +360,8 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
         x0 = _bracket(lambda m0: float(fun(np.array([[m0]]))[0, 0]), float(x0[0, 0]), scale)
         res, p, tol = _solve(fun, jac, x0, tol, floor, maxiter, "shoot_cantilever")
     rod = integrate(EI, L, p[:, 0], batch, theta0=theta0, nodes=nodes)
-    result = shooting_result("shoot_cantilever", res, p, start[:, None], rod, force.shape[:-1], tol,
-                     tips)
+    result = shooting_result("shoot_cantilever", res, p[:, 0], start, rod, force.shape[:-1],
+                             tol, tips)
     if exact is None:
         check_resolved(EI, L, result)
         return result

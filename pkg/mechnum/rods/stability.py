@@ -31,6 +31,7 @@ optimisation (Nocedal and Wright, *Numerical Optimization*, 2006, Theorem 12.6);
 Maddocks, *Stability and folds*, Arch. Rational Mech. Anal. 99 (1987) 301-328.
 """
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,12 +63,12 @@ class TwoResolutions:
     """
 
     @property
-    def stable(self):
+    def stable(self) -> np.ndarray:
         """ndarray of bool, shape (n,): stable at both resolutions."""
         return (self.index == 0).all(axis=1)
 
     @property
-    def settled(self):
+    def settled(self) -> np.ndarray:
         """ndarray of bool, shape (n,): both resolutions give the same index."""
         return self.index[:, 0] == self.index[:, 1]
 
@@ -95,7 +96,7 @@ class RodBlock:
     h: float
 
     @property
-    def hessian(self):
+    def hessian(self) -> np.ndarray:
         """ndarray, shape (N, N): the Hessian as a dense matrix."""
         return (np.diag(self.diagonal) + np.diag(self.off_diagonal, 1)
                 + np.diag(self.off_diagonal, -1))
@@ -205,7 +206,7 @@ def constrained_eigenvalues(hessian: ArrayLike, constraints: ArrayLike) -> np.nd
     return np.linalg.eigvalsh(Z.T @ (0.5 * (hessian + hessian.T)) @ Z)
 
 
-def block_terms(blocks, constraints: np.ndarray) -> tuple[int, np.ndarray]:
+def block_terms(blocks: Sequence[RodBlock], constraints: np.ndarray) -> tuple[int, np.ndarray]:
     """The rods' part of an index count: ``neg(H_r)`` and ``G_r H_r^-1 G_r^T``.
 
     ``blocks`` are :class:`RodBlock` s whose angles are the first columns of ``constraints``
@@ -255,7 +256,7 @@ def block_terms(blocks, constraints: np.ndarray) -> tuple[int, np.ndarray]:
     return negative, S
 
 
-def constrained_index(blocks, constraints: ArrayLike) -> int:
+def constrained_index(blocks: Sequence[RodBlock], constraints: ArrayLike) -> int:
     """The index (negative eigenvalues on the constraints' null space) of rods' Hessians.
 
     For a Hessian ``H`` made of the tridiagonal blocks of :func:`rod_block` (the rods'
