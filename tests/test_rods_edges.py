@@ -157,7 +157,7 @@ def test_overflowing_sweep_is_a_named_error():
     (np.nan, 0.5, np.sqrt(0.75), "u must be finite"),
     (1.0, 0.8, 0.5, "complement"),
     (1.0, 1.2, 0.0, "|k| <= 1"),
-    (1.0, 0.6, -0.8, "complement >= 0"),
+    (1.0, 0.6, -0.8, "0 <= complement <= 1"),
 ])
 def test_amplitude_checks_its_input(u, k, complement, match):
     with pytest.raises(ValueError, match=match):

@@ -66,7 +66,7 @@ from mechnum.rods.elliptic import (
 from mechnum.rods.loading import DeadLoad
 from mechnum.rods.multiple import shoot_pinned_multiple
 from mechnum.rods.pinned import Classification, classify, pinned_equilibria
-from mechnum.rods.rod import MAX_NODES, Rod, equations, integrate, tip_jacobian
+from mechnum.rods.rod import MAX_NODES, Rod, equations, integrate, rod_scales, tip_jacobian
 from mechnum.rods.shooting import (
     SHOOTING_TOL,
     Shooting,
@@ -136,7 +136,7 @@ def cantilever(EI: float, L: float, force: ArrayLike, method: str = "elliptic", 
     >>> bool(abs(tip[1] / (1e-12 / 3) - 1) < 1e-12)
     True
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     force = _validate.array(force, "force", shape=(2,))
     method = _validate.choice(method, METHODS, "method")
     nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)

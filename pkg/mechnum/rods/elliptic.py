@@ -23,7 +23,7 @@ from mechnum.errors import MechnumError
 from mechnum.rods import regular
 from mechnum.rods.growing import growing_branch
 from mechnum.rods.jacobi import amplitude
-from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape
+from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape, rod_scales
 
 TWO_PI = 2.0 * np.pi
 _EPS = np.finfo(float).eps
@@ -168,7 +168,7 @@ def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike
     >>> bool(np.isfinite(clamped_pinned(1.0, 1.0, 2.0, 1 - 1e-16).tip).all())
     True
     """
-    EI, L, mode = _validate.positive(EI, "EI"), _validate.positive(L, "L"), as_modes(mode)
+    (EI, L), mode = rod_scales(EI, L), as_modes(mode)
     psi, k_rel = _validate.array(psi, "psi"), _validate.array(k_rel, "k_rel")
     batch_shape(EI=EI.shape, L=L.shape, psi=psi.shape, k_rel=k_rel.shape, mode=mode.shape)
     k, k_min = elliptic_k(psi, k_rel)
@@ -247,7 +247,7 @@ def k_rel_for_force(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, R: ArrayLike,
     >>> round(float(rod.R), 12), np.round(rod.tip, 5).tolist()
     (1.0, [0.94357, 0.30172])
     """
-    EI, L, R = (_validate.positive(v, name) for v, name in ((EI, "EI"), (L, "L"), (R, "R")))
+    (EI, L), R = rod_scales(EI, L), _validate.positive(R, "R")
     psi, mode = _angles(psi), as_modes(mode)
     tol = _validate.tolerance(tol)
     maxiter = _validate.maxiter(maxiter, maximum=10_000)
@@ -319,7 +319,7 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
     >>> round(float(psi), 12), round(float(k_rel), 12), int(mode)
     (2.0, -0.4, 2)
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
+    EI, L = rod_scales(EI, L)
     force, m0 = as_vectors(force, "force", 2), _validate.array(clamp_moment, "clamp_moment")
     batch_shape(EI=EI.shape, L=L.shape, clamp_moment=m0.shape, force=force.shape[:-1])
     R = np.hypot(force[..., 0], force[..., 1])

@@ -66,8 +66,8 @@ def amplitude(u: ArrayLike, k: ArrayLike, complement: ArrayLike) -> np.ndarray:
     """
     u, k, kp = (_validate.array(v, name) for v, name in ((u, "u"), (k, "k"),
                                                          (complement, "complement")))
-    if np.any(np.abs(k) > 1) or np.any(kp < 0):
-        raise ValueError(f"amplitude needs |k| <= 1 and complement >= 0, got k = "
+    if np.any(np.abs(k) > 1) or np.any((kp < 0) | (kp > 1)):
+        raise ValueError(f"amplitude needs |k| <= 1 and 0 <= complement <= 1, got k = "
                          f"{_validate._shown(k)}, complement = {_validate._shown(kp)}")
     if np.any(np.abs((k * k - 1.0) + kp * kp) > CONSISTENCY):
         raise ValueError(f"k and complement must satisfy k**2 + complement**2 = 1, got k = "

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.rods.elliptic import clamped_pinned
-from mechnum.rods.rod import MAX_NODES, Rod, integrate, tip_jacobian
+from mechnum.rods.rod import MAX_NODES, Rod, integrate, rod_scales, tip_jacobian
 from mechnum.rods.stability import constrained_index, rod_block
 
 
@@ -43,8 +43,7 @@ class DeadLoad:
     """
 
     def __init__(self, EI: float, L: float, psi: float, segments: int = 80):
-        self.EI = _validate.scalar(EI, "EI", positive=True)
-        self.L = _validate.scalar(L, "L", positive=True)
+        self.EI, self.L = rod_scales(EI, L, scalar=True)
         psi = _validate.scalar(psi, "psi")
         self.psi, self.direction = psi, np.array([np.cos(psi), np.sin(psi)])
         self.segments = _validate.maxiter(segments, "segments", minimum=2,

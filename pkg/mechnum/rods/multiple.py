@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.ode import multiple_shooting
-from mechnum.rods.rod import Rod
+from mechnum.rods.rod import Rod, rod_scales
 from mechnum.rods.shooting import MAX_ITER, Shooting, check_resolved, shooting_result
 
 
@@ -76,7 +76,7 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, se
     >>> np.round(res.rod.force, 3).tolist(), round(float(res.rod.clamp_moment), 3)
     ([-19.589, -7.054], -3.684)
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     tip = _validate.array(tip, "tip", shape=(2,))
     if np.hypot(*tip) > L:
         raise ValueError(f"the pinned point {tip!r} is farther than L = {L} from the clamp")

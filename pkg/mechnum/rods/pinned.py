@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from mechnum import _validate, newton
 from mechnum.rods import regular
 from mechnum.rods.elliptic import TWO_PI
-from mechnum.rods.rod import Rod, as_modes
+from mechnum.rods.rod import Rod, as_modes, rod_scales
 
 MAX_GRID = 100_000
 """Most grid cells per mode and sign of ``t`` (``n_psi * n_k``): a bound on the work and the
@@ -149,7 +149,7 @@ def pinned_equilibria(EI: float, L: float, tip: ArrayLike, modes: Iterable[int] 
     >>> sols[:, 2].tolist(), np.round(sols[1:3, :2], 4).tolist()
     ([1.0, 2.0, 2.0, 2.0, 2.0], [[3.4872, -0.3223], [3.0352, 0.4212]])
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     tip = _validate.array(tip, "tip", shape=(2,))
     if np.hypot(*tip) >= L:
         raise ValueError(f"tip must be one point closer than L = {L} to the clamp, got {tip!r}")
@@ -262,7 +262,7 @@ def classify(EI: float, L: float, rod: Rod, *, tol: float = RESOLVED) -> Classif
     >>> print(classify(1.0, 1.0, shot))
     mode 2, k_rel +0.421, R 23.691 N
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     tol = _validate.tolerance(tol)
     if not isinstance(rod, Rod) or np.ndim(rod.x) != 1 or len(rod.x) < 2:
         raise ValueError(f"rod must be one Rod of at least 2 nodes, got {type(rod).__name__}")

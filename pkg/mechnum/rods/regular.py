@@ -49,7 +49,7 @@ from scipy.special import elliprd, elliprf
 from mechnum import _validate
 from mechnum.rods.growing import branch_shape, chart_tip
 from mechnum.rods.jacobi import amplitude
-from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape
+from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape, rod_scales
 
 TWO_PI = 2.0 * np.pi
 # Largest q = t**2 / (1 - t**2): 1 - k**2 = b**2 exp(-q) must stay a normal double (exp(-708)
@@ -95,7 +95,7 @@ def _check(psi, t):
 
 def _inputs(EI, L, psi, t, mode):
     """The checked inputs of :func:`clamped_pinned_regular` and :func:`shape`."""
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
+    EI, L = rod_scales(EI, L)
     psi, t = _check(psi, t)
     mode = as_modes(mode)
     batch_shape(EI=EI.shape, L=L.shape, psi=psi.shape, t=t.shape, mode=mode.shape)

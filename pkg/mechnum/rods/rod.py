@@ -32,6 +32,12 @@ ANGLE_MAX = 1e12
 """Largest tangent angle (rad) a sweep may reach: beyond it the angle's rounding (``1e-4`` rad)
 leaves its cosine with fewer than four digits, and the rod is noise (a force far too large for
 the step)."""
+SCALES = (1e-100, 1e100)
+"""The range of ``EI`` (N m^2) and ``L`` (m) that the rods' formulas hold (their squares and
+cubes finite), far beyond any physical rod."""
+MAX_MODE = 10_000
+"""The largest buckling mode accepted (its force, ``(mode pi)**2 EI / L**2``, stays finite and
+its ``2 mode K`` half-waves keep their digits)."""
 MAX_NODES = 100_000
 """Most nodes of a rod (a bound on the work: RK4's error on ``1e5`` nodes is below rounding for
 every load that single shooting resolves)."""
@@ -90,6 +96,32 @@ def as_vectors(value: ArrayLike, name: str, size: int) -> np.ndarray:
     return out
 
 
+def rod_scales(EI: ArrayLike, L: ArrayLike, *, scalar: bool = False) -> tuple:
+    """``EI`` and ``L`` checked: finite, positive and within :data:`SCALES`, where their squares
+    and cubes stay finite (floats with ``scalar``, else float arrays).
+
+    Examples
+    --------
+    >>> rod_scales(2.0, 0.5, scalar=True)
+    (2.0, 0.5)
+    >>> rod_scales(1.0, 1e300)
+    Traceback (most recent call last):
+    ...
+    ValueError: L must lie within [1e-100, 1e+100], got 1e+300
+    """
+    check = _validate.scalar if scalar else _validate.array
+    out = []
+    for value, name in ((EI, "EI"), (L, "L")):
+        value = check(value, name)
+        if not np.all(value > 0):
+            raise ValueError(f"{name} must be positive, got {_validate._shown(value)}")
+        if not np.all((value >= SCALES[0]) & (value <= SCALES[1])):
+            raise ValueError(f"{name} must lie within [{SCALES[0]:g}, {SCALES[1]:g}], got "
+                             f"{_validate._shown(value)}")
+        out.append(value)
+    return tuple(out)
+
+
 def as_modes(mode: ArrayLike) -> np.ndarray:
     """``mode`` as a float array of integers ``>= 1`` (buckling modes), checked.
 
@@ -105,6 +137,8 @@ def as_modes(mode: ArrayLike) -> np.ndarray:
     mode = _validate.array(mode, "mode")
     if np.any(mode < 1) or np.any(mode != np.round(mode)):
         raise ValueError(f"mode must be an integer >= 1, got {_validate._shown(mode)}")
+    if np.any(mode > MAX_MODE):
+        raise ValueError(f"mode must be at most {MAX_MODE}, got {_validate._shown(mode)}")
     return mode
 
 
@@ -158,7 +192,7 @@ def equations(EI: ArrayLike, force: ArrayLike) -> Callable[[float, np.ndarray], 
     >>> f(0.0, np.array([0.0, 0.0, 0.0, 1.0])).tolist()
     [1.0, 0.0, 0.5, -1.0]
     """
-    EI = _validate.positive(EI, "EI")
+    EI = rod_scales(EI, 1.0)[0]
     nx, ny = _validate.array(force, "force", shape=(2,))
 
     def f(s, state):
@@ -260,7 +294,7 @@ def tip_states(EI: float, L: float, m0: np.ndarray, force: np.ndarray, theta0: f
 
 def _inputs(EI, L, m0, force, theta0, origin, nodes):
     """Check the inputs of a sweep and broadcast them to one batch shape."""
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
+    EI, L = rod_scales(EI, L)
     m0, theta0 = _validate.array(m0, "m0"), _validate.array(theta0, "theta0")
     force, origin = as_vectors(force, "force", 2), as_vectors(origin, "origin", 2)
     nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)

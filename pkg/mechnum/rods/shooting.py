@@ -35,7 +35,7 @@ from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.results import Result
 from mechnum.rods.growing import closed_form, pinned_start
 from mechnum.rods.pinned import RESOLVED, classify
-from mechnum.rods.rod import MAX_NODES, Rod, as_vectors, integrate, tip_states
+from mechnum.rods.rod import MAX_NODES, Rod, as_vectors, integrate, rod_scales, tip_states
 
 _EPS = np.finfo(float).eps
 SHOOTING_TOL = 1e-12
@@ -257,7 +257,7 @@ def _bracket(g, x, width):
 
 def _controls(EI, L, theta0, nodes, tol, maxiter, damping):
     """The checked common arguments of the single-shooting solvers."""
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     return (EI, L, _validate.scalar(theta0, "theta0"),
             _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES),
             _validate.tolerance(tol), _validate.maxiter(maxiter, maximum=MAX_ITER),

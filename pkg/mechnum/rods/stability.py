@@ -40,6 +40,7 @@ from scipy.linalg import LinAlgError, eigvalsh_tridiagonal, null_space, solve_ba
 
 from mechnum import _validate
 from mechnum.errors import SingularJacobianError
+from mechnum.rods.rod import rod_scales
 
 SYMMETRY_TOL = 1e-10
 """Largest asymmetry ``|H - H^T|`` accepted, relative to ``H``'s largest entry: a Hessian
@@ -130,7 +131,7 @@ def rod_block(EI: float, L: float, theta: ArrayLike, force: ArrayLike) -> RodBlo
            [ 0., -1.,  2., -1.],
            [ 0.,  0., -1.,  1.]])
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     theta = _validate.array(theta, "theta", ndim=1)
     force = _validate.array(force, "force", shape=(2,))
     segments = _validate.maxiter(len(theta), "the number of segments", minimum=2)
