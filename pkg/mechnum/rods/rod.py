@@ -107,7 +107,7 @@ def rod_scales(EI: ArrayLike, L: ArrayLike, *, scalar: bool = False) -> tuple:
     >>> rod_scales(1.0, 1e300)
     Traceback (most recent call last):
     ...
-    ValueError: L must lie within [1e-100, 1e+100], got 1e+300
+    ValueError: L must lie within [1e-100, 1e+100], got 1.e+300
     """
     check = _validate.scalar if scalar else _validate.array
     out = []
