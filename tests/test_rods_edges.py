@@ -104,6 +104,16 @@ def test_no_elliptic_parameters_outside_the_family(m0, force):
         rods.elliptic_parameters(1.0, 1.0, m0, force)
 
 
+def test_a_batch_may_ask_for_nan_outside_the_family():
+    rod = rods.clamped_pinned(1.0, 1.0, 2.0, -0.4, 2)
+    psi, k_rel, mode, phi2 = rods.elliptic_parameters(
+        1.0, 1.0, [float(rod.clamp_moment), 5.0], [rod.force, [1.0, 1e-300]], outside="nan")
+    assert_allclose([k_rel[0], mode[0]], [-0.4, 2.0], rtol=1e-12)
+    assert np.isnan([k_rel[1], mode[1], phi2[1]]).all() and np.isfinite(psi).all()
+    with pytest.raises(ValueError, match="outside must be one of"):
+        rods.elliptic_parameters(1.0, 1.0, 5.0, [1.0, 1.0], outside="ignore")
+
+
 # --- D11: the unloaded rod --------------------------------------------------------------------
 
 @pytest.mark.parametrize("t", [1e-6, 1e-10, 1e-12, 1e-150])

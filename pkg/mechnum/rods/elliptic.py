@@ -275,7 +275,7 @@ def k_rel_for_force(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, R: ArrayLike,
 
 
 def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
-                        force: ArrayLike) -> tuple[np.ndarray, ...]:
+                        force: ArrayLike, *, outside: str = "raise") -> tuple[np.ndarray, ...]:
     """``(psi, k_rel, mode, phi2)`` of the rod that starts from a clamp moment and a tip force.
 
     The inverse of :func:`clamped_pinned`, for identifying a rod found by shooting (local
@@ -297,6 +297,9 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
         ``m(0)`` (N m).
     force : array_like, shape (..., 2)
         The tip force (N), not zero and not along the clamped tangent.
+    outside : {"raise", "nan"}, optional
+        What a rod outside the family gets (its moment never vanishes): an error, or (for a
+        batch whose caller masks such rods) NaN for its ``k_rel``, ``mode`` and ``phi2``.
 
     Returns
     -------
@@ -308,9 +311,9 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
         If an input is malformed, the force is zero, or it points along the clamped tangent
         (pure tension: the chart has no rod there).
     NotAnElasticaError
-        If the moment never vanishes along the rod (``|k| >= 1``): no clamped-pinned rod, of
-        any length, starts so (for a rod found by shooting: a spurious solution of the
-        discrete equations).
+        If the moment never vanishes along the rod (``|k| >= 1``) and ``outside="raise"``: no
+        clamped-pinned rod, of any length, starts so (for a rod found by shooting: a spurious
+        solution of the discrete equations).
 
     Examples
     --------
@@ -320,6 +323,7 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
     (2.0, -0.4, 2)
     """
     EI, L = rod_scales(EI, L)
+    outside = _validate.choice(outside, ("raise", "nan"), "outside")
     force, m0 = as_vectors(force, "force", 2), _validate.array(clamp_moment, "clamp_moment")
     batch_shape(EI=EI.shape, L=L.shape, clamp_moment=m0.shape, force=force.shape[:-1])
     R = np.hypot(force[..., 0], force[..., 1])
@@ -333,7 +337,9 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
     a, b = np.cos(0.5 * psi), np.sin(0.5 * psi)
     c = m0 / (2.0 * EI * lam)                          # k cos(phi1)
     v = np.abs(c) / b
-    if np.any(v >= 1):
+    if outside == "nan":
+        v = np.where(v < 1, v, np.nan)
+    elif np.any(v >= 1):
         raise NotAnElasticaError(
             f"m(0) = {_validate._shown(m0)} and force {_validate._shown(force)} start no "
             f"clamped-pinned rod: |k| = sqrt(cos(psi/2)**2 + (m(0) / (2 EI lambda))**2) >= 1, "
@@ -345,4 +351,9 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
     F1 = a * np.sign(k) / np.abs(k) * elliprf(c * c / m, b * b, 1.0)   # DLMF 19.25.5
     u = F1 + lam * L
     mode = np.round(0.5 * (u / elliprf(0.0, p, 1.0) + 1.0))
-    return psi, k_rel, mode, amplitude(u, np.sqrt(m), np.sqrt(p))
+    inside = np.isfinite(v)
+    phi2 = np.full(np.shape(u), np.nan)
+    phi2[inside] = amplitude(np.broadcast_to(u, phi2.shape)[inside],
+                             np.broadcast_to(np.sqrt(m), phi2.shape)[inside],
+                             np.broadcast_to(np.sqrt(p), phi2.shape)[inside])
+    return psi, k_rel, mode, phi2[()]
