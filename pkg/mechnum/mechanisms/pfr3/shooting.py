@@ -241,7 +241,7 @@ def chart_from_clamps(mech, clamp_moments, forces):
     c, s = np.cos(mech.clamp_angles), np.sin(mech.clamp_angles)
     local = np.stack((c * forces[..., 0] + s * forces[..., 1],
                       -s * forces[..., 0] + c * forces[..., 1]), axis=-1)
-    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
+    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local, outside="nan")
     inside = (k_rel != 0) & (np.abs(k_rel) < 1)      # a rod straight to rounding has no chart
     z = np.full(psi.shape[:-1] + (6,), np.nan)
     z[..., 0::2] = psi

@@ -103,7 +103,7 @@ def _shooting_path(mech, nodes, x, converged, known, unknown):
     c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
     local = np.stack((c[..., 0] * n[..., 0] + s[..., 0] * n[..., 1],
                       -s[..., 0] * n[..., 0] + c[..., 0] * n[..., 1]), axis=-1)
-    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
+    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local, outside="nan")
     chart = _chart(psi, k_rel)
     nan = np.where(ok, 1.0, np.nan)
     return Path(theta * nan[:, None], P * nan[:, None], chart * nan[:, None],
