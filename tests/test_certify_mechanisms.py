@@ -66,9 +66,6 @@ def test_chapter3_pinned_rod_is_certified_complete(pinned):
     assert pinned.stable == [None] * 9
 
 
-@pytest.mark.xfail(strict=True, reason="pinned_equilibria's sampling misses the looped rods "
-                   "(1 - |k_rel| below its grid): the 'rods' branch fixes the sampling; "
-                   "expected to pass after that merge if it finds all nine")
 def test_pinned_sampling_equals_certified(pinned):
     sampled = rods.pinned_equilibria(1.0, 1.0, [0.8, 0.1], modes=(1, 2, 3))
     assert len(sampled) == pinned.count
