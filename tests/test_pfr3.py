@@ -47,7 +47,7 @@ def test_full_jacobian_is_the_derivative_of_the_nine_equations(table8):
 @pytest.mark.parametrize("unknown", ["pose", "lambdas"])
 @pytest.mark.parametrize("rigid_end", [0.0, shooting.STUDY_RIGID_END])
 def test_shooting_jacobian_is_the_derivative_of_109(table8, unknown, rigid_end):
-    fun, jac, _ = shooting._system(MECH, 101, unknown, rigid_end)
+    fun, jac, _ = shooting.shooting_system(MECH, 101, unknown, rigid_end)
     printed = table8.chart[table8.buildable]
     X = pfr3.shooting_guess(MECH, LAMBDAS, printed, unknown=unknown) + 0.01
     known = table8.pose[table8.buildable] if unknown == "lambdas" else np.zeros((2, 3))
@@ -110,7 +110,7 @@ def test_recovered_inputs_of_table8():
 def _discrete_lagrangian(mech, z, segments):
     """The discretised Lagrangian of one equilibrium as a function of (angles, P, phi), with
     the multipliers (the rods' tip forces) and clamps of the equilibrium."""
-    tip, force, _, _ = model.rods(mech, LAMBDAS, z, jacobian=False)
+    force = model.rods(mech, LAMBDAS, z, jacobian=False)[1]
     clamps, h, EI = model.clamps(mech, LAMBDAS), mech.L / segments, mech.EI
 
     def L(x):
@@ -130,7 +130,7 @@ def _discrete_lagrangian(mech, z, segments):
 
 def test_the_second_variation_is_the_hessian_of_the_lagrangian(table8):
     z, segments = table8.chart[0], 5
-    blocks, dense, G = equilibria._blocks(MECH, LAMBDAS, z, np.ones(3), segments)
+    blocks, dense, _ = pfr3.second_variation(MECH, LAMBDAS, z, segments=segments)
     n = 3 * segments + 3
     H = np.zeros((n, n))
     for i, b in enumerate(blocks):
@@ -149,14 +149,13 @@ def test_stability_agrees_with_dense_eigenvalues():
     eq = pfr3.forward_elliptic(MECH, LAMBDAS, (1, 2, 1), n_starts=300, check=0, rng=2)
     for z, index in zip(eq.chart[:3], eq.index[:3]):
         N = 200
-        blocks, dense, G = equilibria._blocks(MECH, LAMBDAS, z, np.array([1.0, 2.0, 1.0]), N)
+        blocks, dense, G = pfr3.second_variation(MECH, LAMBDAS, z, (1, 2, 1), segments=N)
         H = np.zeros((3 * N + 3, 3 * N + 3))
         for i, b in enumerate(blocks):
             H[i * N:(i + 1) * N, i * N:(i + 1) * N] = b.hessian
         H[-3:, -3:] = dense
         dense_index = int(np.sum(constrained_eigenvalues(H, G) < 0))
-        assert pfr3.stability(MECH, LAMBDAS, z, (1, 2, 1), segments=(N,)) == (
-            dense_index,)
+        assert pfr3.index(MECH, LAMBDAS, z, (1, 2, 1), segments=N) == dense_index
         assert dense_index >= 1                        # a mode-2 rod: unstable here
 
 
@@ -189,7 +188,7 @@ def test_inverse_map_and_singular_points(table8):
     grid = pfr3.inverse_map(MECH, x, x, table8.pose[k, 2], table8.pose[k], LAMBDAS,
                             table8.chart[k])
     assert grid.lambdas.shape == (13, 13, 3) and grid.converged.mean() > 0.3
-    points = pfr3.singular_points(x, x, grid.det_ik)
+    points = pfr3.singular_points(MECH, grid)
     assert points.shape[1] == 2
 
 
@@ -203,7 +202,7 @@ def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
     z, modes = shooting.chart_from_clamps(mech, start.clamp_moments[0], start.forces[0])
     centre = pfr3.inverse_path(mech, [pose, pose], start.lambdas[0], z, modes,
                                method="shooting")
-    edge = pfr3.workspace_edge(mech, pose, start.lambdas[0], z, modes, directions=3)
+    edge = pfr3.workspace(mech, pose, start.lambdas[0], z, modes, directions=3)
     assert edge.converged.all() and edge.pose.shape == (3, 3)
     radius = np.hypot(*(edge.pose[:, :2] - pose[:2]).T)
     assert np.allclose(radius, radius[0], atol=1e-3)      # the mechanism's threefold symmetry
@@ -211,10 +210,10 @@ def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
     assert (np.abs(edge.det_ik) < 0.05 * abs(centre.det_ik[-1])).all()
 
 
-@pytest.mark.parametrize("bad", [dict(directions=0), dict(step=-0.1), dict(levels=-1)])
+@pytest.mark.parametrize("bad", [{"directions": 0}, {"step": -0.1}, {"levels": -1}])
 def test_workspace_edge_rejects_bad_settings(bad):
     with pytest.raises(ValueError):
-        pfr3.workspace_edge(MECH, [0.0, 0.0, 0.0], LAMBDAS, np.full(6, 0.5), **bad)
+        pfr3.workspace(MECH, [0.0, 0.0, 0.0], LAMBDAS, np.full(6, 0.5), **bad)
 
 
 def test_draw_runs(table8):
@@ -223,7 +222,7 @@ def test_draw_runs(table8):
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots()
-    artists = pfr3.draw(ax, MECH, LAMBDAS, table8.chart[0])
+    artists = pfr3.draw(ax, MECH, table8.state(0))
     assert len(artists) >= 10
     plt.close(fig)
 

@@ -86,7 +86,7 @@ class Result:
     njev: int
 
     def __post_init__(self):
-        unknown = set(np.atleast_1d(self.status).tolist()) - set(STATUSES)
+        unknown = set(np.ravel(self.status).tolist()) - set(STATUSES)
         if unknown:
             raise ValueError(f"status must be one of {STATUSES}, not {sorted(unknown)}")
 

@@ -55,6 +55,9 @@ START_TABLE = np.linspace(0.0, 8.0, 61)
 """The values of ``lambda L`` at which the start's table of transversely loaded cantilevers is
 computed: ``P L**2 / EI`` up to 64, deflections up to ``0.93 L`` (a point beyond starts from
 the last)."""
+SHOOTING_TOL = 1e-12
+"""Newton's tolerance on a dimensionless shooting residual (positions over ``L``, forces over
+``EI / L**2``, moments over ``EI / L``): its round-off is ~1e-15, a margin of a thousand."""
 
 
 @dataclass(frozen=True)

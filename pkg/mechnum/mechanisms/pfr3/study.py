@@ -16,6 +16,7 @@ from scipy.optimize import least_squares
 
 from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
+from mechnum.mechanisms.thesis import EI
 from mechnum.rods import regular
 
 TABLE8_PUBLISHED = np.array([[5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952],
@@ -61,8 +62,8 @@ def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
     1.679
     """
     z = model.chart_from_thesis(solutions)
-    tip, force, _, _ = model.rods(mech, model._lambdas(lambdas), z, model._modes(modes),
-                                  jacobian=False)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    tip, force, _, _ = model.rods(mech, lambdas, z, modes, jacobian=False)
     sides = np.linalg.norm(np.roll(tip, -1, axis=-2) - tip, axis=-1) - mech.a
     r = tip - tip.mean(axis=-2, keepdims=True)
     moment = -model.cross(r, force).sum(axis=-1) + mech.moment
@@ -79,8 +80,8 @@ def orientation(mech, lambdas, z, modes=(1, 1, 1)):
     ...     TABLE8_PUBLISHED)).tolist()
     [1.0, 1.0]
     """
-    tip = model.rods(mech, model._lambdas(lambdas), np.asarray(z, float), model._modes(modes),
-                     jacobian=False)[0]
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    tip = model.rods(mech, lambdas, z, modes, jacobian=False)[0]
     return np.sign(model.cross(tip[..., 1, :] - tip[..., 0, :], tip[..., 2, :] - tip[..., 0, :]))
 
 
@@ -123,9 +124,9 @@ def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=
         fun, _ = model.forward_system(mech, np.zeros(3))
         return fun(model.chart_from_thesis(s)).ravel()
 
-    fit = least_squares(residuals, np.concatenate((start, [0.3, model.EI])),
-                        bounds=([-np.inf] * 3 + [1e-3, 1e-3 * model.EI], np.inf),
-                        x_scale=[1.0, 1.0, 1.0, 0.1, model.EI], xtol=1e-15, ftol=1e-15,
+    fit = least_squares(residuals, np.concatenate((start, [0.3, EI])),
+                        bounds=([-np.inf] * 3 + [1e-3, 1e-3 * EI], np.inf),
+                        x_scale=[1.0, 1.0, 1.0, 0.1, EI], xtol=1e-15, ftol=1e-15,
                         gtol=1e-15)
     return {"clamp_angles": fit.x[:3], "a": float(fit.x[3]), "EI": float(fit.x[4]),
             "residual": float(np.abs(fit.fun).max())}
@@ -138,8 +139,18 @@ def digit_matches(exact, printed, decimals=4):
     --------
     >>> digit_matches([5.005957, 2.69081], [5.0059, 2.6908])
     (2, 1)
+
+    Raises
+    ------
+    ValueError
+        If the two are not finite arrays of one shape, or ``decimals`` not an integer in
+        ``[0, 15]`` (a double holds no more).
     """
-    exact, printed = np.asarray(exact, float), np.asarray(printed, float)
+    exact, printed = _validate.array(exact, "exact"), _validate.array(printed, "printed")
+    if exact.shape != printed.shape:
+        raise ValueError(f"exact and printed must have one shape, got {exact.shape} and "
+                         f"{printed.shape}")
+    decimals = _validate.maxiter(decimals, "decimals", minimum=0, maximum=15)
     scale = 10.0 ** decimals
     truncated = np.trunc(exact * scale) / scale
     rounded = np.round(exact * scale) / scale
