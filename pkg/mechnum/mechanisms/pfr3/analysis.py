@@ -1,16 +1,19 @@
 """What an equilibrium of the 3PFR is like: its stability, its crossings, its strain, and an
 independent check.
 
-:func:`~mechnum.mechanisms.pfr3.stability` counts the negative eigenvalues of the second
+:func:`stability` counts the negative eigenvalues of the second
 variation (:func:`second_variation`: the rods and the platform under the constraints that pin
 them together) at two resolutions chosen by :func:`resolutions`, :func:`index` at one;
-:func:`~mechnum.mechanisms.pfr3.crossings` counts where the rods cross each other, themselves
-and the platform; :func:`~mechnum.mechanisms.pfr3.strain` gives the rods' largest bending strain;
-:func:`~mechnum.mechanisms.pfr3.verify` integrates each rod with scipy, independently of the
+:func:`crossings` counts where the rods cross each other, themselves
+and the platform; :func:`strain` gives the rods' largest bending strain;
+:func:`verify` integrates each rod with scipy, independently of the
 closed form.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.integrate import solve_ivp
 
 from mechnum import _validate
@@ -53,7 +56,8 @@ INFLECTION_FLOOR = 1e-9
 EQUILIBRIUM_TOL = 1e-2
 
 
-def second_variation(mech, lambdas, z, modes=(1, 1, 1), *, segments=SEGMENTS):
+def second_variation(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                     modes: ArrayLike = (1, 1, 1), *, segments: tuple = SEGMENTS):
     """The second variation of one equilibrium, discretised with ``segments`` per rod.
 
     Returns
@@ -97,7 +101,7 @@ def second_variation(mech, lambdas, z, modes=(1, 1, 1), *, segments=SEGMENTS):
     return blocks, dense, G
 
 
-def resolutions(mech, forces):
+def resolutions(mech: model.Mechanism, forces: ArrayLike):
     """Segments per rod ``(N, 2 N)`` for the second variation of an equilibrium whose rods
     carry ``forces`` (3, 2): ``N >= SEGMENTS`` and ``lambda h <= 1 / SEGMENTS_PER_DECAY``.
 
@@ -112,7 +116,8 @@ def resolutions(mech, forces):
     return n, 2 * n
 
 
-def stability(mech, lambdas, z, modes=(1, 1, 1), *, segments=None):
+def stability(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1), *, segments: ArrayLike | None = None):
     """Index of one equilibrium: negative eigenvalues of its second variation.
 
     Sliders locked, dead load ``(F, M)`` on the platform: the Hessian of the Lagrangian
@@ -128,7 +133,7 @@ def stability(mech, lambdas, z, modes=(1, 1, 1), *, segments=None):
         The equilibrium in the chart.
     segments : (int, int), optional
         Resolutions (segments per rod, coarse and fine, each at most
-        :data:`~mechnum.rods.assembly.MAX_SEGMENTS`); default :func:`resolutions`.
+        :data:`~mechnum.rods.assembly.checks.MAX_SEGMENTS`); default :func:`resolutions`.
 
     Returns
     -------
@@ -148,9 +153,10 @@ def stability(mech, lambdas, z, modes=(1, 1, 1), *, segments=None):
         mech, lambdas, z, modes, segments=n))) for n in check_segments(segments))
 
 
-def index(mech, lambdas, z, modes=(1, 1, 1), *, segments=None) -> int:
+def index(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1), *,
+          segments: ArrayLike | None = None) -> int:
     """The index of one equilibrium at one resolution (``segments`` per rod, at most
-    :data:`~mechnum.rods.assembly.MAX_SEGMENTS`; default the coarse one of
+    :data:`~mechnum.rods.assembly.checks.MAX_SEGMENTS`; default the coarse one of
     :func:`resolutions`): negative eigenvalues of its second variation.
 
     Examples
@@ -165,7 +171,8 @@ def index(mech, lambdas, z, modes=(1, 1, 1), *, segments=None) -> int:
                                                              segments=segments)))
 
 
-def crossings(mech, lambdas, z, modes=(1, 1, 1)):
+def crossings(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1)):
     """Crossings of the rods of equilibria: of each other, of themselves, of the platform.
 
     Returns
@@ -196,7 +203,8 @@ def crossings(mech, lambdas, z, modes=(1, 1, 1)):
     return mutual.reshape(-1, 3), own.reshape(-1, 3), edges.reshape(-1)
 
 
-def verify(mech, lambdas, z, modes=(1, 1, 1), *, rtol=IVP_RTOL):
+def verify(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1),
+           *, rtol: float = IVP_RTOL):
     """Check equilibria independently: integrate each rod with scipy (``solve_ivp``, DOP853).
 
     Each rod is integrated from its clamp, with the clamp moment and tip force of the closed
@@ -275,7 +283,8 @@ def _states(mech, lambdas, z, modes, i, count):
                             rod.theta + mech.clamp_angles[i], rod.m))
 
 
-def strain(mech, lambdas, z, modes=(1, 1, 1)) -> np.ndarray:
+def strain(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+           modes: ArrayLike = (1, 1, 1)) -> np.ndarray:
     """The largest bending strain ``(d / 2) max |kappa|`` of each rod of equilibria, exactly
     (:func:`mechnum.rods.assembly.peak_moment`; ``kappa = m / EI``).
 

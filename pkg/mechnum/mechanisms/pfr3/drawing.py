@@ -2,12 +2,27 @@
 (:func:`draw`: guides, sliders, rods, platform and load; the same call for every frame of an
 animation)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
 from mechnum.rods import profile
-from mechnum.rods.assembly import MAX_NODES, check_modes, check_type, draw_parts, drawing_state
+from mechnum.rods.assembly import (
+    MAX_NODES,
+    State,
+    check_modes,
+    check_type,
+    draw_parts,
+    drawing_state,
+)
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 GUIDE_HALF_LENGTH = 0.25
 """Half the length of the drawn guides, as a fraction of ``L``."""
@@ -15,7 +30,8 @@ SHAPE_NODES = 201
 """Nodes of the rods' polylines for the crossing test and the drawings."""
 
 
-def shapes(mech, lambdas, z, modes=(1, 1, 1), *, nodes=SHAPE_NODES):
+def shapes(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1),
+           *, nodes: int = SHAPE_NODES):
     """The three rods of equilibria as polylines (closed form, :func:`mechnum.rods.profile.shape`).
 
     Parameters
@@ -25,7 +41,7 @@ def shapes(mech, lambdas, z, modes=(1, 1, 1), *, nodes=SHAPE_NODES):
     z : array_like, shape (..., 6)
         Equilibria in the chart.
     nodes : int, optional
-        Points per rod, at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        Points per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -49,8 +65,9 @@ def shapes(mech, lambdas, z, modes=(1, 1, 1), *, nodes=SHAPE_NODES):
             c[:, 1, None] + sin * rod.x + cos * rod.y)
 
 
-def draw(ax, mech, state, z=None, modes=None, *, artists=None, force_scale=0.3,
-         colors=("C0", "C3", "C2"), label=None):
+def draw(ax: Axes, mech: model.Mechanism, state: State | ArrayLike, z: ArrayLike = None,
+         modes: ArrayLike = None, *, artists: list | None = None, force_scale: float = 0.3,
+         colors: tuple = ("C0", "C3", "C2"), label: str | None = None):
     """Draw one equilibrium: guides, sliders, rods, the platform and its load.
 
     Parameters

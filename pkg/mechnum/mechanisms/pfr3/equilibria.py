@@ -21,9 +21,12 @@ in the rods and the sliders at a given pose, from the same two families built fr
 slider positions.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
@@ -92,7 +95,7 @@ def _halves(family, rng, m):
                            family(rng, m - m // 2, PUSH_Q, False)))
 
 
-def sampler(mech, lambdas):
+def sampler(mech: model.Mechanism, lambdas: ArrayLike):
     """The starts of :func:`forward_elliptic`: ``sample(rng, m) -> (m, 6)`` chart points, half
     of pulling rods and half of pushing ones (see the module).
 
@@ -112,7 +115,7 @@ def sampler(mech, lambdas):
     return lambda rng, m: _halves(family, rng, m)
 
 
-def inverse_sampler(mech, pose):
+def inverse_sampler(mech: model.Mechanism, pose: ArrayLike):
     """The starts of :func:`inverse`: ``sample(rng, m) -> (m, 9)``, the chart and the sliders,
     each slider where its pin is within ``L`` of its clamp, the rods as in :func:`sampler`.
 
@@ -156,7 +159,9 @@ def _classify(mech, modes, found, nfev, njev, lambdas, inputs, pose):
                       search=found)
 
 
-def forward_elliptic(mech, lambdas, modes=(1, 1, 1), *, n_starts=N_STARTS, check=10, rng=None):
+def forward_elliptic(mech: model.Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1, 1), *,
+                     n_starts: int = N_STARTS, check: int = 10,
+                     rng: np.random.Generator | int | None = None):
     """Every equilibrium of the mechanism at the slider inputs ``lambdas``, with given modes.
 
     Damped Newton on the reduced closed form (analytic Jacobian, only real assemblies of the
@@ -174,10 +179,10 @@ def forward_elliptic(mech, lambdas, modes=(1, 1, 1), *, n_starts=N_STARTS, check
     modes : (int, int, int), optional
         Buckling modes of the rods (inflections on ``0 < s <= L``).
     n_starts : int, optional
-        Starts of the search, at most :data:`~mechnum.rods.assembly.MAX_STARTS`.
+        Starts of the search, at most :data:`~mechnum.rods.assembly.checks.MAX_STARTS`.
     check : int, optional
         Size of the completeness check, in multiples of ``n_starts`` (0: none; at most
-        :data:`~mechnum.rods.assembly.MAX_CHECK`).
+        :data:`~mechnum.rods.assembly.checks.MAX_CHECK`).
     rng : numpy.random.Generator or int, optional
         Random generator or seed (a non-negative integer) of the starts.
 
@@ -218,7 +223,9 @@ forward = forward_elliptic
 """The protocol's name of :func:`forward_elliptic`: every equilibrium at given inputs."""
 
 
-def inverse(mech, pose, modes=(1, 1, 1), *, n_starts=N_STARTS, check=10, rng=None):
+def inverse(mech: model.Mechanism, pose: ArrayLike, modes: ArrayLike = (1, 1, 1), *,
+            n_starts: int = N_STARTS, check: int = 10,
+            rng: np.random.Generator | int | None = None):
     """Every equilibrium of the mechanism with its platform at ``pose``, with given modes.
 
     The inverse problem: the sliders and the rods that hold the platform at ``pose = (x, y,

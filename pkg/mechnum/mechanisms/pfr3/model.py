@@ -29,16 +29,19 @@ Residuals are dimensionless: positions over ``L`` (or over ``|b_i|``), forces ov
 moments over ``EI / L``.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.mechanisms import thesis
 from mechnum.mechanisms.thesis import EI, LENGTH
 from mechnum.rods import regular
-from mechnum.rods.assembly import Layout, check_modes
+from mechnum.rods.assembly import Layout, check_modes, check_type
 
 LAYOUT = Layout(rods=3, inputs=3, pose=3)
 """The unknowns of the full system: the chart (6), the sliders ``lambda`` (3), the pose (3)."""
@@ -168,7 +171,7 @@ SHOOTING_POSE = np.array([0.0, 0.0, np.radians(60.0)])
 """The starting pose of Annex II 4.1, ``(x, y, phi)`` (m, m, rad)."""
 
 
-def clamps(mech, lambdas):
+def clamps(mech: Mechanism, lambdas: ArrayLike):
     """Clamp positions ``C_i = O_i + lambda_i (cos alpha_i, sin alpha_i)``, shape (..., 3, 2).
 
     Examples
@@ -176,6 +179,7 @@ def clamps(mech, lambdas):
     >>> np.round(clamps(TABLE2, TABLE2_LAMBDAS), 4).tolist()[0]
     [-0.766, -0.5]
     """
+    check_type(mech, Mechanism)
     lambdas = _validate.array(lambdas, "lambdas")
     if lambdas.shape[-1:] != (3,):
         raise ValueError(f"lambdas must have a last axis of 3, got shape {lambdas.shape}")
@@ -194,7 +198,7 @@ def _rot(phi):
     return np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)
 
 
-def pins(mech, pose):
+def pins(mech: Mechanism, pose: ArrayLike):
     """The pins ``B_i`` of the platform at ``pose = (x, y, phi)``, shape (..., 3, 2).
 
     Examples
@@ -209,7 +213,7 @@ def pins(mech, pose):
     return pose[..., None, :2] + r
 
 
-def check_closure(mech, lambdas):
+def check_closure(mech: Mechanism, lambdas: ArrayLike):
     """Raise :class:`GeometryError` if no platform of side ``a`` can be pinned to the rods.
 
     Every pin lies within ``L`` of its clamp, so two clamps ``C_i, C_j`` must satisfy
@@ -233,7 +237,7 @@ def check_closure(mech, lambdas):
                 f"{mech.a - 2 * mech.L:.4g} to {mech.a + 2 * mech.L:.4g} m)")
 
 
-def check_reach(mech, pose):
+def check_reach(mech: Mechanism, pose: ArrayLike):
     """Raise :class:`UnreachablePoseError` if a pin of the platform at ``pose`` (..., 3) is
     farther than ``L`` from its guide's line (no slider position reaches it).
 
@@ -259,14 +263,14 @@ def check_reach(mech, pose):
             f"{mech.L:g} m")
 
 
-def in_chart(z):
+def in_chart(z: ArrayLike):
     """Whether chart points ``(psi1, t1, psi2, t2, psi3, t3)`` (batch, 6) lie in the chart."""
     psi, t = z[:, 0::2], z[:, 1::2]
     return np.all((psi > 0) & (psi < regular.TWO_PI) & (t != 0)
                   & (np.abs(t) <= regular.T_MAX), axis=1)
 
 
-def check_chart(z) -> np.ndarray:
+def check_chart(z: ArrayLike) -> np.ndarray:
     """Chart points ``(psi1, t1, psi2, t2, psi3, t3)`` (..., 6) as a float array, checked.
 
     Examples
@@ -286,7 +290,8 @@ def check_chart(z) -> np.ndarray:
     return z
 
 
-def rods(mech, lambdas, z, modes=(1, 1, 1), jacobian=True):
+def rods(mech: Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1),
+         jacobian: bool = True):
     """The three rods of chart points ``z`` (..., 6), placed at their clamps.
 
     Returns
@@ -318,7 +323,7 @@ def rods(mech, lambdas, z, modes=(1, 1, 1), jacobian=True):
     return tip, force, rod.clamp_moment, d_chart
 
 
-def pose_of_tips(mech, tip):
+def pose_of_tips(mech: Mechanism, tip: ArrayLike):
     """The pose ``(x, y, phi)`` of the tips ``(..., 3, 2)``: their centroid and the angle of
     ``d_1 / b_1`` (exact when the tips form the platform).
 
@@ -337,7 +342,7 @@ def pose_of_tips(mech, tip):
     return np.concatenate((P, phi[..., None]), axis=-1)
 
 
-def forward_system(mech, lambdas, modes=(1, 1, 1)):
+def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1, 1)):
     """The direct problem in closed form, reduced to the rods: residual and Jacobian, batched.
 
     Six dimensionless equations in the six chart coordinates ``z``: the tips form the platform
@@ -397,7 +402,7 @@ def forward_system(mech, lambdas, modes=(1, 1, 1)):
     return fun, jac
 
 
-def full_system(mech, modes=(1, 1, 1)):
+def full_system(mech: Mechanism, modes: ArrayLike = (1, 1, 1)):
     """The nine equilibrium equations in the rods, the sliders and the pose, with derivatives.
 
     ``G = ((tip_i - B_i) / L, (n1 + n2 + n3 - F) L**2 / EI, (sum (B_i - P) x n_i - M) L / EI)``.
@@ -445,7 +450,7 @@ def full_system(mech, modes=(1, 1, 1)):
     return system
 
 
-def chart_from_thesis(solutions):
+def chart_from_thesis(solutions: ArrayLike):
     """The chart ``(psi1, t1, psi2, t2, psi3, t3)`` of the study's ``(psi_i, k_rel_i)``.
 
     Examples
@@ -462,7 +467,7 @@ def chart_from_thesis(solutions):
     return out
 
 
-def thesis_from_chart(z):
+def thesis_from_chart(z: ArrayLike):
     """The study's ``(psi_i, k_rel_i)`` of chart points ``z`` (..., 6)."""
     z = np.asarray(z, dtype=float)
     out = z.copy()

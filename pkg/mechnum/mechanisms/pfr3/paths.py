@@ -17,10 +17,13 @@ shooting; a point reached on another branch (across a fold) is a "branch-jump", 
 converged point.
 """
 
+from __future__ import annotations
+
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError
@@ -43,7 +46,8 @@ class Path(assembly.Path, model.Names):
     """
 
 
-def jacobians(mech, lambdas, z, modes=(1, 1, 1)):
+def jacobians(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1)):
     """``det_fk``, ``det_ik`` and ``d pose / d lambda`` of closed-form equilibria.
 
     Parameters
@@ -121,8 +125,9 @@ def _inverse_trace(mech, modes, method, nodes, rigid_end, resume):
         lambda lam, z: np.concatenate((z, lam)))
 
 
-def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
-                 nodes=STUDY_NODES, rigid_end=0.0) -> Path:
+def inverse_path(mech: model.Mechanism, poses: ArrayLike, lambdas: ArrayLike, z: ArrayLike,
+                 modes: ArrayLike = (1, 1, 1), *, method: str = "elliptic",
+                 nodes: int = STUDY_NODES, rigid_end: float = 0.0) -> Path:
     """Follow an equilibrium while the platform moves through ``poses``: the inverse problem by
     continuation (the study's 11.4.1.1).
 
@@ -132,14 +137,14 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
         As in :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`.
     poses : array_like, shape (n, 3)
         Platform poses ``(x, y, phi)``, close to each other (``n`` may be 0; at most
-        :data:`~mechnum.rods.assembly.MAX_POINTS`).
+        :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
     lambdas, z : array_like, shapes (3,) and (6,)
         An equilibrium at (or near) ``poses[0]``: its sliders and rods.
     method : {"elliptic", "shooting"}, optional
         The closed form (fixed modes), or RK4 shooting in the study's unknowns (111) as the
         study does (modes free: a rod whose clamp moment passes through zero changes mode).
     nodes, rigid_end : optional
-        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.MAX_NODES`) and the rigid
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`) and the rigid
         segment at each pin, ``0 <= rigid_end < L`` (shooting only).
 
     Returns
@@ -173,8 +178,9 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
     return _closed_form(mech, modes, result, poses, "pose")
 
 
-def forward_path(mech, lambdas, z, modes=(1, 1, 1), *, method="elliptic", nodes=STUDY_NODES,
-                 rigid_end=0.0, resume=True) -> Path:
+def forward_path(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                 modes: ArrayLike = (1, 1, 1), *, method: str = "elliptic",
+                 nodes: int = STUDY_NODES, rigid_end: float = 0.0, resume: bool = True) -> Path:
     """Follow an equilibrium while the sliders move through ``lambdas``: the direct problem by
     continuation (the study's 11.4.1.2).
 
@@ -182,7 +188,7 @@ def forward_path(mech, lambdas, z, modes=(1, 1, 1), *, method="elliptic", nodes=
     ----------
     lambdas : array_like, shape (n, 3) or, closed form only, (n, batch, 3)
         Slider inputs (m), close to each other; with a batch axis, ``batch`` paths at once
-        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.MAX_POINTS` points in all).
+        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points in all).
     z : array_like, shape (6,) or (batch, 6)
         Equilibria at ``lambdas[0]``.
     method, nodes, rigid_end
@@ -228,8 +234,9 @@ def forward_path(mech, lambdas, z, modes=(1, 1, 1), *, method="elliptic", nodes=
     return _closed_form(mech, modes, result, lambdas, "inputs")
 
 
-def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
-                nodes=STUDY_NODES) -> Path:
+def inverse_map(mech: model.Mechanism, x: ArrayLike, y: ArrayLike, phi: float, pose: ArrayLike,
+                lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1), *,
+                method: str = "elliptic", nodes: int = STUDY_NODES) -> Path:
     """An equilibrium followed over the grid ``x`` by ``y`` of platform centres at the angle
     ``phi``: the inverse problem over the plane (the study's Ilustraciones 35 and 36).
 
@@ -245,7 +252,7 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
     Parameters
     ----------
     x, y : array_like, shapes (nx,) and (ny,)
-        The grid of centres (m), ``nx ny`` at most :data:`~mechnum.rods.assembly.MAX_POINTS`.
+        The grid of centres (m), ``nx ny`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`.
     method : {"elliptic", "shooting"}, optional
         The closed form, or RK4 shooting with ``nodes`` nodes per rod.
 
@@ -268,11 +275,7 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
     ((3, 2, 3), True)
     """
     modes, nodes, _ = _path_inputs(mech, modes, method, nodes, 0.0)
-    x = _validate.array(np.reshape(x, (0,)) if np.size(x) == 0 else x, "x", ndim=1)
-    y = _validate.array(np.reshape(y, (0,)) if np.size(y) == 0 else y, "y", ndim=1)
-    if len(x) * len(y) > assembly.MAX_POINTS:
-        raise ValueError(f"a grid of {len(x)} x {len(y)} points is more than "
-                         f"{assembly.MAX_POINTS} (a bound on the work)")
+    x, y = assembly.grid_axes(x, y)
     pose = _validate.array(pose, "pose", shape=(3,))
     phi = _validate.scalar(phi, "phi")
     grid = np.stack(np.meshgrid(x, y, indexing="ij") + (np.full((len(x), len(y)), phi),), -1)
@@ -293,8 +296,9 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
     return _closed_form(mech, modes, result, grid, "pose")
 
 
-def workspace(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, step=0.04,
-              reach=1.0, levels=6, nodes=STUDY_NODES) -> Path:
+def workspace(mech: model.Mechanism, pose: ArrayLike, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1), *, directions: int = 24, step: float = 0.04,
+              reach: float = 1.0, levels: int = 6, nodes: int = STUDY_NODES) -> Path:
     """Where the inverse problem's branch ends on rays from the platform's centre, at its fixed
     angle: the edge of the workspace that the equilibrium reaches (by shooting, modes free).
 
@@ -318,7 +322,7 @@ def workspace(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, step=0.
         As in :func:`mechnum.rods.assembly.workspace_edge` (rays, first step and largest
         distance in m, refinements), each bounded there.
     nodes : int, optional
-        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -353,7 +357,7 @@ def workspace_edge(*args, **kwargs) -> Path:
     return workspace(*args, **kwargs)
 
 
-def singular_points(mech, grid, which="det_ik") -> np.ndarray:
+def singular_points(mech: model.Mechanism, grid: Path, which: str = "det_ik") -> np.ndarray:
     """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`inverse_map` changes sign: on
     the singularity curves, in the platform's centre ``(x, y)`` (m), to the grid's resolution
     (:func:`mechnum.rods.assembly.zero_crossings`). The former call ``singular_points(x, y,

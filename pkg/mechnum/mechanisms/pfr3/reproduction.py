@@ -13,7 +13,7 @@ def _cell(n_psi, tolerances):
     return f"n_psi = {n_psi}, tol_L = {tolerances[0]:g}, tol_M = {tolerances[1]:g}"
 
 
-def table2_cells():
+def table2_cells() -> list:
     """``(name, count, time)`` of every cell of Tabla 2 that prints a count."""
     cells = []
     for i, n_psi in enumerate(study.TABLE2_NPSI):

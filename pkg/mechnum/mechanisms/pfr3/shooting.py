@@ -14,9 +14,12 @@ The study's shooting programs (Annex II 4.1 to 4.3) end each rod with a rigid se
 program have none (``rigid_end = 0``, the default).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
@@ -65,7 +68,7 @@ def _pins(mech, m0, force, lambdas, nodes, rigid_end):
     return tip, D
 
 
-def check_rigid_end(mech, rigid_end) -> float:
+def check_rigid_end(mech: model.Mechanism, rigid_end: float) -> float:
     """The rigid segment at each pin, checked: ``0 <= rigid_end < L`` (m).
 
     Examples
@@ -81,14 +84,14 @@ def check_rigid_end(mech, rigid_end) -> float:
     return value
 
 
-def shooting_system(mech, nodes, unknown, rigid_end=0.0):
+def shooting_system(mech: model.Mechanism, nodes: int, unknown: str, rigid_end: float = 0.0):
     """Residual (109) and its Jacobian for a batch of unknowns ``X`` (batch, 12).
 
     Parameters
     ----------
     mech : ~mechnum.mechanisms.pfr3.model.Mechanism
     nodes : int
-        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.MAX_NODES`).
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
     unknown : {"pose", "lambdas"}
         The study's (112), ``known`` the sliders (batch, 3), or its (111), ``known`` the pose.
     rigid_end : float, optional
@@ -174,8 +177,9 @@ def _shooting(mech, unknown, known, guess, nodes, tol, maxiter, rigid_end):
     return assembly.shooting_result(res, lambdas, pose, m0, n, jac(res.x, known), Shooting)
 
 
-def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
-                     rigid_end=0.0):
+def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
+                     rigid_end: float = 0.0):
     """The direct problem by RK4 shooting: the study's (109) in its unknowns (112).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, m0_3, n3_x, n3_y, x, y, phi)``: damped Newton
@@ -192,7 +196,7 @@ def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TO
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
         RK4 nodes per rod (the study's 41; the error falls as ``nodes**-4``), at most
-        :data:`~mechnum.rods.assembly.MAX_NODES`.
+        :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
     tol, maxiter : optional
         Newton's tolerance on the scaled residual, most iterations (at most 10,000).
     rigid_end : float, optional
@@ -214,8 +218,9 @@ def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TO
     return _shooting(mech, "pose", lambdas, guess, nodes, tol, maxiter, rigid_end)
 
 
-def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
-                     rigid_end=0.0):
+def inverse_shooting(mech: model.Mechanism, pose: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
+                     rigid_end: float = 0.0):
     """The inverse problem by RK4 shooting: the study's (109) in its unknowns (111).
 
     ``X = (m0_1, n1_x, n1_y, lambda_1, ..., m0_3, n3_x, n3_y, lambda_3)`` for a given pose
@@ -234,7 +239,7 @@ def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, 
     return _shooting(mech, "lambdas", pose, guess, nodes, tol, maxiter, rigid_end)
 
 
-def chart_from_clamps(mech, clamp_moments, forces):
+def chart_from_clamps(mech: model.Mechanism, clamp_moments: ArrayLike, forces: ArrayLike):
     """The chart and modes of rods known by their clamp moments and tip forces (shooting).
 
     Parameters
@@ -268,7 +273,8 @@ def chart_from_clamps(mech, clamp_moments, forces):
     return assembly.chart_from_clamps(mech.EI, mech.L, mech.clamp_angles, m0, forces)
 
 
-def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
+def shooting_guess(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                   modes: ArrayLike = (1, 1, 1), *, unknown: str = "pose"):
     """The study's shooting unknowns of closed-form equilibria: (112), or (111) with
     ``unknown="lambdas"``.
 

@@ -11,7 +11,10 @@
   represent.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mechnum import _validate
@@ -42,7 +45,8 @@ STUDY_GAP = 1e-12
 steps ``k_rel`` by ``1e-12`` and aborts (NaN) when that leaves ``|k_rel| < 1``."""
 
 
-def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
+def thesis_residual(mech: model.Mechanism, lambdas: ArrayLike, solutions: ArrayLike,
+                    modes: ArrayLike = (1, 1, 1)):
     """The study's refinement residual at solutions ``(psi_i, k_rel_i)`` (Annex II 4.5,
     ``Residue``; its (114) with the force balance of its code).
 
@@ -70,7 +74,8 @@ def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
     return np.concatenate((sides, mech.force - force.sum(axis=-2), moment[..., None]), axis=-1)
 
 
-def orientation(mech, lambdas, z, modes=(1, 1, 1)):
+def orientation(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                modes: ArrayLike = (1, 1, 1)):
     """+1 where the tips ``B1, B2, B3`` of equilibria ``z`` (..., 6) go anticlockwise, -1 where
     clockwise: the sign of ``(B2 - B1) x (B3 - B1)``.
 
@@ -85,7 +90,8 @@ def orientation(mech, lambdas, z, modes=(1, 1, 1)):
     return np.sign(model.cross(tip[..., 1, :] - tip[..., 0, :], tip[..., 2, :] - tip[..., 0, :]))
 
 
-def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=(0.0, 0.5)):
+def recover_inputs(solutions: ArrayLike, clamp_angles: ArrayLike, *,
+                   origins: ArrayLike = model.UNIT_CIRCLE, force: ArrayLike = (0.0, 0.5)):
     """The clamp angles, platform side and bending stiffness that printed solutions determine.
 
     Each printed solution fixes the three rods' shapes and forces in their clamp frames; with
@@ -132,7 +138,7 @@ def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=
             "residual": float(np.abs(fit.fun).max())}
 
 
-def digit_matches(exact, printed, decimals=4):
+def digit_matches(exact: ArrayLike, printed: ArrayLike, decimals: int = 4):
     """How many printed numbers are the truncation, and how many the rounding, of ``exact``.
 
     Examples
@@ -159,7 +165,7 @@ def digit_matches(exact, printed, decimals=4):
             int(np.sum(np.abs(rounded - printed) < tiny)))
 
 
-def within_study_reach(z):
+def within_study_reach(z: ArrayLike):
     """Which equilibria (chart points ``z``, shape (..., 6)) the study's refinement can hold:
     every rod with ``1 - |k_rel| > STUDY_GAP`` (computed without cancellation).
 

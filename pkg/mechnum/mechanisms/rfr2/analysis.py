@@ -9,12 +9,15 @@ gives the rods' largest bending strain, and :func:`~mechnum.mechanisms.rfr2.veri
 each rod from its clamp with scipy, independently of the closed form.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.integrate import solve_ivp
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.drawing import shapes
-from mechnum.mechanisms.rfr2.model import broadcast, rods
+from mechnum.mechanisms.rfr2.model import Mechanism, broadcast, rods
 from mechnum.rods import crossing, regular
 from mechnum.rods.assembly import (
     MAX_DENSE_SEGMENTS,
@@ -60,7 +63,8 @@ def _blocks(mech, theta, chart, modes, segments):
     return blocks, np.concatenate((blocks[0].tip_gradient, -blocks[1].tip_gradient), axis=1)
 
 
-def index(mech, theta, chart, modes=(1, 1), *, segments=SEGMENTS[0]) -> int:
+def index(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+          segments: int = SEGMENTS[0]) -> int:
     """The index of one equilibrium at one resolution: negative eigenvalues of its second
     variation with ``segments`` segments per rod (``<= MAX_SEGMENTS``).
 
@@ -86,7 +90,8 @@ def index(mech, theta, chart, modes=(1, 1), *, segments=SEGMENTS[0]) -> int:
     return int(constrained_index(blocks, constraints))
 
 
-def stability(mech, theta, chart, modes=(1, 1), *, segments=SEGMENTS) -> tuple:
+def stability(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+              segments: tuple = SEGMENTS) -> tuple:
     """The index of one equilibrium at two resolutions (:func:`index`): ``(0, 0)`` is stable.
 
     Parameters
@@ -97,7 +102,7 @@ def stability(mech, theta, chart, modes=(1, 1), *, segments=SEGMENTS) -> tuple:
         The equilibrium, ``(psi1, t1, psi2, t2)``.
     segments : (int, int), optional
         The resolutions, segments per rod (coarse, fine), each at most
-        :data:`~mechnum.rods.assembly.MAX_SEGMENTS`.
+        :data:`~mechnum.rods.assembly.checks.MAX_SEGMENTS`.
 
     Returns
     -------
@@ -115,11 +120,12 @@ def stability(mech, theta, chart, modes=(1, 1), *, segments=SEGMENTS) -> tuple:
                  for n in check_segments(segments))
 
 
-def eigenvalues(mech, theta, chart, modes=(1, 1), *, segments=EIGEN_SEGMENTS) -> np.ndarray:
+def eigenvalues(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+                segments: int = EIGEN_SEGMENTS) -> np.ndarray:
     """The eigenvalues of an equilibrium's second variation, ascending, dimensionless.
 
     Dense (:func:`mechnum.rods.stability.constrained_eigenvalues`, at most
-    :data:`~mechnum.rods.assembly.MAX_DENSE_SEGMENTS` segments per rod), divided by
+    :data:`~mechnum.rods.assembly.checks.MAX_DENSE_SEGMENTS` segments per rod), divided by
     ``h EI / L**2``: they approximate those of the continuous second variation, to about
     ``(segments / 64)**-2`` percent of the larger ones.
 
@@ -138,7 +144,7 @@ def eigenvalues(mech, theta, chart, modes=(1, 1), *, segments=EIGEN_SEGMENTS) ->
     return constrained_eigenvalues(hessian, constraints) / (blocks[0].h * mech.EI / mech.L ** 2)
 
 
-def crossings(mech, theta, chart, modes=(1, 1)):
+def crossings(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1)):
     """Crossings of the rods of equilibria: of each other, and of each with itself.
 
     Returns
@@ -164,7 +170,8 @@ def crossings(mech, theta, chart, modes=(1, 1)):
     return mutual.reshape(-1), own.reshape(-1, 2)
 
 
-def strain(mech, theta, chart, modes=(1, 1)) -> np.ndarray:
+def strain(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
+           modes: ArrayLike = (1, 1)) -> np.ndarray:
     """The largest bending strain ``(d / 2) max |kappa|`` of each rod of equilibria, exactly
     (:func:`mechnum.rods.assembly.peak_moment`; ``kappa = m / EI``).
 
@@ -187,7 +194,8 @@ def strain(mech, theta, chart, modes=(1, 1)) -> np.ndarray:
     return 0.5 * mech.diameter * peak_moment(mech.EI, moment, force, theta, modes) / mech.EI
 
 
-def verify(mech, theta, chart, modes=(1, 1), *, rtol=IVP_RTOL):
+def verify(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+           rtol: float = IVP_RTOL):
     """Check equilibria independently: integrate each rod from its clamp with scipy.
 
     Each rod is integrated by ``solve_ivp`` (DOP853, relative tolerance ``rtol`` in

@@ -11,14 +11,24 @@ ends. Each returns a :class:`~mechnum.mechanisms.rfr2.Path`, with the determinan
 (across a fold) is a "branch-jump", never a converged point (:func:`mechnum.rods.assembly.follow`).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError
-from mechnum.mechanisms.rfr2.model import (LAYOUT, Mechanism, Names, broadcast, full_system,
-                                           in_chart, rods)
+from mechnum.mechanisms.rfr2.model import (
+    LAYOUT,
+    Mechanism,
+    Names,
+    broadcast,
+    full_system,
+    in_chart,
+    rods,
+)
 from mechnum.mechanisms.rfr2.shooting import shooting_guess, shooting_system
 from mechnum.mechanisms.rfr2.singularities import Jacobians
 from mechnum.mechanisms.thesis import STUDY_NODES
@@ -76,8 +86,9 @@ def _path_inputs(mech, modes, method, nodes):
             _validate.maxiter(nodes, "nodes", minimum=2, maximum=assembly.MAX_NODES))
 
 
-def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
-                 nodes=STUDY_NODES) -> Path:
+def inverse_path(mech: Mechanism, points: ArrayLike, theta: ArrayLike, chart: ArrayLike,
+                 modes: ArrayLike = (1, 1), *, method: str = "shooting",
+                 nodes: int = STUDY_NODES) -> Path:
     """Follow an equilibrium while the end effector moves through ``points``: the inverse
     problem by continuation (the study's 11.3.1.1).
 
@@ -87,7 +98,7 @@ def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
         As in :func:`~mechnum.mechanisms.rfr2.forward_elliptic`.
     points : array_like, shape (n, 2)
         End-effector positions (m), close to each other (``n`` may be 0; at most
-        :data:`~mechnum.rods.assembly.MAX_POINTS`).
+        :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
     theta, chart : array_like, shapes (2,) and (4,)
         An equilibrium at (or near) ``points[0]``: its motor angles and rods.
     method : {"shooting", "elliptic"}, optional
@@ -95,7 +106,7 @@ def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
         on the way (when its clamp moment passes through zero); or the closed form, faster,
         whose modes are fixed, so that the path stops where a rod's clamp moment vanishes.
     nodes : int, optional
-        RK4 nodes per rod (shooting), at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        RK4 nodes per rod (shooting), at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -131,8 +142,9 @@ def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
     return _closed_form(mech, modes, trace, points, "pose")
 
 
-def forward_path(mech, thetas, chart, modes=(1, 1), *, method="shooting", nodes=STUDY_NODES,
-                 resume=True) -> Path:
+def forward_path(mech: Mechanism, thetas: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1),
+                 *, method: str = "shooting", nodes: int = STUDY_NODES,
+                 resume: bool = True) -> Path:
     """Follow an equilibrium while the motors turn through ``thetas``: the direct problem by
     continuation (the study's 11.3.1.2).
 
@@ -140,7 +152,7 @@ def forward_path(mech, thetas, chart, modes=(1, 1), *, method="shooting", nodes=
     ----------
     thetas : array_like, shape (n, 2) or, with ``method="elliptic"``, (n, batch, 2)
         Motor angles (rad), close to each other; with a batch axis, ``batch`` paths at once
-        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.MAX_POINTS` points in all).
+        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points in all).
     chart : array_like, shape (4,) or (batch, 4)
         Equilibria at ``thetas[0]``.
     method, nodes
@@ -187,7 +199,8 @@ def forward_path(mech, thetas, chart, modes=(1, 1), *, method="shooting", nodes=
     return _closed_form(mech, modes, trace, thetas, "inputs")
 
 
-def forward_map(mech, theta1, theta2, theta, chart, modes=(1, 1)) -> Path:
+def forward_map(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, theta: ArrayLike,
+                chart: ArrayLike, modes: ArrayLike = (1, 1)) -> Path:
     """An equilibrium followed over the grid ``theta1 x theta2`` of motor angles (rad).
 
     The equilibrium ``(theta, chart)`` is first moved to the nearest grid point, then followed
@@ -199,7 +212,7 @@ def forward_map(mech, theta1, theta2, theta, chart, modes=(1, 1)) -> Path:
     Parameters
     ----------
     theta1, theta2 : array_like, shape (nx,) and (ny,)
-        The grid (rad), ``nx ny`` at most :data:`~mechnum.rods.assembly.MAX_POINTS`.
+        The grid (rad), ``nx ny`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`.
     theta, chart : array_like, shapes (2,) and (4,)
         An equilibrium.
 
@@ -223,7 +236,8 @@ def forward_map(mech, theta1, theta2, theta, chart, modes=(1, 1)) -> Path:
     ((4, 3, 2), True)
     """
     modes = _path_inputs(mech, modes, "elliptic", STUDY_NODES)[0]
-    grid = _grid(theta1, theta2, "theta1", "theta2")
+    theta1, theta2 = assembly.grid_axes(theta1, theta2, ("theta1", "theta2"))
+    grid = np.stack(np.meshgrid(theta1, theta2, indexing="ij"), axis=-1)
     theta, z0 = broadcast(_validate.array(theta, "theta", shape=(2,)),
                           _validate.array(chart, "chart", shape=(4,)))
     fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "inputs")
@@ -246,18 +260,9 @@ def forward_map(mech, theta1, theta2, theta, chart, modes=(1, 1)) -> Path:
                         grid, "inputs")
 
 
-def _grid(x, y, x_name, y_name):
-    """The grid ``x`` by ``y`` (nx, ny, 2), checked: an empty axis is valid."""
-    x = _validate.array(np.reshape(x, (0,)) if np.size(x) == 0 else x, x_name, ndim=1)
-    y = _validate.array(np.reshape(y, (0,)) if np.size(y) == 0 else y, y_name, ndim=1)
-    if len(x) * len(y) > assembly.MAX_POINTS:
-        raise ValueError(f"a grid of {len(x)} x {len(y)} points is more than "
-                         f"{assembly.MAX_POINTS} (a bound on the work)")
-    return np.stack(np.meshgrid(x, y, indexing="ij"), axis=-1)
-
-
-def workspace(mech, P, theta, chart, modes=(1, 1), *, directions=24, step=0.04, reach=1.0,
-              levels=6, nodes=STUDY_NODES) -> Path:
+def workspace(mech: Mechanism, P: ArrayLike, theta: ArrayLike, chart: ArrayLike,
+              modes: ArrayLike = (1, 1), *, directions: int = 24, step: float = 0.04,
+              reach: float = 1.0, levels: int = 6, nodes: int = STUDY_NODES) -> Path:
     """Where the inverse problem's branch of an equilibrium ends on rays from its end effector:
     the edge of the workspace it reaches (by shooting, modes free).
 
@@ -277,7 +282,7 @@ def workspace(mech, P, theta, chart, modes=(1, 1), *, directions=24, step=0.04, 
         As in :func:`mechnum.rods.assembly.workspace_edge` (rays, first step and largest
         distance in m, refinements), each bounded there.
     nodes : int, optional
-        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -309,7 +314,7 @@ def workspace(mech, P, theta, chart, modes=(1, 1), *, directions=24, step=0.04, 
     return _shooting(mech, nodes, last, edge, "theta")
 
 
-def singular_points(mech, grid, which="det_ik") -> np.ndarray:
+def singular_points(mech: Mechanism, grid: Path, which: str = "det_ik") -> np.ndarray:
     """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`forward_map` changes sign:
     on the singularity curves, in motor angles (rad), to the grid's resolution
     (:func:`mechnum.rods.assembly.zero_crossings`).

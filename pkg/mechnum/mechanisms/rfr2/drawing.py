@@ -1,19 +1,35 @@
 """The mechanism's rods as polylines (:func:`shapes`), and the mechanism drawing itself
 (:func:`draw`: one equilibrium, the same call for every frame of an animation)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.model import Mechanism, broadcast
 from mechnum.rods import regular
-from mechnum.rods.assembly import MAX_NODES, check_modes, check_type, draw_parts, drawing_state
+from mechnum.rods.assembly import (
+    MAX_NODES,
+    State,
+    check_modes,
+    check_type,
+    draw_parts,
+    drawing_state,
+)
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 # Nodes of the rods' polylines for the crossing test and the drawings: a chord of L / 200 is
 # within ~1e-5 L of the rods of this chapter (curvatures below ~10 / L).
 SHAPE_NODES = 201
 
 
-def shapes(mech, theta, chart, modes=(1, 1), *, nodes=SHAPE_NODES):
+def shapes(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+           nodes: int = SHAPE_NODES):
     """The two rods of equilibria as polylines (closed form, :func:`mechnum.rods.regular.shape`).
 
     Parameters
@@ -25,7 +41,7 @@ def shapes(mech, theta, chart, modes=(1, 1), *, nodes=SHAPE_NODES):
     chart : array_like, shape (..., 4)
         Equilibria ``(psi1, t1, psi2, t2)``.
     nodes : int, optional
-        Points per rod, at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        Points per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -50,8 +66,9 @@ def shapes(mech, theta, chart, modes=(1, 1), *, nodes=SHAPE_NODES):
             mech.origins[:, 1, None] + s * rod.x + c * rod.y)
 
 
-def draw(ax, mech, state, chart=None, modes=None, *, artists=None, force_scale=0.3,
-         colors=("C0", "C3"), label=None):
+def draw(ax: Axes, mech: Mechanism, state: State | ArrayLike, chart: ArrayLike = None,
+         modes: ArrayLike = None, *, artists: list | None = None, force_scale: float = 0.3,
+         colors: tuple = ("C0", "C3"), label: str | None = None):
     """Draw one equilibrium: motors, clamped tangents, both rods, the end effector and the load.
 
     Parameters

@@ -12,9 +12,12 @@ the same for a given end effector, on :func:`inverse_system`: each motor angle i
 turns its rod's tip onto ``P``, so that the unknowns are the four chart coordinates again.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.analysis import crossings, stability, strain
@@ -35,7 +38,7 @@ def _scales(mech):
     return np.array([mech.L, mech.L, mech.EI / mech.L ** 2, mech.EI / mech.L ** 2])
 
 
-def forward_system(mech, theta, modes=(1, 1)):
+def forward_system(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1)):
     """The direct problem in closed form: the residual and its Jacobian, batched.
 
     The study's four equations (its 11.3.2: both tips at one point, ``n1 + n2 = F``) in the
@@ -74,7 +77,8 @@ def forward_system(mech, theta, modes=(1, 1)):
     return fun, jac
 
 
-def residual(mech, theta, chart, modes=(1, 1)) -> np.ndarray:
+def residual(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
+             modes: ArrayLike = (1, 1)) -> np.ndarray:
     """The closed-form equilibrium residual ``(tip1 - tip2, n1 + n2 - F)`` (m, m, N, N).
 
     Parameters
@@ -98,7 +102,7 @@ def residual(mech, theta, chart, modes=(1, 1)) -> np.ndarray:
                           axis=-1)
 
 
-def inverse_system(mech, P, modes=(1, 1)):
+def inverse_system(mech: Mechanism, P: ArrayLike, modes: ArrayLike = (1, 1)):
     """The inverse problem in closed form, reduced to the rods: residual and Jacobian, batched.
 
     Rod ``i`` of chart ``(psi_i, t_i)`` has its tip at ``l_i`` in its clamp's frame; the motor
@@ -157,7 +161,7 @@ def inverse_system(mech, P, modes=(1, 1)):
     return fun, jac
 
 
-def motor_angles(mech, P, tip) -> np.ndarray:
+def motor_angles(mech: Mechanism, P: ArrayLike, tip: ArrayLike) -> np.ndarray:
     """The motor angles ``(..., 2)`` that turn rods whose tips are ``tip`` (..., 2, 2) in their
     clamps' frames onto the end effector ``P``, in ``(-pi, pi]``.
 
@@ -187,7 +191,7 @@ class Equilibria(assembly.Equilibria, Names):
     drawer = staticmethod(draw)
 
 
-def sample(rng, m: int) -> np.ndarray:
+def sample(rng: np.random.Generator | int | None, m: int) -> np.ndarray:
     """Random starts: force directions uniform in (0, 2 pi), ``t`` uniform in
     ``(-START_T, START_T)`` (every sign branch of both rods).
 
@@ -221,7 +225,9 @@ def _equilibria(mech, theta, P, modes, found, nfev, njev, inputs, pose):
                       search=found)
 
 
-def forward_elliptic(mech, theta, modes=(1, 1), *, n_starts=200, check=10, rng=None):
+def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1), *,
+                     n_starts: int = 200, check: int = 10,
+                     rng: np.random.Generator | int | None = None):
     """Every equilibrium of the mechanism at the motor angles ``theta`` with the given modes.
 
     Damped Newton on the closed form (analytic Jacobian) from ``n_starts`` random starts, then
@@ -242,10 +248,10 @@ def forward_elliptic(mech, theta, modes=(1, 1), *, n_starts=200, check=10, rng=N
     modes : (int, int), optional
         Buckling modes of rod 1 and rod 2 (inflections on ``0 < s <= L``).
     n_starts : int, optional
-        Starts of the search, at most :data:`~mechnum.rods.assembly.MAX_STARTS`.
+        Starts of the search, at most :data:`~mechnum.rods.assembly.checks.MAX_STARTS`.
     check : int, optional
         Size of the completeness check, in multiples of ``n_starts`` (0: none; at most
-        :data:`~mechnum.rods.assembly.MAX_CHECK`).
+        :data:`~mechnum.rods.assembly.checks.MAX_CHECK`).
     rng : numpy.random.Generator or int, optional
         Random generator or seed (a non-negative integer) of the starts.
 
@@ -281,7 +287,8 @@ forward = forward_elliptic
 """The protocol's name of :func:`forward_elliptic`: every equilibrium at given inputs."""
 
 
-def inverse(mech, P, modes=(1, 1), *, n_starts=200, check=10, rng=None):
+def inverse(mech: Mechanism, P: ArrayLike, modes: ArrayLike = (1, 1), *, n_starts: int = 200,
+            check: int = 10, rng: np.random.Generator | int | None = None):
     """Every equilibrium of the mechanism with its end effector at ``P``, with the given modes.
 
     The inverse problem: the motor angles and the rods that hold ``P`` against the load, found

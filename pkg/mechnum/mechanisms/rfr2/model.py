@@ -9,16 +9,19 @@ of every closed-form function of the package, and :func:`full_system` gives the 
 in the rods, the motor angles and the end effector, with their derivatives.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import thesis
 from mechnum.mechanisms.thesis import DIAMETER, EI, LENGTH, YOUNG  # noqa: F401 (rfr2.model's names)
 from mechnum.rods import regular
-from mechnum.rods.assembly import Layout, check_modes
+from mechnum.rods.assembly import Layout, check_modes, check_type
 
 LAYOUT = Layout(rods=2, inputs=2, pose=2)
 """The unknowns of the full system: the chart (4), the motor angles ``theta`` (2), ``P`` (2)."""
@@ -102,7 +105,7 @@ TABLE7_THETA = np.radians([40.0, 60.0])
 """The motor angles of Table 7 (rad)."""
 
 
-def in_chart(z) -> np.ndarray:
+def in_chart(z: ArrayLike) -> np.ndarray:
     """Whether chart points ``(psi1, t1, psi2, t2)`` (batch, 4) lie where the chart is defined.
 
     Examples
@@ -115,7 +118,7 @@ def in_chart(z) -> np.ndarray:
                   & (np.abs(t) <= regular.T_MAX), axis=1)
 
 
-def broadcast(theta, chart):
+def broadcast(theta: ArrayLike, chart: ArrayLike):
     """Motor angles ``(..., 2)`` and chart points ``(..., 4)``, checked and broadcast together.
 
     Raises
@@ -148,7 +151,8 @@ def broadcast(theta, chart):
     return np.broadcast_to(theta, shape + (2,)), np.broadcast_to(z, shape + (4,))
 
 
-def rods(mech, theta, chart, modes=(1, 1), *, jacobian=True):
+def rods(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+         jacobian: bool = True):
     """Both rods of chart points at motor angles ``theta``, in the global frame.
 
     Parameters
@@ -180,6 +184,7 @@ def rods(mech, theta, chart, modes=(1, 1), *, jacobian=True):
     >>> np.round(tip, 5).tolist(), np.round(force.sum(axis=0), 4).tolist()   # Table 7, sol. 1
     ([[-0.0811, -0.24587], [-0.0811, -0.24587]], [0.3, -0.1])
     """
+    check_type(mech, Mechanism)
     theta, z = broadcast(theta, chart)
     rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
                                check_modes(modes, 2), _validate.flag(jacobian, "jacobian"))
@@ -187,7 +192,7 @@ def rods(mech, theta, chart, modes=(1, 1), *, jacobian=True):
     return tip, force, rod.clamp_moment, d_chart, d_angle
 
 
-def full_system(mech, modes=(1, 1)):
+def full_system(mech: Mechanism, modes: ArrayLike = (1, 1)):
     """The six equilibrium equations in the rods, the motor angles and ``P``, with derivatives.
 
     ``G = ((tip1 - P) / L, (tip2 - P) / L, (n1 + n2 - F) L**2 / EI)``.
@@ -227,7 +232,7 @@ def full_system(mech, modes=(1, 1)):
     return system
 
 
-def chart_from_thesis(solutions) -> np.ndarray:
+def chart_from_thesis(solutions: ArrayLike) -> np.ndarray:
     """The chart ``(psi1, t1, psi2, t2)`` of the study's ``(psi1, k_rel1, psi2, k_rel2)``.
 
     Examples
@@ -244,7 +249,7 @@ def chart_from_thesis(solutions) -> np.ndarray:
     return out
 
 
-def thesis_from_chart(chart) -> np.ndarray:
+def thesis_from_chart(chart: ArrayLike) -> np.ndarray:
     """The study's ``(psi1, k_rel1, psi2, k_rel2)`` of chart points (..., 4).
 
     Examples

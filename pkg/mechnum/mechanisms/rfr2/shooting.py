@@ -8,9 +8,12 @@ complex-step Jacobians (:func:`mechnum.rods.shooting.tip_jacobian`);
 equilibrium, and :func:`shooting_system` is the residual and Jacobian they solve.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.model import Mechanism, Names, rods
@@ -48,14 +51,14 @@ def _shoot(mech, m0, force, theta, nodes):
     return tip, np.concatenate((J, d_theta[..., None]), axis=-1)
 
 
-def shooting_system(mech, nodes, unknown):
+def shooting_system(mech: Mechanism, nodes: int, unknown: str):
     """Residual (98) and its Jacobian for a batch of unknowns ``X`` (batch, 8).
 
     Parameters
     ----------
     mech : Mechanism
     nodes : int
-        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.MAX_NODES`).
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
     unknown : {"P", "theta"}
         The study's (102), ``X = (m0_1, n1, m0_2, n2, P)`` with ``known`` the motor angles
         (batch, 2), or its (99), ``X = (m0_1, n1, theta1, m0_2, n2, theta2)`` with ``known`` the
@@ -122,7 +125,8 @@ def _shooting(mech, unknown, known, guess, nodes, tol, maxiter):
     return assembly.shooting_result(res, theta, P, m0, n, jac(res.x, known), Shooting)
 
 
-def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50):
+def forward_shooting(mech: Mechanism, theta: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50):
     """The direct problem by RK4 shooting: the study's (98) in its unknowns (102).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
@@ -139,7 +143,7 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
         RK4 nodes per rod (the study's 41 by default; the RK4 error falls as ``nodes**-4``),
-        at most :data:`~mechnum.rods.assembly.MAX_NODES`.
+        at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
     tol, maxiter : optional
         Newton's tolerance on the scaled residual (``criterion="residual"``), most iterations
         (at most 10,000).
@@ -164,7 +168,8 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
     return _shooting(mech, "P", theta, guess, nodes, tol, maxiter)
 
 
-def inverse_shooting(mech, P, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50):
+def inverse_shooting(mech: Mechanism, P: ArrayLike, guess: ArrayLike, *, nodes: int = STUDY_NODES,
+                     tol: float = SHOOTING_TOL, maxiter: int = 50):
     """The inverse problem by RK4 shooting: the study's (98) in its unknowns (99).
 
     ``X = (m0_1, n1_x, n1_y, theta1, m0_2, n2_x, n2_y, theta2)`` for a given end effector
@@ -185,7 +190,8 @@ def inverse_shooting(mech, P, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, max
     return _shooting(mech, "theta", P, guess, nodes, tol, maxiter)
 
 
-def shooting_guess(mech, theta, chart, modes=(1, 1), *, unknown="P") -> np.ndarray:
+def shooting_guess(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1),
+                   *, unknown: str = "P") -> np.ndarray:
     """The study's shooting unknowns of closed-form equilibria: (102), or (99) with
     ``unknown="theta"``.
 

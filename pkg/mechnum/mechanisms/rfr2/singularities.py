@@ -7,9 +7,12 @@ effector moves with the motors; :func:`~mechnum.mechanisms.rfr2.singular_points`
 determinant changes sign over a map.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum.mechanisms.rfr2.model import LAYOUT, Mechanism, full_system, rods
 from mechnum.rods import assembly
@@ -37,7 +40,8 @@ class Jacobians:
     dP_dtheta: np.ndarray
 
 
-def jacobians(mech, theta, chart, modes=(1, 1)) -> Jacobians:
+def jacobians(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
+              modes: ArrayLike = (1, 1)) -> Jacobians:
     """Determinants of the direct and inverse problems of equilibria, and ``dP / dtheta``.
 
     ``G`` is the dimensionless residual (tips to ``P`` over ``L``, forces over

@@ -5,7 +5,10 @@ solutions of Table 7 (:data:`TABLE7_PUBLISHED`); :func:`~mechnum.mechanisms.rfr2
 computes every registry value of the chapter.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.elliptic import forward_elliptic, residual
@@ -22,7 +25,7 @@ TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
 :func:`~mechnum.mechanisms.rfr2.reproduce`)."""
 
 
-def recover_inputs(solutions, free="EI"):
+def recover_inputs(solutions: ArrayLike, free: str = "EI"):
     """The example's inputs that the printed solutions of Table 7 determine, by least squares.
 
     Each printed solution ``(psi1, k_rel1, psi2, k_rel2)`` fixes both rods' shapes and
@@ -75,7 +78,7 @@ def recover_inputs(solutions, free="EI"):
             "residual": float(np.abs(residuals(fit.x)).max())}
 
 
-def _path_sizes():
+def _path_sizes() -> dict:
     """The sizes of the study's trajectories, measured on :func:`path`'s points."""
     out = {}
     for kind in STUDY_PATHS:
@@ -100,7 +103,7 @@ def _path_sizes():
     return out
 
 
-def reproduce():
+def reproduce() -> dict:
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
     Table 7 from the equilibria that :func:`forward_elliptic` finds (each printed solution

@@ -12,10 +12,10 @@ from mechnum import _validate
 from mechnum.rods.assembly import MAX_POINTS
 
 
-def straight_path(length, angle, divisions):
+def straight_path(length: float, angle: float, divisions: int):
     """Increments along a straight line from the origin (the study's ``StraightPath``, whose
     code is not listed: ``divisions + 1`` equally spaced points, ``divisions`` at most
-    :data:`~mechnum.rods.assembly.MAX_POINTS`).
+    :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
 
     Examples
     --------
@@ -28,10 +28,10 @@ def straight_path(length, angle, divisions):
     return s[:, None] * [np.cos(angle), np.sin(angle)]
 
 
-def circles(diameter, count, divisions):
+def circles(diameter: float, count: int, divisions: int):
     """Increments on concentric circles (the study's ``Workspace_Circles``, not listed):
     the centre, then ``count`` circles of diameters ``diameter k / count``, each from angle 0
-    in ``divisions`` points (``count divisions`` at most :data:`~mechnum.rods.assembly.MAX_POINTS`).
+    in ``divisions`` points (``count divisions`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
 
     Examples
     --------
@@ -46,11 +46,11 @@ def circles(diameter, count, divisions):
     return np.concatenate((np.zeros((1, 2)), ring.reshape(-1, 2)))
 
 
-def rectangles(base, height, count, divisions):
+def rectangles(base: float, height: float, count: int, divisions: int):
     """Increments on concentric rectangles (the study's ``Workspace_Rectangles``, not listed):
     the centre, then ``count`` rectangles scaled by ``k / count``, each side in ``divisions``
     steps, anticlockwise from the middle of the right side (``4 count divisions`` at most
-    :data:`~mechnum.rods.assembly.MAX_POINTS`).
+    :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
 
     Examples
     --------
@@ -93,7 +93,7 @@ STUDY_PATHS = {
 increments of ``theta``, rad): generator and the study's parameters."""
 
 
-def path(kind):
+def path(kind: str):
     """The increments of one of the study's trajectories
     (:data:`~mechnum.mechanisms.rfr2.trajectories.STUDY_PATHS`).
 
