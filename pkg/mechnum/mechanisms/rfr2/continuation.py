@@ -274,20 +274,18 @@ def workspace(mech: Mechanism, P: ArrayLike, theta: ArrayLike, chart: ArrayLike,
 
     Parameters
     ----------
-    mech, modes
-        As in :func:`~mechnum.mechanisms.rfr2.forward_elliptic`.
     P, theta, chart : array_like, shapes (2,), (2,) and (4,)
-        An equilibrium: its end effector, motor angles and rods.
-    directions, step, reach, levels : optional
-        As in :func:`mechnum.rods.assembly.workspace_edge` (rays, first step and largest
-        distance in m, refinements), each bounded there.
-    nodes : int, optional
-        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
+        The end effector, motor angles and rods of an equilibrium (of ``modes``, as in
+        :func:`~mechnum.mechanisms.rfr2.forward_elliptic`).
+    directions, step, reach, levels, nodes : optional
+        The rays, the first step and the largest distance (m) and the refinements of
+        :func:`mechnum.rods.assembly.workspace_edge` (bounded there); the RK4 nodes per rod
+        (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
 
     Returns
     -------
     Path
-        Shape ``(directions,)``: the last equilibrium of each ray (its ``P`` is the edge).
+        One point per ray, the last equilibrium on it: ``P`` is the edge.
 
     Examples
     --------
