@@ -178,8 +178,11 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
         return Trace(np.empty((0,) + u0.shape), np.empty((0,) + u0.shape[:-1], STATUS_DTYPE),
                      np.zeros((0,) + u0.shape[:-1], int), 0, 0)
     f, j, counts = _counted(fun, jac)
+    # the branch tests are the signs below (and solve_path's own of det J); solve_path's speed
+    # test is off: near a fold of the mechanism (the workspace's edge) the speed grows without
+    # bound along the branch itself, and a false jump would cut the rest of the path
     res = newton.solve_path(f, params, u0, j, tol=tol, maxiter=maxiter, domain=domain,
-                            resume=resume)
+                            resume=resume, max_jump=None)
     ok = np.asarray(res.converged, dtype=bool)
     status = np.asarray(getattr(res, "status", np.where(ok, "converged", "lost")), STATUS_DTYPE)
     x, single = res.x, u0.ndim == 1
@@ -191,7 +194,9 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     ref = np.sign(np.linalg.det(jac(U, P[0])))
     first = np.sign(det[np.argmax(OK, axis=0), np.arange(OK.shape[1])])
     ref = np.where(np.isfinite(ref) & (ref != 0), ref, first)
-    jump = OK & (np.sign(det) != ref)
+    # a jump that solve_path saw itself counts too: it resumes from the last point before the
+    # jump, but nothing then vouches that a later point lies on the branch followed
+    jump = (OK & (np.sign(det) != ref)) | (status == "branch-jump").reshape(OK.shape)
     if chart:
         signs = np.sign(X[..., 1:chart:2]) != np.sign(U[..., 1:chart:2])
         jump |= OK & signs.any(axis=-1)
