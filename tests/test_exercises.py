@@ -576,7 +576,7 @@ def test_references_of_chapter_6():
 
 def test_references_of_chapter_7_agree_with_the_package():
     for t in (0.1, 0.6):
-        kin = actuator.kinematics(t)
+        kin = actuator.kinematics(actuator.ANNEX, t)
         k2, k4 = ref("7.1")(float(kin.theta2), float(kin.theta4), float(kin.a),
                             actuator.ANNEX.l, actuator.ANNEX.b)
         assert_allclose([k2, k4], [float(kin.k2), float(kin.k4)], rtol=1e-12)
@@ -587,7 +587,7 @@ def test_references_of_chapter_7_agree_with_the_package():
                         float(actuator.virtual_power_force(kin)), rtol=1e-12)
     from mechnum.exercises._ch7 import ANNEX, _state
     assert_allclose(ANNEX.inertias, actuator.ANNEX.inertias, rtol=1e-12)
-    s, kin = _state(0.3), actuator.kinematics(0.3)
+    s, kin = _state(0.3), actuator.kinematics(actuator.ANNEX, 0.3)
     assert_allclose([s.eps2, s.eps4], [float(kin.eps2), float(kin.eps4)], rtol=1e-10)
 
 
