@@ -8,8 +8,8 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student downloads pdf test unit explore notebooks notebooks-other-machine \
-	html-check bench execute lab clean
+.PHONY: book book-committed book-student downloads pdf test unit explore notebooks \
+	notebooks-other-machine html-check bench execute lab clean
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -91,7 +91,7 @@ html-check: $(STAMP)
 
 # Every test, each step on both cores: the unit tests shared out by pytest-xdist; the two strict
 # nbval runs side by side; the book (from the outputs strict nbval has just checked: executing
-# the notebooks a third time would test nothing new) beside its student edition; their tests.
+# the notebooks a third time would repeat that check) beside its student edition; their tests.
 test: $(STAMP)
 	$(MAKE) unit
 	$(MAKE) -j2 --output-sync=target notebooks notebooks-other-machine
