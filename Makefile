@@ -8,8 +8,8 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student downloads pdf test unit explore notebooks \
-	notebooks-other-machine html-check bench execute lab clean
+.PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
+	notebooks-other-machine html-check bench execute lab clean certify
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -28,25 +28,43 @@ book-committed: downloads
 	$(BIN)/python .ci/book_config.py $(COMMITTED_CONFIG) execute.execute_notebooks=off
 	$(NB_ENV) $(BIN)/jupyter-book build . --config $(COMMITTED_CONFIG) -W -n --keep-going
 
-# What the page "Run the chapters yourself" serves: the package's wheel and the chapters.
+# What the page "Run the chapters yourself" serves: the package's wheel, and the chapters with
+# what they read (the registry) and cite (references.bib: the entries behind the citation keys).
 DOWNLOADS := _build/downloads
+CHAPTER_FILES := *.ipynb *.csv references.bib
 downloads: $(STAMP)
 	rm -rf $(DOWNLOADS) pkg/build
 	$(BIN)/python -m pip wheel --quiet --disable-pip-version-check --no-deps \
 		--wheel-dir $(DOWNLOADS) ./pkg
 	rm -rf pkg/build
-	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip *.ipynb *.csv
+	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
 
 # The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
-# It renders the committed outputs (the tests have checked them) instead of executing again.
+# It is built from a copy of the sources without the solutions (mechnum.exercises.student), so
+# that the pages, their .ipynb downloads and the served zip hold none; the copy renders the
+# committed outputs (the tests have checked them) instead of executing again, except the
+# exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
+STUDENT := _build/student
+STUDENT_SRC := $(STUDENT)/src
 book-student: downloads
+	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
+	cp -r _toc.yml book $(STUDENT_SRC)/
+	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
 	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
 		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
 		c['execute']['execute_notebooks'] = 'off'; \
-		c['sphinx']['local_extensions'] = {'gated_solutions': '$(CURDIR)/book/_ext'}; \
-		yaml.safe_dump(c, open('$(DOWNLOADS)/student_config.yml', 'w'))"
-	$(NB_ENV) $(BIN)/jupyter-book build . --config $(DOWNLOADS)/student_config.yml \
-		--path-output _build/student -W -n --keep-going
+		yaml.safe_dump(c, open('$(STUDENT_SRC)/_config.yml', 'w'))"
+	cp $(DOWNLOADS)/*.whl $(STUDENT_SRC)/$(DOWNLOADS)/
+	cd $(STUDENT_SRC)/book && $(CURDIR)/$(BIN)/python -m zipfile \
+		-c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
+	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
+
+# Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
+# and summary.txt are written into the folder; mechnum.exercises.grading says how).
+grade: $(STAMP)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; \
+		exit 2; }
+	$(NB_ENV) $(BIN)/python -m mechnum.exercises.grading $(SUBMISSIONS)
 
 # The property-based tests draw the same examples on every run (tests/conftest.py), also when
 # pytest-xdist shares them out between the cores; `make explore` draws new ones, to search for
@@ -56,6 +74,10 @@ XDIST := -n auto --dist worksteal
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
 		pkg/mechnum tests
+
+# The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
+lint: $(STAMP)
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
 
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
@@ -89,10 +111,12 @@ html-check: $(STAMP)
 		$(BIN)/pytest -n auto --dist loadfile -rsxX tests/test_built_html.py tests/test_downloads.py \
 		tests/test_student_edition.py tests/test_browser.py tests/test_lecture_budget.py
 
-# Every test, each step on both cores: the unit tests shared out by pytest-xdist; the two strict
-# nbval runs side by side; the book (from the outputs strict nbval has just checked: executing
-# the notebooks a third time would repeat that check) beside its student edition; their tests.
+# Every test, each step on both cores after the linter: the unit tests shared out by
+# pytest-xdist; the two strict nbval runs side by side; the book (from the outputs strict nbval
+# has just checked: executing the notebooks a third time would repeat that check) beside its
+# student edition; their tests.
 test: $(STAMP)
+	$(MAKE) lint
 	$(MAKE) unit
 	$(MAKE) -j2 --output-sync=target notebooks notebooks-other-machine
 	$(MAKE) -j2 --output-sync=target book-committed book-student
@@ -101,6 +125,10 @@ test: $(STAMP)
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
 		--benchmark-columns=min,median,max,rounds
+
+# Recompute every stored certificate (interval proofs of equilibria) into book/certificates/.
+certify: $(STAMP)
+	$(BIN)/python book/certificates/make_certificates.py
 
 # Re-execute chapters in place after editing them (all of them, or NB=book/<chapter>.ipynb),
 # without the execution timings that would dirty the diff.

@@ -58,23 +58,23 @@ def sympy_force():
 
 @pytest.mark.parametrize("route", ROUTES)
 def test_force_1000_instants(benchmark, route):
-    q = benchmark(lambda: ROUTES[route](kinematics(T)))
+    q = benchmark(lambda: ROUTES[route](kinematics(ANNEX, T)))
     assert q.shape == T.shape
 
 
 def test_force_1000_instants_sympy_peer(benchmark):
     force = sympy_force()
     q = benchmark(force, *ANNEX.stroke(T))
-    np.testing.assert_allclose(q, lagrange_force(kinematics(T)), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(q, lagrange_force(kinematics(ANNEX, T)), rtol=0, atol=1e-9)
 
 
 def prescribed(s):
-    return lagrange_force(kinematics(s))
+    return lagrange_force(kinematics(ANNEX, s))
 
 
 def test_forward_dynamics_one_cycle(benchmark):
     a0, v0, _ = ANNEX.stroke(0.0)
-    motion = benchmark.pedantic(forward_dynamics, args=(prescribed, CYCLE, a0, v0),
+    motion = benchmark.pedantic(forward_dynamics, args=(ANNEX, prescribed, CYCLE, a0, v0),
                                 rounds=5, warmup_rounds=1)
     assert np.max(np.abs(motion.a - ANNEX.stroke(CYCLE)[0])) < 2e-9
 
@@ -83,7 +83,7 @@ def test_forward_dynamics_one_cycle_scipy_peer(benchmark):
     from scipy.integrate import solve_ivp
 
     def rate(time, y):
-        terms = lagrange_terms(stroke_kinematics(y[0], y[1]))
+        terms = lagrange_terms(stroke_kinematics(ANNEX, y[0], y[1]))
         acc = (prescribed(time) - 0.5 * terms.mass_slope * y[1] ** 2 - terms.potential_slope)
         return [y[1], float(acc / terms.mass)]
 

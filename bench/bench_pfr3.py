@@ -59,7 +59,7 @@ def test_mode1_equilibria_of_table2_mirrored(benchmark):
     benchmark.extra_info.update(STUDY_SECONDS)
     eq = benchmark.pedantic(pfr3.forward_elliptic, args=(pfr3.TABLE2.mirrored(),
                                                          pfr3.TABLE2_LAMBDAS),
-                            kwargs=dict(rng=0, n_starts=3 * equilibria.N_STARTS), rounds=1,
+                            kwargs={"rng": 0, "n_starts": 3 * equilibria.N_STARTS}, rounds=1,
                             iterations=1)
     assert study.within_study_reach(eq.chart).sum() == 3
 

@@ -24,8 +24,8 @@ COUNTS = {(1, 1): 3, (1, 2): 5, (1, 3): 4, (2, 1): 2, (2, 2): 6, (2, 3): 4, (3, 
 def _fsolve_multistart(modes, n_starts, seed=0):
     """Every root that fsolve reaches from ``n_starts`` starts, one start at a time."""
     fun, jac = rfr2.forward_system(MECH, THETA, modes)
-    starts = rfr2._sample(np.random.default_rng(seed), n_starts)
-    return fsolve_each(fun, jac, rfr2._in_chart, starts)
+    starts = rfr2.sample(np.random.default_rng(seed), n_starts)
+    return fsolve_each(fun, jac, rfr2.in_chart, starts)
 
 
 def test_mode1_equilibria_of_table7(benchmark):

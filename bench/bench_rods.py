@@ -17,6 +17,11 @@ module prints the ratios (package time over peer time, minimum over rounds) at i
   tip). Target: ratio <= 2.
 * **one rod's sweep**: ``rods.integrate`` of one rod (RK4 on Python floats) against the
   package's vectorised sweep on a batch of one (numpy).
+* **every equilibrium through a point**: ``rods.pinned_equilibria`` at the thesis's point
+  (EI = L = 1, tip (0.8, 0.1), modes 1 to 3: nine equilibria, five of them looped) against
+  MINPACK's ``hybr`` (``scipy.optimize.root``) from every cell of a 12 x 12 grid of the same
+  regular chart per mode, the coarsest uniform grid from which it finds all nine. Both must
+  return the same nine rods.
 
 Run with ``make bench``, or ``pytest bench/bench_rods.py -o python_files='bench_*.py'
 --benchmark-only``. Timings on a shared machine are noisy: compare ratios from one run.
@@ -27,10 +32,12 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
-from scipy.optimize import brentq
+from scipy.optimize import brentq, root
 from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 
 from mechnum import rods
+from mechnum.rods import regular
+from mechnum.rods import rod as rod_module
 
 EI, L = 1.0, 1.0
 TOL = 1e-10                       # the accuracy every contender must reach (tip, over L)
@@ -205,13 +212,12 @@ def test_sweep_one_rod_on_floats(benchmark):
 
 
 def test_sweep_one_rod_vectorised(benchmark):
-    # the package's own vectorised sweep on a batch of one: what a single rod cost before
-    from mechnum.rods.shooting import _sweep
-
-    args = (np.ones(1), np.ones(1), np.full(1, 2.0), np.array([[0.0, 5.0]]), np.zeros(1),
-            np.zeros((1, 2)), 201)
-    Y = benchmark(_sweep, *args)
-    assert np.abs(Y[0, :, 0] - rods.integrate(EI, L, 2.0, [0.0, 5.0], nodes=201).x).max() < 1e-13
+    # the same sweep on numpy arrays of one rod: what a single rod cost before
+    args = (np.ones(1), np.ones(1), np.full(1, 2.0), np.zeros(1), np.full(1, 5.0), np.zeros(1),
+            201)
+    x = benchmark(rod_module.sweep, *args, trig=np)[0]
+    assert np.abs(np.concatenate(x) - rods.integrate(EI, L, 2.0, [0.0, 5.0], nodes=201).x
+                  ).max() < 1e-13
     record(benchmark, "one rod, 200 RK4 steps (peer: numpy)", 0, "peer")
 
 
@@ -224,3 +230,50 @@ def test_hundred_cantilevers_shot_in_one_batch(benchmark):
     forces = np.column_stack((np.zeros(100), np.linspace(0.1, 3.0, 100)))
     res = benchmark(rods.shoot_cantilever, EI, L, forces, nodes=41)
     assert res.newton.converged.all()
+
+
+THESIS = np.array([0.8, 0.1])
+
+
+def hybr_equilibria(point, modes=(1, 2, 3), cells=12):
+    """Every root of ``tip(psi, t, mode) = point`` that MINPACK's hybr reaches from the centres
+    of a ``cells x cells`` grid of the regular chart (``cells / 2`` values of ``|t|`` per
+    sign), rows ``(psi, t, mode)``."""
+    psi = (np.arange(cells) + 0.5) / cells * 2 * np.pi
+    t = (np.arange(cells // 2) + 0.5) / (cells // 2) * regular.T_MAX
+    found = []
+    for mode in modes:
+        roots = []
+        for start in np.stack(np.meshgrid(psi, np.concatenate((-t, t))), -1).reshape(-1, 2):
+            def f(z, sign=np.sign(start[1]), mode=mode):
+                if not (0 < z[0] < 2 * np.pi and 0 < z[1] * sign <= regular.T_MAX):
+                    return [1e3, 1e3]             # outside the chart: far from any root
+                return regular.closed_form(EI, L, z[0], z[1], mode, jacobian=False).tip - point
+
+            r = root(f, start, method="hybr", tol=1e-13)
+            if (r.success and np.abs(f(r.x)).max() < 1e-10
+                    and not any(np.abs(r.x - z).max() < 1e-7 for z in roots)):
+                roots.append(r.x)
+        found += [(*z, mode) for z in roots]
+    found = np.array(found)
+    return found[np.lexsort((found[:, 1], found[:, 0], found[:, 2]))]
+
+
+def same_nine(found):
+    ours = rods.pinned_equilibria(EI, L, THESIS, chart="t")
+    ours = ours[np.lexsort((ours[:, 1], ours[:, 0], ours[:, 2]))]
+    assert found.shape == ours.shape == (9, 3)
+    assert np.abs(found - ours).max() < 1e-9
+
+
+def test_every_equilibrium_pinned_equilibria(benchmark):
+    sols = benchmark.pedantic(rods.pinned_equilibria, args=(EI, L, THESIS), kwargs={"chart": "t"},
+                              rounds=5, warmup_rounds=1)
+    same_nine(sols[np.lexsort((sols[:, 1], sols[:, 0], sols[:, 2]))])
+    record(benchmark, "every equilibrium through (0.8, 0.1)", 0, "mechnum")
+
+
+def test_every_equilibrium_scipy_root(benchmark):
+    found = benchmark.pedantic(hybr_equilibria, args=(THESIS,), rounds=2, warmup_rounds=0)
+    same_nine(found)
+    record(benchmark, "every equilibrium through (0.8, 0.1)", 0, "peer")

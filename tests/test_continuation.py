@@ -1,11 +1,18 @@
-"""Tests of mechnum.continuation: pseudo-arclength continuation through folds."""
+"""Tests of mechnum.continuation: natural-parameter paths and their branch jumps,
+pseudo-arclength continuation through folds."""
+
+import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from mechnum.continuation import pseudo_arclength
-from mechnum.errors import ConvergenceError
+from mechnum import newton
+from mechnum.continuation import PathResult, pseudo_arclength, solve_path
+from mechnum.errors import ConvergenceError, SingularJacobianError
+from mechnum.results import STATUSES, Result
 
 
 def cubic(u):      # x**3 - 3 x = p: folds at (1, -2) and (-1, 2)
@@ -22,13 +29,13 @@ def test_the_s_curve_is_traced_through_both_folds():
     assert branch.complete and branch.u[-1, 0] > 2.5
     assert_allclose([cubic(u)[0] for u in branch.u], 0.0, atol=1e-9)
     assert branch.folds.size == 2
-    assert_allclose(branch.fold_points, [[-1.0, 2.0], [1.0, -2.0]], atol=1e-9)
+    assert_allclose(branch.fold_points, [[-1.0, 2.0], [1.0, -2.0]], atol=1e-9, rtol=0)
     # the folds are where the parameter turns back, and x grows all the way
     p = branch.u[:, 1]
     for i, j in zip(branch.folds, np.append(branch.folds[1:], len(p) - 1)):
         assert np.all(np.sign(np.diff(p[i + 1:j + 1])) == np.sign(np.diff(p[i + 1:i + 3]))[0])
     assert np.all(np.diff(branch.u[:, 0]) > 0)
-    assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0)
+    assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)
 
 
 def test_the_arclength_step_is_the_distance_along_the_tangent():
@@ -54,6 +61,191 @@ def test_a_curve_that_ends_is_reported():
 
     branch = pseudo_arclength(fun, jac, [1.0, 1.0], direction=[-1.0, 0.0], step=0.1,
                               steps=200, min_step=1e-6)
-    assert not branch.complete and branch.u[-1, 0] < 1e-3
+    assert not branch.complete and branch.u[-1, 0] < 1e-3 and branch.status == "stagnated"
+    # the same curve the other way does not end: traced to its 20 points, complete
+    onward = pseudo_arclength(fun, jac, [1.0, 1.0], direction=[1.0, 0.0], step=0.1, steps=20)
+    assert onward.complete and onward.status == "converged" and len(onward.u) == 21
     with pytest.raises(ConvergenceError):
         pseudo_arclength(fun, jac, [1.0, 1.0], step=10.0, min_step=1.0, maxiter=1)
+
+
+def test_a_bifurcation_point_has_no_tangent():
+    # x^2 = p^2: the lines x = p and x = -p cross at the origin, where F' = 0
+    cross = (lambda u: np.array([u[0] ** 2 - u[1] ** 2]),
+             lambda u: np.array([[2 * u[0], -2 * u[1]]]))
+    with pytest.raises(SingularJacobianError, match="bifurcation"):
+        pseudo_arclength(*cross, [0.0, 0.0])
+    branch = pseudo_arclength(*cross, [1.0, 1.0], steps=5)   # away from it, a line
+    assert_allclose(branch.u[:, 0], branch.u[:, 1], rtol=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, error, match", [
+    ({"direction": [0.0, 0.0]}, ValueError, "direction must be a non-zero"),
+    ({"direction": [np.nan, 1.0]}, ValueError, "direction must be finite"),
+    ({"fun": lambda u: np.zeros(2)}, ValueError, r"fun must return a real array of shape \(1,\)"),
+    ({"jac": lambda u: np.zeros((2, 2))}, ValueError, r"jac must return .* shape \(1, 2\)"),
+    ({"steps": 10 ** 7}, ValueError, "bound on the work"),
+    ({"u0": [1.0]}, ValueError, "u0 must hold the unknowns and the parameter"),
+])
+def test_pseudo_arclength_refuses_bad_input(kwargs, error, match):
+    args = {"fun": cubic, "jac": cubic_jac, "u0": [-2.5, -8.125]} | kwargs
+    with pytest.raises(error, match=match):
+        pseudo_arclength(args.pop("fun"), args.pop("jac"), args.pop("u0"), **args)
+
+
+def test_branch_follows_the_result_contract():
+    branch = pseudo_arclength(cubic, cubic_jac, [-2.5, -8.125], direction=[1.0, 0.0],
+                              step=0.05, steps=30)
+    assert isinstance(branch, Result) and branch.x is branch.u and branch.converged
+    assert branch.nfev > 30 and branch.njev > 30 and branch.iterations >= 30
+
+
+# --- natural-parameter paths ---------------------------------------------------------------------
+
+def square(x, c):
+    return x ** 2 - c[:, None]
+
+
+def square_jac(x, c):
+    return 2 * x[:, :, None]
+
+
+def test_solve_path_follows_a_branch_and_reports_failures():
+    # x**2 = p on p from 1 down to -1: the positive root exists until p = 0
+    p = np.linspace(1.0, -1.0, 21)
+    path = solve_path(square, p, [1.0], square_jac)
+    ok = p > 0
+    assert np.array_equal(path.converged, ok)
+    assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
+    assert np.isnan(path.x[~ok]).all() and set(path.status[~ok]) <= set(STATUSES) - {"converged"}
+    # two paths at once, with their own parameters; a failed path may be abandoned
+    both = solve_path(square, np.stack([p, p + 2], axis=1), [[1.0], [-np.sqrt(3.0)]],
+                      square_jac, resume=False)
+    assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
+    assert (both.status[~ok, 0][1:] == "lost").all()      # abandoned after its first failure
+    assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
+    with pytest.raises(ValueError, match="params"):
+        solve_path(square, p, [[1.0], [2.0]], square_jac)
+
+
+def arm(q, P):
+    """A two-link arm of unit links reaching the points P: the loop equations in its angles."""
+    a, b = q[:, 0], q[:, 0] + q[:, 1]
+    return np.stack([np.cos(a) + np.cos(b) - P[:, 0], np.sin(a) + np.sin(b) - P[:, 1]], axis=-1)
+
+
+def arm_jac(q, P):
+    a, b = q[:, 0], q[:, 0] + q[:, 1]
+    return np.stack([np.stack([-np.sin(a) - np.sin(b), -np.sin(b)], -1),
+                     np.stack([np.cos(a) + np.cos(b), np.cos(b)], -1)], axis=1)
+
+
+def reach(n):
+    """Points that pass within 0.001 of the arm's reach of 2, and the elbow-up start."""
+    phi = np.linspace(0.0, 1.0, n)
+    r = 1.999 - 0.6 * np.abs(phi - 0.5)
+    elbow = np.arccos(r[0] ** 2 / 2 - 1)
+    return np.column_stack([r * np.cos(phi), r * np.sin(phi)]), [-elbow / 2, elbow]
+
+
+@pytest.mark.parametrize("n", [5, 9, 21])
+def test_a_leap_across_the_fold_is_a_branch_jump(n):
+    # near full reach the elbow angle q[1] is 0.063 and the Jacobian nearly singular; the
+    # secant prediction crosses q[1] = 0 and Newton converges with the elbow bent the other way
+    # (det J = sin q[1] < 0): the other assembly, which no continuous motion of this path reaches
+    points, q0 = reach(n)
+    path = solve_path(arm, points, q0, arm_jac)
+    jump = np.flatnonzero(path.status == "branch-jump")
+    assert jump.tolist() == [n // 2 + 1]
+    assert np.isnan(path.x[jump]).all() and np.isnan(path.det[jump]).all()
+    ok = path.converged
+    assert ok.sum() == n - 1 and np.all(path.det[ok] > 0) and np.all(path.x[ok, 1] > 0)
+    assert_allclose(path.det[ok], np.sin(path.x[ok, 1]), rtol=1e-12)
+    # the same steps, solved one by one from the last point: Newton does land on the other
+    # assembly, with the elbow angle of the opposite sign
+    before = path.x[jump[0] - 1]
+    other = newton.solve(lambda q: arm(q[None], points[jump])[0],
+                         before + (before - path.x[jump[0] - 2]), tol=1e-12)
+    assert other.x[1] < 0
+
+
+def test_a_point_that_moves_too_fast_is_a_branch_jump():
+    # x = 10 tanh(100 (p - 0.5)) changes by 10 over a step of 0.1 where the steps before it
+    # moved x by 4e-8 at most: the point cannot be trusted to be on the branch followed
+    def fun(x, c):
+        return x - 10 * np.tanh(100 * (c[:, None] - 0.5))
+
+    p = np.linspace(0.0, 1.0, 11)
+    path = solve_path(fun, p, [-10.0], lambda x, c: np.ones((len(x), 1, 1)))
+    assert path.status[5:].tolist().count("branch-jump") >= 1
+    assert path.converged[:5].all()
+    free = solve_path(fun, p, [-10.0], lambda x, c: np.ones((len(x), 1, 1)), max_jump=None)
+    assert free.converged.all()
+    assert_allclose(free.x[:, 0], 10 * np.tanh(100 * (p - 0.5)), rtol=1e-12, atol=1e-12)
+
+
+def test_solve_path_with_the_jacobian_from_fun():
+    p = np.linspace(1.0, 4.0, 7)
+    path = solve_path(lambda x, c: (square(x, c), square_jac(x, c)), p, [1.0], jac=True)
+    assert path.converged.all() and path.nfev == path.njev
+    assert_allclose(path.x[:, 0], np.sqrt(p), rtol=1e-12)
+    assert isinstance(path, PathResult) and isinstance(path, Result)
+    assert newton.solve_path is solve_path and newton.PathResult is PathResult
+
+
+def test_solve_path_of_no_steps_is_empty():
+    path = solve_path(square, [], [1.0], square_jac)
+    assert path.x.shape == (0, 1) and path.status.shape == (0,)
+    batch = solve_path(square, np.empty((0, 2)), [[1.0], [2.0]], square_jac)
+    assert batch.x.shape == (0, 2, 1) and batch.converged.shape == (0, 2)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"params": 2.0}, "one parameter set per step"),
+    ({"params": [1.0, np.nan]}, "params must be finite"),
+    ({"params": [1.0, np.inf]}, "params must be finite"),
+    ({"params": [1.0, 2.0 + 1j]}, "params must be real"),
+    ({"resume": "yes"}, "resume must be True or False"),
+    ({"max_jump": 0.0}, "max_jump must be positive"),
+    ({"maxiter": 10 ** 9}, "bound on the work"),
+    ({"domain": lambda x: np.ones(5, bool)}, "domain returned shape"),
+])
+def test_solve_path_refuses_bad_input(kwargs, match):
+    args = {"params": [1.0, 2.0]} | kwargs
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")      # no ComplexWarning on the way
+        with pytest.raises(ValueError, match=match):
+            solve_path(square, args.pop("params"), [1.0], square_jac, **args)
+
+
+# --- property tests: the documented tolerance, or a reported failure -----------------------------
+
+@settings(max_examples=100, deadline=None)
+@given(a=st.floats(0.1, 10.0), b=st.floats(-10.0, 10.0), steps=st.integers(2, 40),
+       span=st.floats(0.1, 5.0))
+def test_solve_path_points_meet_the_residual_tolerance(a, b, steps, span):
+    # the real root of x^3 + a x = p + b (monotone in x: one branch, no fold) along p
+    p = np.linspace(0.0, span, steps)
+    fun = lambda x, c: x ** 3 + a * x - (c[:, None] + b)  # noqa: E731
+    path = solve_path(fun, p, [0.0], lambda x, c: (3 * x ** 2 + a)[:, :, None], tol=1e-10)
+    ok = path.converged
+    residual = np.abs(path.x[ok, 0] ** 3 + a * path.x[ok, 0] - p[ok] - b)
+    assert np.all(residual <= 1e-10)
+    assert set(path.status[~ok]) <= set(STATUSES) and np.isnan(path.x[~ok]).all()
+    assert "branch-jump" not in path.status    # one branch, no fold: nothing to jump to
+
+
+@settings(max_examples=50, deadline=None)
+@given(rx=st.floats(0.2, 5.0), ry=st.floats(0.2, 5.0), step=st.floats(0.01, 0.3))
+def test_pseudo_arclength_points_lie_on_the_curve(rx, ry, step):
+    # the ellipse (x / rx)^2 + (p / ry)^2 = 1 from (rx, 0): two folds on every lap
+    fun = lambda u: np.array([(u[0] / rx) ** 2 + (u[1] / ry) ** 2 - 1.0])  # noqa: E731
+    jac = lambda u: np.array([[2 * u[0] / rx ** 2, 2 * u[1] / ry ** 2]])  # noqa: E731
+    try:
+        branch = pseudo_arclength(fun, jac, [rx, 0.0], step=step * min(rx, ry), steps=60)
+    except ConvergenceError as error:     # a failure is named
+        assert "no point" in str(error)
+        return
+    gaps = np.abs([fun(u)[0] for u in branch.u])
+    assert np.all(gaps <= 1e-8)
+    assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)

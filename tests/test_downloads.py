@@ -1,5 +1,6 @@
 """The page "Run the chapters yourself" serves what a reader needs to run a chapter: the wheel of
-``mechnum`` and the chapters, which work in a fresh environment with nothing else of the book.
+``mechnum`` and the chapters with the registry they read and the bibliography they cite, which
+work in a fresh environment with nothing else of the book.
 
 Runs on the HTML that ``make book`` writes (``MECHNUM_BUILT_HTML``); skipped without it. It
 creates a virtual environment (the interpreter that created this one, so no ``mechnum`` is
@@ -20,7 +21,7 @@ import mechnum
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
 ROOT = Path(__file__).resolve().parents[1]
-pytestmark = pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set")
+built = pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set")
 WHEEL = f"mechnum-{mechnum.__version__}-py3-none-any.whl"
 CHAPTER = "01_newton_hacksaw.ipynb"
 RUN = """import sys, nbformat
@@ -40,20 +41,42 @@ def served(name):
     return (Path(BUILT) / "book" / found[0]).resolve()
 
 
+def test_the_extras_pin_the_versions_the_book_is_tested_with():
+    import tomllib
+
+    tested = {}
+    for name in ("environment.txt", "requirements.txt"):
+        for line in (ROOT / name).read_text(encoding="utf-8").splitlines():
+            pin = line.split("#")[0].strip()
+            if "==" in pin:
+                package, release = pin.split("==")
+                tested[package.lower()] = release
+    project = tomllib.loads((ROOT / "pkg" / "pyproject.toml").read_text(encoding="utf-8"))
+    extras = project["project"]["optional-dependencies"]
+    assert {"book", "lab", "grade"} <= set(extras)
+    for extra, requirements in extras.items():
+        for requirement in requirements:
+            package, _, release = requirement.partition("==")
+            assert release and tested.get(package.lower()) == release, (extra, requirement)
+
+
+@built
 def test_page_serves_the_wheel_and_the_chapters():
     wheel, chapters = served(WHEEL), served("mechnum-chapters.zip")
     assert wheel.exists() and chapters.exists()
     with zipfile.ZipFile(wheel) as w:
-        assert "mechnum/newton.py" in w.namelist()
+        assert {"mechnum/__init__.py", "mechnum/newton/__init__.py",
+                "mechnum/exercises/__init__.py"} <= set(w.namelist())
     toc = (ROOT / "_toc.yml").read_text(encoding="utf-8")
     with zipfile.ZipFile(chapters) as z:
         names = set(z.namelist())
     for stem in re.findall(r"file: book/(\w+)", toc):
         if (ROOT / "book" / f"{stem}.ipynb").exists():
             assert f"{stem}.ipynb" in names
-    assert {"published_values.csv", "findings.csv"} <= names
+    assert {"published_values.csv", "findings.csv", "references.bib"} <= names
 
 
+@built
 def test_a_downloaded_chapter_runs_with_the_downloaded_wheel(tmp_path):
     venv = tmp_path / "reader"
     subprocess.run([sys._base_executable, "-m", "venv", str(venv)], check=True)

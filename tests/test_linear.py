@@ -11,6 +11,7 @@ from numpy.testing import assert_allclose
 from mechnum import linear
 from mechnum.errors import (ConvergenceError, DivergenceError, RelaxationFactorError,
                             SingularJacobianError)
+from mechnum.results import Result
 
 # Burden and Faires, Numerical Analysis, Examples 7.3.1 and 7.3.3: solution (1, 2, -1, 1).
 BF_A = np.array([[10.0, -1, 2, 0], [-1, 11, -1, 3], [2, -1, 10, -1], [0, 3, -1, 8]])
@@ -68,8 +69,9 @@ omegas = st.floats(0.05, 1.95)
     ("gauss_seidel", 5, [1.0001, 2.0000, -1.0000, 1.0000])])
 def test_burden_faires_iteration_counts(method, iterations, last):
     # The book's tables stop at k = 10 (Jacobi) and k = 5 (Gauss-Seidel), where the step
-    # ||x_k - x_{k-1}||_inf first falls below 1e-3, and print these iterates to 4 decimals.
-    res = getattr(linear, method)(BF_A, BF_B, tol=1e-3, criterion="step")
+    # ||x_k - x_{k-1}||_inf first falls below 1e-3 (an absolute test), and print these
+    # iterates to 4 decimals.
+    res = getattr(linear, method)(BF_A, BF_B, tol=1e-3, criterion="step", relative=False)
     assert res.iterations == iterations
     assert res.x.round(4).tolist() == last
     assert res.step_norms.shape == (iterations,)
@@ -77,9 +79,10 @@ def test_burden_faires_iteration_counts(method, iterations, last):
 
 
 def test_sor_textbook_solution_and_speed_up():
-    sor = linear.sor(TRI_A, TRI_B, 1.25, x0=np.ones(3), tol=1e-7)
-    gs = linear.gauss_seidel(TRI_A, TRI_B, x0=np.ones(3), tol=1e-7)
-    assert_allclose(sor.x, [3, 4, -5], atol=1e-6)
+    # Burden and Faires, Example 7.4.3: 7 decimals, an absolute test
+    sor = linear.sor(TRI_A, TRI_B, 1.25, x0=np.ones(3), tol=1e-7, relative=False)
+    gs = linear.gauss_seidel(TRI_A, TRI_B, x0=np.ones(3), tol=1e-7, relative=False)
+    assert_allclose(sor.x, [3, 4, -5], atol=1e-6, rtol=0)
     assert sor.iterations < gs.iterations / 2
 
 
@@ -155,10 +158,18 @@ def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
     assert linear.gauss_seidel(A, b).history is None
     kept = linear.gauss_seidel(A, b, keep_history=True)
     assert kept.history.shape == (kept.iterations + 1, 16)
+    # the kept history is the iteration itself: from x0 to x, its steps and residuals recorded
+    assert not kept.history[0].any() and np.array_equal(kept.history[-1], kept.x)
+    assert_allclose(np.abs(np.diff(kept.history, axis=0)).max(axis=1), kept.step_norms,
+                    rtol=1e-12)
+    assert_allclose(np.abs(b - kept.history @ A.T).max(axis=1), kept.residual_norms,
+                    rtol=1e-9, atol=1e-15)
+    with pytest.raises(ValueError, match="keep_history must be True or False"):
+        linear.gauss_seidel(A, b, keep_history="yes")
 
 
 def test_residual_criterion():
-    res = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual")
+    res = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=False)
     assert res.residual_norms[-1] < 1e-9 <= res.residual_norms[-2]
     relative = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=True,
                                    norm=2)
@@ -192,7 +203,7 @@ def test_sparse_and_dense_give_the_same_iterates(method):
     sparse = getattr(linear, method)(A, b, **({"omega": 1.5} if method == "sor" else {}))
     assert sparse.iterations == dense.iterations
     assert_allclose(sparse.x, dense.x, rtol=0, atol=1e-12)
-    assert_allclose(A @ sparse.x, b, atol=1e-8)
+    assert_allclose(A @ sparse.x, b, atol=1e-9 * np.abs(b).max(), rtol=0)  # a relative stop
 
 
 def test_poisson_sor_at_young_omega():
@@ -205,7 +216,7 @@ def test_poisson_sor_at_young_omega():
     assert sor.iterations * 10 < gs.iterations  # O(m) sweeps against O(m^2)
     cg = linear.conjugate_gradient(A, b, tol=1e-10)
     assert cg.iterations < sor.iterations
-    assert_allclose(sor.x, cg.x, atol=1e-7)
+    assert_allclose(sor.x, cg.x, atol=1e-7, rtol=0)
 
 
 def test_poisson2d_structure():
@@ -493,6 +504,7 @@ def test_iterative_refinement_bad_input():
 @HYPOTHESIS
 @given(dominant_systems(), st.floats(-300, 300))
 @example(system=(np.array([[-1.4375]]), np.array([2.22507386e-313])), exponent=1.0)
+@example(system=(np.array([[-1.25]]), np.array([6.73643596e-167])), exponent=-152.0)
 def test_iterative_refinement_accuracy(system, exponent):
     A, b = system
     b = b * 10.0 ** exponent
@@ -509,6 +521,7 @@ def test_iterative_refinement_accuracy(system, exponent):
 
 @HYPOTHESIS
 @given(spd_systems(), omegas)
+@example(system=(np.array([[0.5]]), np.array([5e-324])), omega=1.5)  # a subnormal solution
 def test_sor_converges_on_spd_for_every_omega(system, omega):
     A, b = system
     assert linear.spectral_radius(linear.iteration_matrix(A, "sor", omega)) < 1
@@ -635,7 +648,7 @@ def test_condition_number_matches_numpy(system, p):
 def test_poisson2d_is_spd_with_known_jacobi_radius(m):
     A = linear.poisson2d(m)
     assert A.shape == (m * m, m * m) and abs(A - A.T).max() == 0
-    assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0])
+    assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0], rtol=1e-12)
     if m <= 6:
         eig = np.linalg.eigvalsh(A.toarray())
         assert eig.min() > 0
@@ -650,3 +663,92 @@ def test_stopping_rule_accepts_its_domain(tol, maxiter, criterion, norm, relativ
     assert (rule.tol, rule.maxiter) == (tol, maxiter)
     with pytest.raises(ValueError, match="tol"):
         linear.StoppingRule(-tol, maxiter)
+
+
+# --- issue 23: relative stopping tests, the result contract, bounds ------------------------------
+
+def test_the_default_test_is_relative():
+    # D4: scaled by 1e12, the solution is [9.1e-14, 6.4e-13]; an absolute step test of 1e-10
+    # stops after one sweep at [3.0e-13, 6.8e-13], 200 % off
+    A = A2 * 1e12
+    res = linear.sor(A, B2, 1.2)
+    assert_allclose(res.x, X2 / 1e12, rtol=1e-9)
+    for method in ("jacobi", "gauss_seidel"):
+        assert_allclose(getattr(linear, method)(A, B2).x, X2 / 1e12, rtol=1e-9)
+        assert_allclose(getattr(linear, method)(sp.csr_array(A), B2).x, X2 / 1e12, rtol=1e-9)
+    absolute = linear.sor(A, B2, 1.2, relative=False)
+    assert absolute.iterations == 1 and np.abs(absolute.x / (X2 / 1e12) - 1).max() > 1
+
+
+@HYPOTHESIS
+@given(dominant_systems(), st.integers(-40, 40), st.sampled_from(linear.METHODS),
+       st.sampled_from(linear.CRITERIA))
+def test_stationary_solvers_are_indifferent_to_scale(system, power, method, criterion):
+    # A scaled by a power of two scales every iterate exactly: a relative test stops at the
+    # same sweep, wherever the solution's size
+    A, b = system
+    omega = {"omega": 1.1} if method == "sor" else {}
+    try:
+        one = getattr(linear, method)(A, b, criterion=criterion, **omega)
+    except ConvergenceError as error:   # SOR at 1.1 need not converge on these
+        assert error.result.status in ("maxiter", "diverged", "non-finite")
+        return
+    scaled = getattr(linear, method)(A * 2.0 ** power, b, criterion=criterion, **omega)
+    assert scaled.iterations == one.iterations
+    assert_allclose(scaled.x * 2.0 ** power, one.x, rtol=1e-12, atol=1e-300)
+    exact = np.linalg.solve(A, b)
+    if criterion == "residual":   # the documented tolerance, recomputed
+        assert np.abs(b - A @ one.x).max() <= 1e-10 * np.abs(b).max() * (1 + 1e-6) + 1e-300
+    else:                         # a step below 1e-10 |x|: a contraction's error is not far off
+        assert np.abs(one.x - exact).max() <= 1e-6 * max(np.abs(exact).max(), 1e-300)
+
+
+@HYPOTHESIS
+@given(spd_systems(), st.integers(-40, 40))
+@example(system=(np.array([[0.5]]), np.array([6.78643142e-162])), power=-3)  # b . b subnormal
+def test_conjugate_gradient_meets_its_tolerance(system, power):
+    A, b = system
+    A = A * 2.0 ** power
+    res = linear.conjugate_gradient(A, b, tol=1e-10)
+    assert np.linalg.norm(b - A @ res.x) <= 1e-9 * np.linalg.norm(b) + 1e-300
+
+
+def test_results_follow_the_contract():
+    res = linear.gauss_seidel(TRI_A, TRI_B)
+    assert isinstance(res, Result) and res.status == "converged" and res.converged
+    assert res.nfev == res.iterations + 1 and res.njev == 0 and "converged" in res.message
+    with pytest.raises(ConvergenceError) as info:
+        linear.sor(TRI_A, TRI_B, 0.1, maxiter=5)
+    assert info.value.result.status == "maxiter" and not info.value.result.converged
+    with pytest.raises(DivergenceError) as info:
+        linear.jacobi([[1.0, 2.0], [2.0, 1.0]], [1.0, 1.0])
+    assert info.value.result.status == "diverged"
+    cg = linear.conjugate_gradient(TRI_A, TRI_B)
+    assert cg.status == "converged" and cg.nfev == cg.iterations + 1
+    refined = linear.iterative_refinement(TRI_A, TRI_B)
+    assert refined.status == "converged" and isinstance(refined, Result)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: linear.gauss_seidel(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
+    (lambda: linear.sor_sweep(TRI_A, TRI_B, np.full(10_001, 1.2)), "bound on the work"),
+    (lambda: linear.sor_spectral_radii(TRI_A, np.full(10_001, 1.2)), "bound on the work"),
+    (lambda: linear.conjugate_gradient(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
+    (lambda: linear.iterative_refinement(TRI_A, TRI_B, maxiter=1000), "bound on the work"),
+    (lambda: linear.poisson2d(10 ** 5), "bound on the work"),
+    (lambda: linear.StoppingRule(relative=1), "relative must be True or False"),
+])
+def test_every_amount_of_work_is_bounded(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_a_sparse_matrix_of_float16_is_accepted():
+    # R7: scipy converts a COO or DIA matrix holding float16 (which it does not support) only
+    # element by element; check_matrix converts it first
+    for fmt in (sp.coo_array, sp.dia_array, sp.csr_array):
+        A = fmt(TRI_A)
+        A.data = A.data.astype(np.float16)
+        checked = linear.check_matrix(A)
+        assert checked.dtype == np.float64
+        assert_allclose(checked.toarray(), TRI_A, rtol=0, atol=0)

@@ -1,13 +1,16 @@
 """Tests of mechnum.newton: textbook systems, criteria, batches, and every failure mode."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton import (STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch,
-                            solve_path)
+from mechnum.errors import (ConvergenceError, DivergenceError, NonFiniteError,
+                            SingularJacobianError)
+from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
+from mechnum.results import Result
 
 
 def circle_line(x):
@@ -44,7 +47,7 @@ def test_step_criterion_counts_the_confirming_step():
     residual = solve(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8,
                      criterion="residual")
     assert (step.iterations, residual.iterations) == (2, 1)
-    np.testing.assert_allclose(step.x, np.linalg.solve(A, b), atol=1e-14)
+    np.testing.assert_allclose(step.x, np.linalg.solve(A, b), atol=1e-14, rtol=0)
 
 
 def test_norm_choice_changes_the_test_not_the_iterates():
@@ -56,8 +59,9 @@ def test_norm_choice_changes_the_test_not_the_iterates():
     def cube_jac(x):
         return np.diag(3 * x ** 2)
 
-    a = solve(cube, [1.0, 1.0, 1.0], cube_jac, tol=1e-6, norm=np.inf, maxiter=100)
-    b = solve(cube, [1.0, 1.0, 1.0], cube_jac, tol=1e-6, norm=1, maxiter=100)
+    a = solve(cube, [1.0, 1.0, 1.0], cube_jac, tol=1e-6, norm=np.inf, maxiter=100,
+              relative=False)  # a root at the origin: an absolute test
+    b = solve(cube, [1.0, 1.0, 1.0], cube_jac, tol=1e-6, norm=1, maxiter=100, relative=False)
     assert a.converged and b.converged
     assert b.iterations >= a.iterations + 2
     np.testing.assert_array_equal(b.history[:len(a.history)], a.history)  # same iterates
@@ -65,15 +69,15 @@ def test_norm_choice_changes_the_test_not_the_iterates():
 
 def test_finite_difference_jacobian_is_the_default():
     res = solve(circle_line, [1.0, 0.5], tol=1e-12)
-    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12)
+    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12, rtol=0)
     J = fd_jacobian(circle_line, np.array([0.3, -0.7]))
-    np.testing.assert_allclose(J, circle_line_jac([0.3, -0.7]), atol=1e-7)
+    np.testing.assert_allclose(J, circle_line_jac([0.3, -0.7]), atol=1e-7, rtol=0)
 
 
 def test_fd_jacobian_of_a_batch():
     x = np.array([[0.3, -0.7], [1.0, 2.0]])
     J = fd_jacobian(lambda z: np.stack([z[:, 0] ** 2, z[:, 0] * z[:, 1]], axis=-1), x)
-    np.testing.assert_allclose(J[1], [[2.0, 0.0], [2.0, 1.0]], atol=1e-6)
+    np.testing.assert_allclose(J[1], [[2.0, 0.0], [2.0, 1.0]], atol=1e-6, rtol=0)
 
 
 @pytest.mark.parametrize("x0", [[np.nan, 1.0], [np.inf, 0.0], [[1.0, 2.0]], [], 3.0])
@@ -84,7 +88,8 @@ def test_bad_initial_guess_is_a_value_error(x0):
 
 @pytest.mark.parametrize("kwargs, match", [({"criterion": "size"}, "criterion"),
                                            ({"tol": 0.0}, "tol"), ({"tol": np.nan}, "tol"),
-                                           ({"maxiter": 0}, "maxiter"), ({"maxiter": 2.5}, "maxiter")])
+                                           ({"maxiter": 0}, "maxiter"),
+                                           ({"maxiter": 2.5}, "maxiter")])
 def test_bad_options_are_value_errors(kwargs, match):
     with pytest.raises(ValueError, match=match):
         solve(circle_line, [1.0, 0.5], circle_line_jac, **kwargs)
@@ -157,7 +162,7 @@ def test_batch_singular_system_does_not_stop_the_others():
                     np.array([[1.0], [0.0], [1.0]]), lambda x: 2 * x[:, :, None])
     res = info.value.result
     assert res.singular[1] and not res.singular[0]
-    np.testing.assert_allclose(res.x[[0, 2], 0], [2.0, 3.0])
+    np.testing.assert_allclose(res.x[[0, 2], 0], [2.0, 3.0], rtol=1e-12)
     assert res.converged[[0, 2]].all()
 
 
@@ -278,7 +283,7 @@ def test_solve_all_finds_every_root_of_a_polynomial_system():
     found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
                       n_starts=300, rng=1)
     expected = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 1)], dtype=float)
-    np.testing.assert_allclose(found.roots, expected, atol=1e-12)
+    np.testing.assert_allclose(found.roots, expected, atol=1e-12, rtol=0)
     assert found.complete and found.new_in_check == 0 and found.n_check == 3000
     assert found.hits.sum() == found.status_counts["converged"] and found.hits.min() > 10
     assert np.all(found.residual_norms < 1e-12)
@@ -300,7 +305,7 @@ def test_solve_all_extra_starts_and_domain():
     assert found.status_counts["left-domain"] >= 1 and found.n_check == 0
     found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
                       starts=[[-1.1, -1.1]])
-    np.testing.assert_allclose(found.roots, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12)
+    np.testing.assert_allclose(found.roots, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12, rtol=0)
     assert found.hits.tolist() == [1, 20]
 
 
@@ -399,12 +404,12 @@ def test_broyden_keeps_an_exact_jacobian_of_a_linear_system():
     A, b = np.array([[3.0, 1.0], [1.0, 2.0]]), np.array([1.0, 1.0])
     res = broyden(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8)
     assert res.iterations == 2
-    np.testing.assert_allclose(res.x, np.linalg.solve(A, b), atol=1e-14)
+    np.testing.assert_allclose(res.x, np.linalg.solve(A, b), atol=1e-14, rtol=0)
 
 
 def test_broyden_without_a_jacobian_uses_differences():
     res = broyden(circle_line, [1.0, 0.5], tol=1e-13)
-    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12)
+    np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12, rtol=0)
 
 
 @pytest.mark.parametrize("x0, kwargs, error, match", [
@@ -450,7 +455,7 @@ def test_max_step_bounds_every_step():
     assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
     with pytest.raises(ValueError, match="max_step must be positive"):
         solve(atan_system, [1.5], atan_jac, max_step=0.0)
-# --- independent systems, stacked backtracking, path following ------------------------------
+# --- independent systems, stacked backtracking ----------------------------------------------
 
 def test_independent_batch_gives_the_same_iterates_with_fewer_calls():
     rng = np.random.default_rng(7)
@@ -470,20 +475,259 @@ def test_fewer_halvings_drop_hard_starts():
     assert res.status.tolist() == ["converged", "stagnated"]
 
 
-def test_solve_path_follows_a_branch_and_reports_failures():
-    # x**2 = p on p from 1 down to -1: the positive root exists until p = 0
-    p = np.linspace(1.0, -1.0, 21)
-    fun = lambda x, c: x ** 2 - c[:, None]  # noqa: E731
-    jac = lambda x, c: 2 * x[:, :, None]  # noqa: E731
-    path = solve_path(fun, p, [1.0], jac)
-    ok = p > 0
-    assert np.array_equal(path.converged, ok)
-    np.testing.assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
-    assert np.isnan(path.x[~ok]).all()
-    # two paths at once, with their own parameters; a failed path may be abandoned
-    both = solve_path(fun, np.stack([p, p + 2], axis=1), [[1.0], [-np.sqrt(3.0)]], jac,
-                      resume=False)
-    assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
-    np.testing.assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
-    with pytest.raises(ValueError, match="params"):
-        solve_path(fun, p, [[1.0], [2.0]], jac)
+# --- issue 23: the step criterion, relative tests, jac=True, bad input, bounds -----------------
+
+def test_a_max_step_below_tol_cannot_fake_convergence():
+    # D2: the criterion tests Newton's full step (4.95 at the start), not the step shortened to
+    # max_step = 1e-4, so nothing converges at x = 9.9999 where f = 98
+    square = (lambda x: x ** 2 - 2, lambda x: np.diag(2 * x))
+    with pytest.raises(ConvergenceError, match="did not converge in 50") as info:
+        solve(*square[:1], [10.0], square[1], tol=1e-3, max_step=1e-4)
+    assert info.value.result.status == "maxiter" and info.value.result.x[0] > 9.99
+    batch = solve_batch(lambda x: x ** 2 - 2, [[10.0]], lambda x: 2 * x[:, :, None], tol=1e-3,
+                        max_step=1e-4, raise_on_failure=False)
+    assert batch.status.tolist() == ["maxiter"]
+    # with room to walk there, it converges, and only where the full step is small
+    res = solve(*square[:1], [10.0], square[1], tol=1e-3, max_step=0.5, maxiter=100)
+    assert abs(res.x[0] - np.sqrt(2)) < 1e-3 * np.sqrt(2)
+    assert res.full_step_norms[-1] <= 1e-3 * abs(res.x[0]) < res.full_step_norms[0]
+
+
+def test_damping_with_max_step_measures_armijo_against_the_full_step():
+    # D14: from 50 on arctan, steps of 0.1 decrease |f| by about 4e-5 each, less than the
+    # 1e-4 |f| Armijo would ask of a full step: the shortened step must be judged as such
+    res = solve(atan_system, [50.0], atan_jac, damping=True, max_step=0.1, maxiter=1000,
+                tol=1e-12)
+    assert res.converged and abs(res.x[0]) < 1e-12
+    assert res.step_norms.max() <= 0.1 * (1 + 1e-12) and res.iterations > 490
+
+
+def test_the_default_step_test_is_relative():
+    # the root of (x / s)^3 = 1 is s = 1e-13: an absolute test with tol 1e-10 stops after one
+    # step, 42 % off; the relative test finds s to ten digits
+    s = 1e-13
+    res = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3))
+    assert abs(res.x[0] - s) <= 1e-10 * s
+    absolute = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3),
+                     relative=False)
+    assert absolute.iterations == 1 and abs(absolute.x[0] - s) > 0.4 * s
+
+
+def pair(x):
+    """circle_line's residual and Jacobian from one call."""
+    return circle_line(x), circle_line_jac(x)
+
+
+def test_jac_true_takes_the_jacobian_from_fun():
+    calls = {"fun": 0}
+
+    def counted(x):
+        calls["fun"] += 1
+        return pair(x)
+
+    res = solve(counted, [1.0, 0.5], jac=True, tol=1e-14)
+    ref = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
+    np.testing.assert_array_equal(res.history, ref.history)
+    assert res.nfev == res.njev == calls["fun"] == res.iterations + 1
+    # damped: the Jacobian of a point the line search accepts is not computed again
+    calls["fun"] = 0
+    damped = solve(lambda x: (np.arctan(x), atan_jac(x)), [1.5], jac=True, damping=True, tol=1e-14)
+    assert damped.converged and damped.nfev == damped.njev
+    assert broyden(counted, [1.0, 0.5], jac=True, tol=1e-14).converged
+    batch = solve_batch(lambda z: (cubic_pair(z), cubic_pair_jac(z)), [[0.8, 0.7], [-2.0, -3.0]],
+                        jac=True, tol=1e-14)
+    np.testing.assert_allclose(batch.x, [[1.0, 1.0], [-1.0, -1.0]], rtol=1e-14)
+    found = solve_all(lambda z: (cubic_pair(z), cubic_pair_jac(z)),
+                      lambda rng, m: rng.uniform(-2, 2, (m, 2)), True, n_starts=100, rng=1)
+    assert len(found.roots) == 6
+    with pytest.raises(ValueError, match="pair"):
+        solve(circle_line, [1.0, 0.5], jac=True)
+    with pytest.raises(ValueError, match="jac must be"):
+        solve(circle_line, [1.0, 0.5], jac="exact")
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"damping": "yes"}, "damping must be True or False"),
+    ({"damping": np.nan}, "damping must be True or False"),
+    ({"relative": 1}, "relative must be True or False"),
+    ({"maxiter": 10 ** 9}, "bound on the work"),
+    ({"halvings": 100}, "bound on the work"),
+])
+def test_solve_refuses_bad_flags_and_unbounded_work(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve(circle_line, [1.0, 0.5], circle_line_jac, **kwargs)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"raise_on_failure": "no"}, "raise_on_failure must be True or False"),
+    ({"independent": 1}, "independent must be True or False"),
+    ({"damping": "yes"}, "damping must be True or False"),
+    ({"domain": lambda x: np.ones(3, bool)}, r"domain returned shape \(3,\)"),
+])
+def test_solve_batch_refuses_bad_flags_and_domains(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        solve_batch(lambda x: x ** 2 - 2, np.ones((2, 1)), lambda x: 2 * x[:, :, None],
+                    **({"damping": True} if "domain" in kwargs else {}) | kwargs)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"rng": "a"}, "rng must be"), ({"rng": -1}, "rng must be"),
+    ({"domain": lambda z: np.ones(2, bool)}, "domain returned shape"),
+    ({"n_starts": 10 ** 8}, "bound on the work"), ({"check": 10 ** 6}, "bound on the work"),
+    ({"sample": lambda rng, m: np.empty((0, 2))}, r"must return 10 starts"),
+    ({"sample": lambda rng, m: np.full((m, 2), np.nan)}, "must be finite"),
+])
+def test_solve_all_refuses_bad_input(kwargs, match):
+    args = {"sample": lambda rng, m: rng.uniform(-2, 2, (m, 2)), "n_starts": 10} | kwargs
+    with pytest.raises(ValueError, match=match):
+        solve_all(cubic_pair, args.pop("sample"), cubic_pair_jac, **args)
+
+
+def test_fd_jacobian_checks_its_inputs_and_its_differences():
+    with pytest.raises(ValueError, match="fx must be finite"):
+        fd_jacobian(circle_line, [1.0, 0.5], fx=[np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"fx must have shape \(2,\)"):
+        fd_jacobian(circle_line, [1.0, 0.5], fx=[0.0, 0.0, 0.0])
+    with pytest.raises(NonFiniteError, match="not finite"), np.errstate(over="ignore"):
+        fd_jacobian(lambda x: x ** 2, [1e200])     # fun overflows next to x
+    with pytest.raises(NonFiniteError), np.errstate(invalid="ignore"):
+        fd_jacobian(lambda x: np.sqrt(1.0 - x), [1.0])  # NaN one step beyond x
+
+
+def test_failures_leak_no_runtime_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        # every system non-finite: the message's largest residual has no finite value
+        res = solve_batch(lambda x: np.full_like(x, np.nan), np.ones((3, 1)),
+                          lambda x: np.ones((len(x), 1, 1)), raise_on_failure=False)
+        assert res.status.tolist() == ["non-finite"] * 3 and "none finite" in res.message
+        with pytest.raises(DivergenceError, match="Jacobian is not finite"):
+            solve(lambda x: x - 1.0, [3.0], lambda x: np.full((1, 1), np.inf))
+        # plain Newton on x / (1 + x^2): the iterates grow until the step overflows
+        with pytest.raises((ConvergenceError, SingularJacobianError)):
+            solve(lambda x: x / (1 + x * x) if abs(x[0]) < 1e150 else 1 / x, [2.0],
+                  lambda x: np.diag((1 - x * x) / (1 + x * x) ** 2) if abs(x[0]) < 1e150
+                  else np.diag(-1 / x ** 2))
+
+
+def test_results_follow_the_contract():
+    res = solve(circle_line, [1.0, 0.5], circle_line_jac)
+    assert isinstance(res, Result) and res.status == "converged" and res.converged is True
+    assert res.nfev == res.iterations + 1 and res.njev == res.iterations and res.message
+    batch = solve_batch(lambda x: x ** 2 - np.array([[4.0], [-1.0]]), np.ones((2, 1)),
+                        lambda x: 2 * x[:, :, None], raise_on_failure=False, damping=True)
+    assert isinstance(batch, Result) and batch.converged.tolist() == [True, False]
+    assert "1 of 2 systems converged" in batch.message
+    found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
+                      n_starts=50, check=1, rng=0)
+    assert isinstance(found, Result) and found.status.shape == found.iterations.shape == (100,)
+    assert found.x is found.roots and sum(found.status_counts.values()) == 100
+    with pytest.raises(ConvergenceError) as info:
+        solve(atan_system, [2.0], atan_jac, maxiter=4)
+    assert info.value.result.status == "maxiter" and not info.value.result.converged
+
+
+# --- property tests: the documented tolerance, or a failure reported ----------------------------
+
+@st.composite
+def dominant_systems(draw, batch=None):
+    """``A x + c s sin(x / s) = b`` with its root ``x*`` known and a start near it.
+
+    ``A`` is strictly diagonally dominant by a margin of 1 and ``c <= 0.5``, so the Jacobian
+    ``A + c diag(cos(x / s))`` is regular everywhere; the scale ``s`` (1e-12 to 1e6) sizes the
+    root, which is what a relative test must be indifferent to.
+    """
+    n = draw(st.integers(1, 4))
+    rows = batch or 1
+    floats = st.floats(-1.0, 1.0)
+    A = np.array(draw(st.lists(floats, min_size=rows * n * n, max_size=rows * n * n)))
+    A = A.reshape(rows, n, n)
+    A[:, np.arange(n), np.arange(n)] = np.abs(A).sum(axis=2) + 1.0
+    c = draw(st.floats(0.0, 0.5))
+    s = draw(st.sampled_from([1e-12, 1e-6, 1.0, 1e6]))
+    unit = st.floats(-10.0, 10.0).filter(lambda v: abs(v) > 0.1)
+    root = s * np.array(draw(st.lists(unit, min_size=rows * n, max_size=rows * n)))
+    root = root.reshape(rows, n)
+    shift = s * np.array(draw(st.lists(floats, min_size=rows * n, max_size=rows * n)))
+    b = np.einsum("bij,bj->bi", A, root) + c * s * np.sin(root / s)
+
+    def fun(x):
+        return np.einsum("...ij,...j->...i", A if x.ndim == 2 else A[0], x) + \
+            c * s * np.sin(x / s) - (b if x.ndim == 2 else b[0])
+
+    def jac(x):
+        return (A if x.ndim == 2 else A[0]) + c * np.cos(x / s)[..., None] * np.eye(n)
+
+    start = root + shift.reshape(rows, n)
+    return fun, jac, (start if batch else start[0]), (root if batch else root[0])
+
+
+def close_to_the_root(x, root, tol):
+    """The documented guarantee of the relative step test, with a margin of ten: the last full
+    step is below tol ||x||, and Newton's next error is far below that step."""
+    return np.linalg.norm(x - root) <= 10 * tol * max(np.linalg.norm(x), np.linalg.norm(root))
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems(), damping=st.booleans())
+def test_solve_meets_its_tolerance_or_says_why(system, damping):
+    fun, jac, x0, root = system
+    try:
+        res = solve(fun, x0, jac, damping=damping)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert res.converged and close_to_the_root(res.x, root, 1e-10)
+    assert res.full_step_norms[-1] <= 1e-10 * np.linalg.norm(res.x)
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems())
+def test_solve_residual_criterion_meets_its_tolerance_or_says_why(system):
+    fun, jac, x0, root = system
+    try:
+        res = solve(fun, x0, jac, criterion="residual", tol=1e-8 * max(1.0, np.abs(root).max()))
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert np.linalg.norm(fun(res.x)) <= 1e-8 * max(1.0, np.abs(root).max())
+
+
+@settings(max_examples=150, deadline=None)
+@given(system=dominant_systems())
+def test_broyden_meets_its_tolerance_or_says_why(system):
+    fun, jac, x0, root = system
+    try:
+        res = broyden(fun, x0, jac)
+    except (ConvergenceError, SingularJacobianError) as error:
+        assert error.result.status in STATUSES and error.result.status != "converged"
+        return
+    assert res.converged and close_to_the_root(res.x, root, 1e-10)
+
+
+@settings(max_examples=100, deadline=None)
+@given(system=dominant_systems(batch=5), damping=st.booleans())
+def test_solve_batch_meets_its_tolerance_or_says_why(system, damping):
+    fun, jac, x0, root = system
+    res = solve_batch(fun, x0, jac, damping=damping, raise_on_failure=False)
+    assert set(res.status) <= set(STATUSES)
+    for x, r, ok in zip(res.x, root, res.converged):
+        assert not ok or close_to_the_root(x, r, 1e-10)
+
+
+@settings(max_examples=40, deadline=None)
+@given(r=st.lists(st.floats(-3.0, 3.0), min_size=4, max_size=4).filter(
+    lambda v: abs(v[0] - v[1]) > 0.2 and abs(v[2] - v[3]) > 0.2), seed=st.integers(0, 1000))
+def test_solve_all_roots_meet_the_tolerance(r, seed):
+    # (x - r0)(x - r1) = 0 and (y - r2)(y - r3) = 0: four roots, each residual round-off
+    def fun(z):
+        return np.stack([(z[:, 0] - r[0]) * (z[:, 0] - r[1]),
+                         (z[:, 1] - r[2]) * (z[:, 1] - r[3])], axis=-1)
+
+    found = solve_all(fun, lambda rng, m: rng.uniform(-4, 4, (m, 2)), n_starts=100, check=1,
+                      rng=seed)
+    known = np.array([[a, b] for a in r[:2] for b in r[2:]])
+    assert set(found.status) <= set(STATUSES)
+    for root in found.roots:
+        assert np.abs(known - root).max(axis=1).min() <= 1e-10 * (1 + np.abs(root).max())
+    assert np.all(found.residual_norms <= 1e-12 * (1 + np.abs(known).max()) ** 2)

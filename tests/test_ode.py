@@ -1,12 +1,14 @@
 """Tests of mechnum.ode: classical RK4 and multiple shooting."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from mechnum.errors import ConvergenceError, MechnumError, SingularJacobianError
+from mechnum.errors import ConvergenceError, MechnumError, NonFiniteError, SingularJacobianError
 from mechnum.ode import multiple_shooting, rk4
 
 EXAMPLES = settings(max_examples=200, deadline=None)
@@ -30,14 +32,14 @@ def observed_orders(f, y0, length, steps, exact):
 def test_fourth_order_on_a_linear_system():
     orders = observed_orders(harmonic, [1.0, 0.0], 2.0, np.array([10, 20, 40, 80]),
                              [np.cos(2.0), -np.sin(2.0)])
-    assert_allclose(orders, 4.0, atol=0.1)
+    assert_allclose(orders, 4.0, atol=0.1, rtol=0)
 
 
 def test_fourth_order_on_a_coupled_nonlinear_system():
     # reference: the same RK4 on a grid 64 times finer (its error is 64**4 times smaller)
     exact = rk4(pendulum, [2.0, 0.0], np.linspace(0.0, 3.0, 2561))[-1]
     orders = observed_orders(pendulum, [2.0, 0.0], 3.0, np.array([40, 80, 160]), exact)
-    assert_allclose(orders, 4.0, atol=0.1)
+    assert_allclose(orders, 4.0, atol=0.1, rtol=0)
 
 
 def test_exact_for_cubic_polynomials():
@@ -115,7 +117,7 @@ def test_multiple_shooting_solves_a_linear_bvp_in_one_step(segments):
     sol = multiple_shooting(f, bc, s, np.zeros((41, 2)), segments=segments)
     assert sol.newton.iterations == 1 and sol.starts.size == segments
     assert_allclose(sol.y[:, 0], exact(s), rtol=0, atol=1e-7)   # RK4 at h = 1/40
-    assert_allclose(sol.s, s)
+    assert_allclose(sol.s, s, rtol=1e-12)
 
 
 @EXAMPLES
@@ -175,3 +177,45 @@ def test_multiple_shooting_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
         multiple_shooting(args.pop("f"), args.pop("bc"), args.pop("s"), args.pop("y_guess"),
                           **args)
+
+
+# --- issue 23: complex stages, non-finite states, changing shapes, bounds -----------------------
+
+def test_a_complex_f_makes_the_states_complex():
+    # D10: y' = i y from the real y(0) = 1 is exp(i s); the imaginary part used to be dropped
+    # with a ComplexWarning
+    s = np.linspace(0.0, 1.0, 101)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        y = rk4(lambda _, y: 1j * y, [1.0], s)
+    assert np.iscomplexobj(y)
+    assert_allclose(y[:, 0], np.exp(1j * s), rtol=1e-9)
+    # complex from a later stage on (f real at s = 0)
+    late = rk4(lambda t, y: (1j if t > 0 else 1.0) * y, [1.0], [0.0, 0.5, 1.0])
+    assert np.iscomplexobj(late) and late[1, 0].imag != 0
+
+
+@pytest.mark.parametrize("f, s, match", [
+    (lambda t, y: np.full_like(y, np.nan), [0.0, 1.0], "not finite at node 1"),
+    (lambda t, y: y if t < 0.5 else np.full_like(y, np.inf), [0.0, 0.25, 0.5, 1.0],
+     "not finite at node 2"),
+    (lambda t, y: -y ** 3, [0.0, 1e300], r"h = 1e\+300"),
+])
+def test_a_state_that_is_not_finite_is_a_named_error(f, s, match):
+    # D13: NaN from f, or an overflowing step, used to be returned silently
+    with pytest.raises(NonFiniteError, match=match):
+        rk4(f, [1.0, 2.0], s)
+
+
+def test_f_that_changes_shape_is_a_value_error():
+    # R4: f of the right shape at s[0] and of another later
+    with pytest.raises(ValueError, match=r"f returned shape \(3,\) at s = 0.5"):
+        rk4(lambda t, y: y if t < 0.5 else np.zeros(3), [1.0, 2.0], [0.0, 0.5, 1.0])
+
+
+def test_the_output_is_bounded():
+    with pytest.raises(ValueError, match="bound on the memory"):
+        rk4(lambda t, y: y, np.zeros((1000, 1000)), np.linspace(0.0, 1.0, 200))
+    f, bc, _ = sine_bvp(1.0, 0.0, 1.0)
+    with pytest.raises(ValueError, match="bound on the work"):
+        multiple_shooting(f, bc, np.linspace(0.0, 1.0, 41), np.zeros((41, 2)), maxiter=10 ** 6)

@@ -47,7 +47,7 @@ def test_full_jacobian_is_the_derivative_of_the_nine_equations(table8):
 @pytest.mark.parametrize("unknown", ["pose", "lambdas"])
 @pytest.mark.parametrize("rigid_end", [0.0, shooting.STUDY_RIGID_END])
 def test_shooting_jacobian_is_the_derivative_of_109(table8, unknown, rigid_end):
-    fun, jac, _ = shooting._system(MECH, 101, unknown, rigid_end)
+    fun, jac, _ = shooting.shooting_system(MECH, 101, unknown, rigid_end)
     printed = table8.chart[table8.buildable]
     X = pfr3.shooting_guess(MECH, LAMBDAS, printed, unknown=unknown) + 0.01
     known = table8.pose[table8.buildable] if unknown == "lambdas" else np.zeros((2, 3))
@@ -110,7 +110,7 @@ def test_recovered_inputs_of_table8():
 def _discrete_lagrangian(mech, z, segments):
     """The discretised Lagrangian of one equilibrium as a function of (angles, P, phi), with
     the multipliers (the rods' tip forces) and clamps of the equilibrium."""
-    tip, force, _, _ = model.rods(mech, LAMBDAS, z, jacobian=False)
+    force = model.rods(mech, LAMBDAS, z, jacobian=False)[1]
     clamps, h, EI = model.clamps(mech, LAMBDAS), mech.L / segments, mech.EI
 
     def L(x):
@@ -130,7 +130,7 @@ def _discrete_lagrangian(mech, z, segments):
 
 def test_the_second_variation_is_the_hessian_of_the_lagrangian(table8):
     z, segments = table8.chart[0], 5
-    blocks, dense, G = equilibria._blocks(MECH, LAMBDAS, z, np.ones(3), segments)
+    blocks, dense, _ = pfr3.second_variation(MECH, LAMBDAS, z, segments=segments)
     n = 3 * segments + 3
     H = np.zeros((n, n))
     for i, b in enumerate(blocks):
@@ -149,14 +149,13 @@ def test_stability_agrees_with_dense_eigenvalues():
     eq = pfr3.forward_elliptic(MECH, LAMBDAS, (1, 2, 1), n_starts=300, check=0, rng=2)
     for z, index in zip(eq.chart[:3], eq.index[:3]):
         N = 200
-        blocks, dense, G = equilibria._blocks(MECH, LAMBDAS, z, np.array([1.0, 2.0, 1.0]), N)
+        blocks, dense, G = pfr3.second_variation(MECH, LAMBDAS, z, (1, 2, 1), segments=N)
         H = np.zeros((3 * N + 3, 3 * N + 3))
         for i, b in enumerate(blocks):
             H[i * N:(i + 1) * N, i * N:(i + 1) * N] = b.hessian
         H[-3:, -3:] = dense
         dense_index = int(np.sum(constrained_eigenvalues(H, G) < 0))
-        assert pfr3.stability(MECH, LAMBDAS, z, (1, 2, 1), segments=(N,)) == (
-            dense_index,)
+        assert pfr3.index(MECH, LAMBDAS, z, (1, 2, 1), segments=N) == dense_index
         assert dense_index >= 1                        # a mode-2 rod: unstable here
 
 
@@ -176,11 +175,24 @@ def test_paths_follow_the_closed_form_and_shooting(table8):
 
 def test_jacobians_relate_the_two_problems(table8):
     fk, ik, dpose = pfr3.jacobians(MECH, LAMBDAS, table8.chart)
+    assert fk.shape == ik.shape == (9,)
     h, k = 1e-6, int(np.flatnonzero(table8.buildable)[0])
     steps = LAMBDAS + np.array([[0.0, 0.0, 0.0], [h, 0.0, 0.0]])
     moved = pfr3.forward_path(MECH, steps, table8.chart[k])
     assert np.abs((moved.pose[1] - moved.pose[0]) / h - dpose[k][:, 0]).max() < 1e-4
-    assert fk.shape == ik.shape == (9,)
+    # the determinants of the nine equations' Jacobians by central differences, in the
+    # unknowns of each problem: (z, pose) and (z, lambdas)
+    system = model.full_system(MECH)
+    v = np.concatenate((table8.chart[k], LAMBDAS, table8.pose[k]))
+
+    def G(u):
+        return system(u[:, :6], u[:, 6:9], u[:, 9:])[0]
+
+    D = _central(G, v[None], 1e-7)[0]
+    np.testing.assert_allclose(np.linalg.det(D[:, list(range(6)) + [9, 10, 11]]), fk[k],
+                               rtol=1e-6)
+    np.testing.assert_allclose(np.linalg.det(D[:, :9]), ik[k], rtol=1e-6)
+    np.testing.assert_allclose(np.linalg.det(dpose) * fk, -ik, rtol=1e-8)
 
 
 def test_inverse_map_and_singular_points(table8):
@@ -189,8 +201,16 @@ def test_inverse_map_and_singular_points(table8):
     grid = pfr3.inverse_map(MECH, x, x, table8.pose[k, 2], table8.pose[k], LAMBDAS,
                             table8.chart[k])
     assert grid.lambdas.shape == (13, 13, 3) and grid.converged.mean() > 0.3
-    points = pfr3.singular_points(x, x, grid.det_ik)
-    assert points.shape[1] == 2
+    # every point followed is an equilibrium of its sliders at its grid pose
+    ok = grid.converged
+    G = model.full_system(MECH)(grid.chart[ok], grid.lambdas[ok], grid.params[ok])[0]
+    assert np.abs(G).max() < 1e-10
+    np.testing.assert_array_equal(grid.pose[ok], grid.params[ok])
+    points = pfr3.singular_points(MECH, grid)        # the branch ends at folds: none inside
+    assert points.shape == (0, 2)
+    with pytest.warns(DeprecationWarning):
+        old = pfr3.singular_points(x, x, grid.det_ik)
+    np.testing.assert_array_equal(old, points)
 
 
 def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
@@ -203,7 +223,7 @@ def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
     z, modes = shooting.chart_from_clamps(mech, start.clamp_moments[0], start.forces[0])
     centre = pfr3.inverse_path(mech, [pose, pose], start.lambdas[0], z, modes,
                                method="shooting")
-    edge = pfr3.workspace_edge(mech, pose, start.lambdas[0], z, modes, directions=3)
+    edge = pfr3.workspace(mech, pose, start.lambdas[0], z, modes, directions=3)
     assert edge.converged.all() and edge.pose.shape == (3, 3)
     radius = np.hypot(*(edge.pose[:, :2] - pose[:2]).T)
     assert np.allclose(radius, radius[0], atol=1e-3)      # the mechanism's threefold symmetry
@@ -211,20 +231,41 @@ def test_workspace_edge_ends_at_a_fold_of_the_inverse_problem():
     assert (np.abs(edge.det_ik) < 0.05 * abs(centre.det_ik[-1])).all()
 
 
-@pytest.mark.parametrize("bad", [dict(directions=0), dict(step=-0.1), dict(levels=-1)])
-def test_workspace_edge_rejects_bad_settings(bad):
+@pytest.mark.parametrize("bad", [{"directions": 0}, {"step": -0.1}, {"levels": -1}])
+def test_workspace_rejects_bad_settings(table8, bad):
     with pytest.raises(ValueError):
-        pfr3.workspace_edge(MECH, [0.0, 0.0, 0.0], LAMBDAS, np.full(6, 0.5), **bad)
+        pfr3.workspace(MECH, table8.pose[0], LAMBDAS, table8.chart[0], **bad)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError):
+        pfr3.workspace_edge(MECH, table8.pose[0], LAMBDAS, table8.chart[0], **bad)
 
 
-def test_draw_runs(table8):
+def test_draw_shows_the_rods_and_the_platform(table8):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots()
-    artists = pfr3.draw(ax, MECH, LAMBDAS, table8.chart[0])
-    assert len(artists) >= 10
+    artists = pfr3.draw(ax, MECH, table8.state(0))
+    assert len(artists) == 12
+    x, y = pfr3.shapes(MECH, LAMBDAS, table8.chart[0])
+    clamps = model.clamps(MECH, LAMBDAS)
+    pins = model.pins(MECH, table8.pose[0])
+    for i in range(3):
+        rod = artists[3 * i + 2].get_xydata()
+        np.testing.assert_allclose(rod, np.column_stack((x[i], y[i])), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(rod[0], clamps[i], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(rod[-1], pins[i], rtol=0, atol=1e-9)
+        np.testing.assert_allclose(artists[3 * i + 1].get_xydata()[0], clamps[i], rtol=0,
+                                   atol=1e-12)
+    np.testing.assert_allclose(artists[9].get_xy()[:3], pins, rtol=0, atol=1e-9)
+    # the next frame of an animation: the same artists, moved
+    assert pfr3.draw(ax, MECH, table8.state(3), artists=artists) is artists
+    np.testing.assert_allclose(artists[9].get_xy()[:3], model.pins(MECH, table8.pose[3]),
+                               rtol=0, atol=1e-9)
+    with pytest.raises(ValueError, match="ax must be"):
+        pfr3.draw(None, MECH, table8.state(0))
+    with pytest.warns(DeprecationWarning, match="State"):
+        assert len(pfr3.draw(ax, MECH, LAMBDAS, table8.chart[0])) == 12
     plt.close(fig)
 
 
@@ -278,3 +319,145 @@ def test_chart_conversion_round_trip():
     z = model.chart_from_thesis(study.TABLE8_PUBLISHED)
     assert np.allclose(model.thesis_from_chart(z), study.TABLE8_PUBLISHED, atol=1e-12)
     assert np.all(np.abs(z[:, 1::2]) < regular.T_MAX)
+
+
+# --- the mechanism protocol, the shared results, strain (issues 22 and 20) -------------------
+
+def test_forward_follows_the_result_contract(table8):
+    assert pfr3.forward is pfr3.forward_elliptic
+    assert table8.status.tolist() == ["converged"] * 9 and table8.converged.all()
+    assert table8.nfev > 0 and table8.njev > 0 and "9 equilibria" in table8.message
+    assert table8.lambdas is table8.inputs and table8.lambdas.shape == (3,)
+    assert table8.state(2).modes == (1, 1, 1)
+
+
+def test_inverse_finds_the_sliders_of_a_pose(table8):
+    k = int(np.flatnonzero(table8.buildable)[0])
+    eq = pfr3.inverse(MECH, table8.pose[k], n_starts=500, check=2, rng=0)
+    found = np.argmin(np.abs(eq.lambdas - LAMBDAS).max(axis=1))
+    assert np.abs(eq.lambdas[found] - LAMBDAS).max() < 1e-10
+    np.testing.assert_allclose(eq.chart[found], table8.chart[k], rtol=0, atol=1e-9)
+    # every one an equilibrium of its sliders with the platform at the pose
+    G = model.full_system(MECH)(eq.chart, eq.lambdas, np.broadcast_to(eq.pose, (len(eq.x), 3)))
+    assert np.abs(G[0]).max() < 1e-10 and eq.pose.shape == (3,)
+    with pytest.raises(UnreachablePoseError):
+        pfr3.inverse(MECH, [0.0, 3.0, 0.0], n_starts=10, rng=0)
+
+
+def test_buildable_means_stable_crossing_free_and_elastic(table8):
+    # all nine stable; seven loop (their rods cross themselves), and their loops bend the rods
+    # 1.9 to 5.2 %, beyond music wire's 0.77 %; the two printed ones 0.18 % at most
+    assert table8.stable.all()
+    assert table8.crossing_free.sum() == 2 and table8.elastic.sum() == 2
+    np.testing.assert_array_equal(table8.buildable, table8.crossing_free & table8.elastic)
+    worst = table8.strain.max(axis=1)
+    assert (worst[table8.buildable] < 0.002).all()
+    assert (worst[~table8.buildable] > 0.018).all() and worst.max() < 0.053
+    # each rod's strain from its clamp state is the largest of its profile
+    from mechnum.rods import profile
+    for z, e in zip(table8.chart, table8.strain):
+        rod = profile.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
+        sampled = 0.5 * MECH.diameter * np.abs(rod.m).max(axis=-1) / MECH.EI
+        assert (sampled <= e * (1 + 1e-9)).all() and (sampled > e * (1 - 1e-4)).all()
+
+
+# --- issue 23: bad input, empty batches, bounds ---------------------------------------------
+
+@pytest.mark.parametrize("rigid_end", [-0.1, 1.0, np.nan])
+def test_a_rigid_end_outside_the_rod_is_refused(table8, rigid_end):
+    k = int(np.flatnonzero(table8.buildable)[0])
+    with pytest.raises(ValueError, match="rigid_end"):
+        pfr3.inverse_path(MECH, table8.pose[k:k + 1], LAMBDAS, table8.chart[k],
+                          method="shooting", rigid_end=rigid_end)
+
+
+@pytest.mark.parametrize("call", [lambda: model.pins(MECH, [0.0, np.nan, 0.0]),
+                                  lambda: model.clamps(MECH, [0.0, np.nan, 0.0]),
+                                  lambda: model.pins(MECH, [0.0, 0.0]),
+                                  lambda: model.clamps(MECH, [[0.0, 0.0], [0.0, 0.0]]),
+                                  lambda: model.pose_of_tips(MECH, np.zeros((2, 2))),
+                                  lambda: pfr3.sampler(MECH, [np.nan, 0.0, 0.0])])
+def test_bad_poses_and_sliders_are_named(call):
+    with pytest.raises(ValueError, match="pose|lambdas|tip"):
+        call()
+
+
+@pytest.mark.parametrize("method", ["elliptic", "shooting"])
+def test_empty_paths_are_valid(table8, method):
+    k = int(np.flatnonzero(table8.buildable)[0])
+    ik = pfr3.inverse_path(MECH, np.empty((0, 3)), LAMBDAS, table8.chart[k], method=method)
+    fk = pfr3.forward_path(MECH, [], table8.chart[k], method=method)
+    for path in (ik, fk):
+        assert path.lambdas.shape == (0, 3) and path.status.shape == (0,)
+
+
+def test_an_empty_grid_is_a_valid_map(table8):
+    k = int(np.flatnonzero(table8.buildable)[0])
+    for x, y in (([], [0.0, 0.02]), ([0.0], [])):
+        grid = pfr3.inverse_map(MECH, x, y, table8.pose[k, 2], table8.pose[k], LAMBDAS,
+                                table8.chart[k])
+        assert grid.lambdas.shape == (len(x), len(y), 3)
+
+
+def test_shooting_batches_that_do_not_match_are_named(table8):
+    X = pfr3.shooting_guess(MECH, LAMBDAS, table8.chart[:2])
+    with pytest.raises(ValueError, match="3 known values for 2 guesses"):
+        pfr3.forward_shooting(MECH, np.zeros((3, 3)), X)
+    with pytest.raises(ValueError, match="lambdas must have shape"):
+        pfr3.forward_shooting(MECH, np.zeros((2, 2)), X)
+
+
+@pytest.mark.parametrize("rng", ["a", -1])
+def test_bad_rng_is_a_value_error(rng):
+    with pytest.raises(ValueError, match="rng must be"):
+        pfr3.forward_elliptic(MECH, LAMBDAS, n_starts=8, rng=rng)
+
+
+def test_a_mechanism_of_the_wrong_kind_is_named():
+    from mechnum.mechanisms import rfr2
+    for bad in (None, rfr2.TABLE7):
+        with pytest.raises(ValueError, match="mech must be a Mechanism"):
+            pfr3.forward_elliptic(bad, LAMBDAS, n_starts=8, rng=0)
+
+
+def test_stability_checks_its_resolutions_and_its_equilibrium(table8):
+    z = table8.chart[0]
+    with pytest.raises(ValueError, match="pair of integers"):
+        pfr3.stability(MECH, LAMBDAS, z, segments=1)
+    with pytest.raises(ValueError, match="bound on the work"):
+        pfr3.stability(MECH, LAMBDAS, z, segments=(200, 10**6))
+    with pytest.warns(DeprecationWarning, match="index"):
+        assert pfr3.stability(MECH, LAMBDAS, z, segments=(200,)) == (0,)
+    with pytest.raises(ValueError, match="no equilibrium"):
+        pfr3.stability(MECH, LAMBDAS, [1.0, 0.5, 2.0, 0.5, 3.0, 0.5])
+
+
+@pytest.mark.parametrize("m", [-1, 2.5, 10**9])
+def test_the_sampler_checks_its_size(m):
+    with pytest.raises(ValueError, match="m must be"):
+        pfr3.sampler(MECH, LAMBDAS)(np.random.default_rng(0), m)
+
+
+@pytest.mark.parametrize("args", [([1.0, 2.0], [1.0]), ([1.0, np.nan], [1.0, 2.0]),
+                                  ([1.0], [1.0], -1), ([1.0], [1.0], 2.5)])
+def test_digit_matches_refuses_what_it_cannot_compare(args):
+    with pytest.raises(ValueError):
+        study.digit_matches(*args)
+
+
+@pytest.mark.parametrize("flag", ["yes", 1])
+def test_flags_must_be_bools(table8, flag):
+    with pytest.raises(ValueError, match="resume must be True or False"):
+        pfr3.forward_path(MECH, [LAMBDAS], table8.chart[0], resume=flag)
+    with pytest.raises(ValueError, match="jacobian must be True or False"):
+        model.rods(MECH, LAMBDAS, table8.chart[0], jacobian=flag)
+
+
+def test_sizes_are_bounded(table8):
+    with pytest.raises(ValueError, match="bound on the work"):
+        pfr3.forward_elliptic(MECH, LAMBDAS, n_starts=10**6)
+    with pytest.raises(ValueError, match="bound on the work"):
+        pfr3.inverse_map(MECH, np.zeros(2000), np.zeros(2000), 0.0, table8.pose[0], LAMBDAS,
+                         table8.chart[0])
+    with pytest.raises(ValueError, match="bound on the work"):
+        pfr3.shapes(MECH, LAMBDAS, table8.chart[0], nodes=10**7)

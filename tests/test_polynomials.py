@@ -1,5 +1,7 @@
 """Tests of mechnum.polynomials: companion roots, conditioning, Sylvester, counting bounds."""
 
+import itertools
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -8,6 +10,7 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from mechnum import polynomials as poly
+from mechnum.errors import NonFiniteError
 from mechnum.polynomials import PolynomialSystem
 from strategies import separated
 
@@ -25,9 +28,9 @@ def test_roots_are_the_companion_eigenvalues_and_match_the_true_roots(r, lead, b
     found = poly.roots(C)
     assert found.shape == (batch, len(r))
     for row in found:
-        assert_allclose(np.sort(row.real), r, atol=1e-6 * (1 + np.abs(r).max()) ** len(r))
+        assert_allclose(np.sort(row.real), r, atol=1e-6 * (1 + np.abs(r).max()) ** len(r), rtol=0)
     M = poly.companion(c)
-    assert_allclose(np.poly(M)[::-1] * c[-1], c, atol=1e-9 * np.abs(c).max())
+    assert_allclose(np.poly(M)[::-1] * c[-1], c, atol=1e-9 * np.abs(c).max(), rtol=0)
 
 
 @MANY
@@ -62,7 +65,7 @@ def test_sylvester_determinant_is_the_product_of_root_differences(p, q):
     # Res(p, q) = prod (p_i - q_j) for monic p, q: zero exactly when a root is shared
     assert exact == np.prod([pi - qj for pi in p for qj in q], dtype=object)
     hadamard = np.prod(np.linalg.norm(S, axis=1))  # bounds |det S|; round-off is eps of it
-    assert_allclose(np.linalg.det(S), float(exact), atol=1e-13 * hadamard)
+    assert_allclose(np.linalg.det(S), float(exact), atol=1e-13 * hadamard, rtol=0)
 
 
 def test_sylvester_with_symbolic_coefficients_eliminates_a_variable():
@@ -120,6 +123,56 @@ def test_system_evaluation_and_jacobian_agree_with_finite_differences(seed):
     J = system.jacobian(x)
     h = 1e-7
     fd = np.column_stack([(system(x + h * e) - system(x - h * e)) / (2 * h) for e in np.eye(3)])
-    assert_allclose(J, fd, atol=1e-5 * (1 + np.abs(J).max()))
+    assert_allclose(J, fd, atol=1e-5 * (1 + np.abs(J).max()), rtol=0)
     H = system.homogenized()  # at x0 = 1 the homogenized system is the system
-    assert_allclose(H(np.r_[1.0, x]), system(x), atol=1e-12 * (1 + np.abs(system(x)).max()))
+    assert_allclose(H(np.r_[1.0, x]), system(x), atol=1e-12 * (1 + np.abs(system(x)).max()), rtol=0)
+
+
+# --- issue 23: non-integer exponents, overflow, unbounded work, bad input ------------------------
+
+def test_a_non_integer_exponent_is_refused():
+    # D9: {(1.5, 0): 1, (0, 0): -2} used to evaluate x - 2
+    with pytest.raises(ValueError, match="integers >= 0"):
+        PolynomialSystem.from_dicts([{(1.5, 0): 1, (0, 0): -2}, {(0, 1): 1}])
+    with pytest.raises(ValueError, match="integers >= 0"):
+        PolynomialSystem.from_dicts([{(np.nan,): 1}])
+    assert PolynomialSystem.from_dicts([{(2.0,): 1, (0,): -4}]).degrees == (2,)
+
+
+def test_roots_of_badly_scaled_polynomials():
+    # 1e300 + t + 1e-10 t^2: the companion's -1e310 overflows, the roots do not; they are
+    # -5e9 +- i sqrt(1e310 - 2.5e19) = -5e9 +- 1e155 i
+    found = poly.roots([1e300, 1.0, 1e-10])
+    assert_allclose(np.sort(found.imag), [-1e155, 1e155], rtol=1e-12)
+    assert_allclose(found.real, -5e9, rtol=1e-6)
+    with pytest.raises(NonFiniteError, match="beyond the largest float"):
+        poly.roots([1e300, 1e-300])           # the root is -1e600
+    batch = poly.roots([[1e300, 1.0, 1e-10], [2.0, -3.0, 1.0]])
+    assert_allclose(np.sort(batch[1].real), [1.0, 2.0], rtol=1e-14)
+
+
+def test_five_dense_quadratics_have_a_mixed_volume_of_32():
+    # H2: 31 Minkowski sums of 21-point supports in 5-D used to take minutes; their hull
+    # vertices make them 31 hulls of at most 36 points
+    dense = [e for e in itertools.product(range(3), repeat=5) if sum(e) <= 2]
+    assert poly.mixed_volume([dense] * 5) == 2 ** 5
+    with pytest.raises(ValueError, match="at most 6 unknowns"):
+        poly.mixed_volume([[e + (0, 0) for e in dense]] * 7)
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda: poly.mixed_volume([[(0, 0), (np.nan, 1)], [(0, 0), (1, 0)]]), ValueError, "finite"),
+    (lambda: poly.mixed_volume([[(0, 0), (0.5, 1)], [(0, 0), (1, 0)]]), ValueError, "integer"),
+    (lambda: poly.mixed_volume("ab"), ValueError, "sequence"),
+    (lambda: poly.root_condition([[1.0, 2.0], [1.0, 3.0]], [1.0]), ValueError, "one polynomial"),
+    (lambda: poly.root_condition([2.0, -3.0, 1.0], [np.nan]), ValueError, "r must be finite"),
+    (lambda: poly.root_condition([2.0, -3.0, 1.0], ["a"]), ValueError, "r must be numeric"),
+    (lambda: poly.sylvester(["1", "2"], [1.0, 2.0]), ValueError, "numbers or sympy"),
+    (lambda: poly.sylvester(None, [1.0, 2.0]), ValueError, "sequence"),
+    (lambda: poly.sylvester([np.nan, 1.0], [1.0, 2.0]), ValueError, "finite"),
+    (lambda: poly.sylvester([True, 1.0], [1.0, 2.0]), ValueError, "numbers or sympy"),
+    (lambda: poly.bezout_bound([{(1,): 1}]), ValueError, "PolynomialSystem"),
+])
+def test_bad_input_of_the_new_checks(call, error, message):
+    with pytest.raises(error, match=message):
+        call()

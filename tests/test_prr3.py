@@ -7,6 +7,7 @@ with hypothesis over the valid domain and just outside it.
 
 import sys
 
+import matplotlib
 import numpy as np
 import pytest
 import sympy as sp
@@ -16,11 +17,16 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
-from mechnum.mechanisms import prr3
+from mechnum.mechanisms import hacksaw, prr3
 from mechnum.mechanisms.prr3 import EXAMPLES, Geometry, annex_i
 from mechnum.newton import fd_jacobian
+from mechnum.plotting import animate
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 
 DIRECT = sys.modules["mechnum.mechanisms.prr3.direct"]
+FIG = plt.subplots()  # the axes of the drawing tests, closed at the end of the module
 MANY = settings(max_examples=200, deadline=None,
                 suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 TABLE_5 = EXAMPLES["Table 5"][0]
@@ -52,7 +58,7 @@ def reachable(draw, geometry=None, margin=1e-3):
     u, v = draw(st.floats(-0.99, 0.99)), draw(st.floats(-0.99, 0.99))
     x = g.B3 - g.a * np.cos(psi + np.pi / 3) + u * g.L  # leg 3 reaches its guide
     pose = np.array([x, v * g.L, psi])
-    assume(np.all(prr3.radicands(pose, g) > margin * g.L ** 2))
+    assume(np.all(prr3.radicands(g, pose) > margin * g.L ** 2))
     return g, pose
 
 
@@ -60,10 +66,10 @@ def singular_pose(geometry=TABLE_5, mode=(1, -1, -1), y=0.3, psi=0.5):
     """A pose of working mode ``mode`` at a direct singularity (det J = 0 on a line)."""
     def det(x):
         pose = [x, y, psi]
-        return prr3.jacobian_dets(pose, prr3.branch_inputs(pose, geometry, mode), geometry)[1]
+        return prr3.jacobian_dets(geometry, pose, prr3.branch_inputs(geometry, pose, mode))[1]
     x = brentq(det, 3.0, 3.4, xtol=1e-15)
     pose = np.array([x, y, psi])
-    return pose, prr3.branch_inputs(pose, geometry, mode)
+    return pose, prr3.branch_inputs(geometry, pose, mode)
 
 
 # --- Geometry -----------------------------------------------------------------------------
@@ -98,11 +104,11 @@ def test_bad_geometry_is_refused_by_name(kwargs, error, name):
 @MANY
 @given(g=geometries, poses=st.lists(st.tuples(*[st.floats(-1e3, 1e3)] * 3), max_size=4))
 def test_vertices_form_the_platform_triangle(g, poses):
-    v = prr3.vertices(np.reshape(poses, (-1, 3)), g)
+    v = prr3.vertices(g, np.reshape(poses, (-1, 3)))
     assert v.shape == (len(poses), 3, 2)
     sides = np.linalg.norm(v - np.roll(v, 1, axis=1), axis=-1)
     assert_allclose(sides, g.a, rtol=1e-9, atol=1e-12 * (1 + np.abs(v).max(initial=0)))
-    assert_allclose(v[:, 0], np.reshape(poses, (-1, 3))[:, :2])
+    assert_allclose(v[:, 0], np.reshape(poses, (-1, 3))[:, :2], rtol=0)
     if len(poses):  # counter-clockwise: P3 to the left of P1 P2
         e1, e2 = v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]
         assert np.all(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0] > 0)
@@ -111,9 +117,10 @@ def test_vertices_form_the_platform_triangle(g, poses):
 @MANY
 @given(g=geometries, lam=st.tuples(*[st.floats(-1e6, 1e6)] * 3))
 def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
-    c = prr3.sliders(lam, g)
+    c = prr3.sliders(g, lam)
     assert c[0, 1] == c[1, 1] == 0 and c[2, 0] == g.B3
-    assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, atol=1e-9 * (1 + abs(g.B2)
+    assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, rtol=0,
+                    atol=1e-9 * (1 + abs(g.B2)
                                                                                  + abs(g.H3)))
 
 
@@ -121,15 +128,15 @@ def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
 @given(case=reachable())
 def test_every_inverse_solution_closes_the_loops_and_the_radicands_say_so(case):
     g, pose = case
-    lam = prr3.inverse(pose, g)
+    lam = prr3.inverse(g, pose)
     assert lam.shape == (8, 3)  # no leg tangent: radicands >= 1e-3 L^2
-    assert_allclose(prr3.loop_residuals(pose, lam, g), 0, atol=1e-12 * g.L ** 2)
-    bars = prr3.bars(pose, lam, g)
-    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, prr3.loop_residuals(pose, lam, g),
-                    atol=1e-13)
-    rad = prr3.radicands(pose, g)  # the bar's component across its guide is sqrt(L^2 - rad)
+    assert_allclose(prr3.loop_residuals(g, pose, lam), 0, atol=1e-12 * g.L ** 2)
+    bars = prr3.bars(g, pose, lam)
+    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, prr3.loop_residuals(g, pose, lam),
+                    rtol=0, atol=1e-13)
+    rad = prr3.radicands(g, pose)  # the bar's component across its guide is sqrt(L^2 - rad)
     across = np.abs([bars[0, 0, 1], bars[0, 1, 1], bars[0, 2, 0]])
-    assert_allclose(across ** 2, g.L ** 2 - rad, atol=1e-12)
+    assert_allclose(across ** 2, g.L ** 2 - rad, rtol=0, atol=1e-12)
     assert len({tuple(np.round(row, 9)) for row in lam}) == 8
 
 
@@ -138,34 +145,36 @@ def test_every_inverse_solution_closes_the_loops_and_the_radicands_say_so(case):
 def test_branch_inputs_close_the_loops_where_the_legs_reach(case, signs):
     g, pose = case
     poses = np.stack([pose, pose + [0.0, 3 * g.L, 0.0]])  # the second: leg 1 cannot reach
-    lam = prr3.branch_inputs(poses, g, signs)
-    reach = prr3.radicands(poses, g) >= 0
+    lam = prr3.branch_inputs(g, poses, signs)
+    reach = prr3.radicands(g, poses) >= 0
     assert np.array_equal(np.isfinite(lam), reach)
     if reach[0].all():
-        assert_allclose(prr3.loop_residuals(pose, lam[0], g), 0, atol=1e-12)
-        assert any(np.allclose(lam[0], row, atol=1e-12) for row in prr3.inverse(pose, g))
+        assert_allclose(prr3.loop_residuals(g, pose, lam[0]), 0, atol=1e-12)
+        assert any(np.allclose(lam[0], row, atol=1e-12) for row in prr3.inverse(g, pose))
 
 
 def test_a_tangent_leg_gives_one_value_of_its_input():
     geometry, _ = EXAMPLES["Table 3"]
     pose = [0.6, 1.0, 0.0]  # y_P = L: legs 1 and 2 tangent (psi = 0 puts P2 at the same y)
-    lam = prr3.inverse(pose, geometry)
+    lam = prr3.inverse(geometry, pose)
     assert lam.shape == (2, 3)
-    assert_allclose(lam[:, :2], [[0.6, 1.4], [0.6, 1.4]], atol=1e-15)
-    assert_allclose(prr3.radicands(pose, geometry)[:2], 0.0, atol=1e-15)
-    assert prr3.inverse([0.6, 1.4, 0.0], geometry).shape == (0, 3)
+    assert_allclose(lam[:, :2], [[0.6, 1.4], [0.6, 1.4]], rtol=0, atol=1e-15)
+    assert_allclose(prr3.radicands(geometry, pose)[:2], 0.0, atol=1e-15)
+    assert prr3.inverse(geometry, [0.6, 1.4, 0.0]).shape == (0, 3)
 
 
 @MANY
 @given(case=reachable(margin=-1.0), k=st.integers(0, 7))
 def test_jacobians_match_finite_differences(case, k):
     g, pose = case
-    lam = prr3.branch_inputs(pose, g, SIGNS[k])
+    lam = prr3.branch_inputs(g, pose, SIGNS[k])
     assume(np.all(np.isfinite(lam)))
-    J = prr3.direct_jacobian(pose, lam, g)
-    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(p, lam, g), pose), atol=1e-6)
-    Ji = prr3.inverse_jacobian(pose, lam, g)
-    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(pose, q, g), lam), atol=1e-6)
+    J = prr3.direct_jacobian(g, pose, lam)
+    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(g, p, lam), pose), rtol=0,
+                    atol=1e-6)
+    Ji = prr3.inverse_jacobian(g, pose, lam)
+    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(g, pose, q), lam), rtol=0,
+                    atol=1e-6)
     assert np.count_nonzero(Ji - np.diag(np.diag(Ji))) == 0
 
 
@@ -173,16 +182,16 @@ def test_jacobians_match_finite_differences(case, k):
 @given(case=reachable(margin=-1.0), k=st.integers(0, 7), scale=scales)
 def test_jacobian_dets_are_dimensionless(case, k, scale):
     g, pose = case
-    lam = prr3.branch_inputs(pose, g, SIGNS[k])
+    lam = prr3.branch_inputs(g, pose, SIGNS[k])
     assume(np.all(np.isfinite(lam)))
     big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
                    H3=g.H3 * scale)
     pose_big = np.r_[pose[:2] * scale, pose[2]]
-    assert_allclose(prr3.jacobian_dets(pose_big, lam * scale, big),
-                    prr3.jacobian_dets(pose, lam, g), atol=1e-9)
-    inverse_det, direct_det = prr3.jacobian_dets(pose, lam, g)
-    assert_allclose(inverse_det * (2 * g.L) ** 3, np.linalg.det(prr3.inverse_jacobian(pose, lam,
-                                                                                      g)),
+    assert_allclose(prr3.jacobian_dets(big, pose_big, lam * scale),
+                    prr3.jacobian_dets(g, pose, lam), rtol=0, atol=1e-9)
+    inverse_det, direct_det = prr3.jacobian_dets(g, pose, lam)
+    assert_allclose(inverse_det * (2 * g.L) ** 3,
+                    np.linalg.det(prr3.inverse_jacobian(g, pose, lam)),
                     rtol=1e-9, atol=1e-12)
 
 
@@ -190,19 +199,19 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
 @given(x=st.floats(-1e300, 1e300), y=st.floats(-1e300, 1e300), psi=st.floats(-1e6, 1e6))
 def test_workspace_agrees_with_inverse_even_far_away(x, y, psi):
     g = TABLE_5
-    reach = prr3.workspace(x, y, psi, g)
-    assert reach.shape == () and reach == (len(prr3.inverse([x, y, psi], g)) > 0)
+    reach = prr3.workspace(g, x, y, psi)
+    assert reach.shape == () and reach == (len(prr3.inverse(g, [x, y, psi])) > 0)
 
 
 def test_workspace_is_vectorised_and_takes_empty_grids():
     g = TABLE_5
     x, y, psi = np.meshgrid(np.linspace(-1, 4, 11), np.linspace(-1, 2, 7), [0.0, 1.0],
                             indexing="ij")
-    reach = prr3.workspace(x, y, psi, g)
+    reach = prr3.workspace(g, x, y, psi)
     assert reach.shape == (11, 7, 2) and reach.any() and not reach.all()
-    expected = [len(prr3.inverse(p, g)) > 0 for p in np.stack([x, y, psi], -1).reshape(-1, 3)]
+    expected = [len(prr3.inverse(g, p)) > 0 for p in np.stack([x, y, psi], -1).reshape(-1, 3)]
     assert np.array_equal(reach.ravel(), expected)
-    assert prr3.workspace([], [], [], g).shape == (0,)
+    assert prr3.workspace(g, [], [], []).shape == (0,)
 
 
 # --- the polynomial -----------------------------------------------------------------------
@@ -211,8 +220,8 @@ def test_workspace_is_vectorised_and_takes_empty_grids():
 @given(case=reachable(), k=st.integers(0, 7))
 def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
     g, pose = case
-    lam = prr3.inverse(pose, g)[k]
-    C = prr3.polynomial(lam, g)
+    lam = prr3.inverse(g, pose)[k]
+    C = prr3.polynomial(g, lam)
     scale = np.abs(C).max()
     assume(abs(np.cos(pose[2] / 2)) > 0.05)  # t = tan(psi/2) of order 1
     t = np.tan(pose[2] / 2)
@@ -221,7 +230,7 @@ def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
     assert abs(np.polynomial.polynomial.polyval(t, C)) <= 1e-10 * size + 1e-13 * scale
     assert abs(np.polynomial.polynomial.polyval(1j, C)) < 1e-13 * np.abs(C).sum()
     q = prr3.deflate(C)  # (1 + t^2) q is C again
-    assert_allclose(np.convolve([1, 0, 1], q), C, atol=1e-12 * scale)
+    assert_allclose(np.convolve([1, 0, 1], q), C, rtol=0, atol=1e-12 * scale)
 
 
 def test_polynomial_equals_equation_148_times_one_plus_t_squared_to_the_fourth():
@@ -240,7 +249,7 @@ def test_polynomial_equals_equation_148_times_one_plus_t_squared_to_the_fourth()
         eq148 = ((f3 * g2 - f2 * g3 - l1 * (f2 * g1 - f1 * g2)) ** 2 + (f1 * g3 - f3 * g1) ** 2
                  - L ** 2 * (f2 * g1 - f1 * g2) ** 2)
         t = np.tan(psi / 2)
-        value = np.polynomial.polynomial.polyval(t, prr3.polynomial(lam, geometry))
+        value = np.polynomial.polynomial.polyval(t, prr3.polynomial(geometry, lam))
         assert value == pytest.approx(eq148 * (1 + t ** 2) ** 4, rel=1e-11)
 
 
@@ -287,17 +296,19 @@ def test_annex_i_parser_refuses_what_is_not_a_monomial():
     assert annex_i.parse_terms("3*K1^2 - Q5") == [(3, {"K1": 2}), (-1, {"Q5": 1})]
     with pytest.raises(ValueError, match="not a monomial"):
         annex_i.parse_terms("3*K1^2 - Q5/2")
+    with pytest.raises(ValueError, match="text must be a str"):
+        annex_i.parse_terms(None)
 
 
 @MANY
 @given(case=reachable(), k=st.integers(0, 7))
 def test_equations_vanish_at_the_true_pose_and_map_back(case, k):
     g, pose = case
-    lam = prr3.inverse(pose, g)[k]
-    system = prr3.equations(lam, g)
+    lam = prr3.inverse(g, pose)[k]
+    system = prr3.equations(g, lam)
     point = [pose[0] / g.L, pose[1] / g.L, np.cos(pose[2]), np.sin(pose[2])]
     assert np.abs(system(point)).max() < 1e-11
-    back = prr3.solutions_from_equations([point], g)[0]
+    back = prr3.solutions_from_equations(g, [point])[0]
     assert pose_gap(back, pose, g.L)[0] < 1e-12
 
 
@@ -309,18 +320,18 @@ def test_equations_vanish_at_the_true_pose_and_map_back(case, k):
                np.array([1.750846179, 0.0, 2.0 ** -9])))
 def test_direct_returns_the_pose_of_every_inverse_solution(case):
     g, pose = case
-    lam = prr3.inverse(pose, g)
-    sol = prr3.direct(lam, g)
+    lam = prr3.inverse(g, pose)
+    sol = prr3.forward(g, lam)
     assert np.array_equal(sol.counts, np.bincount(sol.input_index, minlength=8))
     assert np.all(sol.counts <= 6)
     assert np.all(sol.residuals <= 1e-6)
     # the loops close to 1e-6 L^2 (in m^2): near a direct singularity, where the polish stops,
     # that is all (L = 2, pose (1.750846179, 0, 2^-9): 2.9e-6 m^2 = 7e-7 L^2)
-    assert_allclose(prr3.loop_residuals(sol.poses, lam[sol.input_index], g), 0,
+    assert_allclose(prr3.loop_residuals(g, sol.poses, lam[sol.input_index]), 0,
                     atol=1e-6 * g.L ** 2)
     assert np.all((sol.poses[:, 2] >= 0) & (sol.poses[:, 2] < 2 * np.pi))
     for k in range(8):  # the pose itself, unless it is near a direct singularity, where two
-        if abs(prr3.jacobian_dets(pose, lam[k], g)[1]) > REGULAR:  # roots nearly merge
+        if abs(prr3.jacobian_dets(g, pose, lam[k])[1]) > REGULAR:  # roots nearly merge
             assert pose_gap(sol.poses[sol.input_index == k], pose, g.L).min() < 1e-9
 
 
@@ -329,12 +340,12 @@ def test_direct_returns_the_pose_of_every_inverse_solution(case):
 def test_direct_on_a_batch_equals_direct_on_each_input(lam):
     g = TABLE_5
     batch = np.reshape(lam, (-1, 3))
-    sol = prr3.direct(batch, g)
+    sol = prr3.forward(g, batch)
     assert sol.poses.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
     for k, one in enumerate(batch):
-        alone = prr3.direct(one, g)
+        alone = prr3.forward(g, one)
         assert alone.counts.shape == () and alone.counts == sol.counts[k]
-        assert_allclose(alone.poses, sol.poses[sol.input_index == k], atol=1e-12)
+        assert_allclose(alone.poses, sol.poses[sol.input_index == k], rtol=0, atol=1e-12)
         assert np.all(alone.residuals <= 1e-6)
 
 
@@ -346,12 +357,12 @@ def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
     g = TABLE_5
     while True:
         pose = np.array([rng.uniform(0, 4), rng.uniform(-1, 1), rng.uniform(0, 2 * np.pi)])
-        if np.all(prr3.radicands(pose, g) > 1e-2):
+        if np.all(prr3.radicands(g, pose) > 1e-2):
             break
-    lam = prr3.inverse(pose, g)[rng.integers(8)]
-    found = homotopy.solve(prr3.equations(lam, g), rng=k)
-    real = prr3.solutions_from_equations(found.real(1e-7), g)
-    poses = prr3.direct(lam, g).poses
+    lam = prr3.inverse(g, pose)[rng.integers(8)]
+    found = homotopy.solve(prr3.equations(g, lam), rng=k)
+    real = prr3.solutions_from_equations(g, found.real(1e-7))
+    poses = prr3.forward(g, lam).poses
     assert len(poses) == len(real) >= 2
     for p in real:
         assert pose_gap(poses, p).min() < 1e-7
@@ -359,9 +370,9 @@ def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
 
 def test_far_apart_sliders_have_no_pose_even_at_1e300():
     g = EXAMPLES["Table 6"][0]
-    sol = prr3.direct([[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]], g)
+    sol = prr3.forward(g, [[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]])
     assert sol.counts.tolist() == [0, 0, 2]
-    c = prr3.sliders([1e100, 0.0, 0.0], g)  # no pose: sliders 1 and 2 are 1e100 apart
+    c = prr3.sliders(g, [1e100, 0.0, 0.0])  # no pose: sliders 1 and 2 are 1e100 apart
     assert np.linalg.norm(c[0] - c[1]) > 2 * g.L + g.a
 
 
@@ -370,25 +381,25 @@ def test_direct_does_not_depend_on_the_unit_of_length(scale):
     g, lam = EXAMPLES["Table 6"]
     big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
                    H3=g.H3 * scale)
-    base = prr3.direct(lam, g).poses
-    poses = prr3.direct(np.multiply(lam, scale), big).poses
-    assert_allclose(poses[:, :2] / scale, base[:, :2], atol=1e-12)
-    assert_allclose(poses[:, 2], base[:, 2], atol=1e-12)
+    base = prr3.forward(g, lam).poses
+    poses = prr3.forward(big, np.multiply(lam, scale)).poses
+    assert_allclose(poses[:, :2] / scale, base[:, :2], rtol=0, atol=1e-12)
+    assert_allclose(poses[:, 2], base[:, 2], rtol=0, atol=1e-12)
 
 
 def test_pose_at_psi_pi_is_found_whatever_the_leading_coefficient():
     g = EXAMPLES["Table 3"][0]
     pose = np.array([1.25, -0.75, np.pi])
-    for lam in prr3.inverse(pose, g):
-        assert pose_gap(prr3.direct(lam, g).poses, pose).min() < 1e-12
+    for lam in prr3.inverse(g, pose):
+        assert pose_gap(prr3.forward(g, lam).poses, pose).min() < 1e-12
 
 
 def test_pose_where_the_elimination_is_singular_is_still_found():
     g = TABLE_5
     pose = np.array([1.0, 0.6, 0.0])  # lambda1 + lambda2 = B2 - a: circles 1 and 2 coincide
-    lam = prr3.inverse(pose, g)[0]
+    lam = prr3.inverse(g, pose)[0]
     assert lam[0] + lam[1] == pytest.approx(g.B2 - g.a)
-    sol = prr3.direct(lam, g)
+    sol = prr3.forward(g, lam)
     hit = np.argmin(pose_gap(sol.poses, pose))
     assert pose_gap(sol.poses, pose)[hit] < 1e-9
     assert sol.elimination_singular[hit] and not sol.singular[hit]
@@ -396,7 +407,7 @@ def test_pose_where_the_elimination_is_singular_is_still_found():
 
 def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
     pose, lam = singular_pose()
-    sol = prr3.direct(lam, TABLE_5)
+    sol = prr3.forward(TABLE_5, lam)
     hit = np.argmin(pose_gap(sol.poses, pose))
     assert pose_gap(sol.poses, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
     assert sol.singular[hit]
@@ -405,20 +416,20 @@ def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
 def test_a_self_motion_is_reported_as_a_continuum():
     g = TABLE_5
     lam = [3.5, 0.5, 2.8]  # C2 = C3 = (2.5, 0): the platform turns about P = (2.5, 0)
-    assert np.abs(prr3.polynomial(lam, g)).max() < 1e-12 * np.abs(prr3.polynomial(
-        [2.0, 0.5, 0.2], g)).max()  # zero but for round-off
+    scale = np.abs(prr3.polynomial(g, [2.0, 0.5, 0.2])).max()
+    assert np.abs(prr3.polynomial(g, lam)).max() < 1e-12 * scale  # zero but for round-off
     for psi in (0.3, 2.0, 4.0):
-        assert_allclose(prr3.loop_residuals([2.5, 0.0, psi], lam, g), 0, atol=1e-14)
-    sol = prr3.direct([lam, [2.0, 0.5, 0.2]], g)
+        assert_allclose(prr3.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
+    sol = prr3.forward(g, [lam, [2.0, 0.5, 0.2]])
     assert sol.continuum.tolist() == [True, False] and sol.counts.tolist() == [0, 2]
 
 
 def test_polish_leaves_a_singular_pose_and_far_jumps_alone():
     pose, lam = singular_pose()
-    out = DIRECT._polish(pose[None], lam, TABLE_5)
-    assert_allclose(out, pose[None], atol=1e-15)  # J singular: no step taken, no NaN
+    out = DIRECT._polish(TABLE_5, pose[None], lam)
+    assert_allclose(out, pose[None], rtol=0, atol=1e-15)  # J singular: no step taken, no NaN
     start = pose + [0.0, 0.0, 0.2]  # far from any pose: Newton would run elsewhere
-    moved = DIRECT._polish(start[None], lam, TABLE_5)
+    moved = DIRECT._polish(TABLE_5, start[None], lam)
     step = np.hypot(*(moved - start)[0, :2]) + abs(moved - start)[0, 2]
     assert step == 0.0 or step <= 1e-2
 
@@ -427,67 +438,92 @@ def test_polish_leaves_a_singular_pose_and_far_jumps_alone():
 @given(case=reachable(geometry=TABLE_5), seed=st.integers(0, 2 ** 32 - 1))
 def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     g, pose = case
-    lam = prr3.inverse(pose, g)[seed % 8]
+    lam = prr3.inverse(g, pose)[seed % 8]
     rng = np.random.default_rng(seed)
-    starts = np.vstack([pose + rng.normal(0, 1e-3, 3), np.column_stack(
+    seeds = np.vstack([pose + rng.normal(0, 1e-3, 3), np.column_stack(
         [rng.uniform(-1, 5, 20), rng.uniform(-2, 3, 20), rng.uniform(0, 2 * np.pi, 20)])])
-    newton = prr3.direct_by_newton(lam, g, starts)
-    poly = prr3.direct(lam, g).poses
-    assume(abs(prr3.jacobian_dets(pose, lam, g)[1]) > REGULAR)  # else Newton is only linear
+    newton = prr3.forward_by_newton(g, lam, seeds)
+    poly = prr3.forward(g, lam).poses
+    assume(abs(prr3.jacobian_dets(g, pose, lam)[1]) > REGULAR)  # else Newton is only linear
     assert pose_gap(newton, pose).min() < 1e-8  # the start next to the pose converges to it
     for p in newton:
-        if abs(prr3.jacobian_dets(p, lam, g)[1]) > REGULAR:
+        if abs(prr3.jacobian_dets(g, p, lam)[1]) > REGULAR:
             assert pose_gap(poly, p).min() < 1e-8
 
 
 @pytest.mark.parametrize("call", [
-    lambda g: prr3.inverse([0.0, np.inf, 0.0], g),
-    lambda g: prr3.inverse([[0.0, 0.0, 0.0]], g),
-    lambda g: prr3.inverse([0.6, 0.4, 0.0], g, tol=-1),
-    lambda g: prr3.inverse([0.6, 0.4, 0.0], g, tol=np.nan),
-    lambda g: prr3.branch_inputs([0.6, 0.4, 0.0], g, (1, 0, 1)),
-    lambda g: prr3.branch_inputs([0.6, 0.4], g),
-    lambda g: prr3.workspace([0.0, 1.0], [0.0, 1.0, 2.0], 0.0, g),
-    lambda g: prr3.workspace(0.0, np.nan, 0.0, g),
-    lambda g: prr3.workspace(0.0, 0.0, 0.0, g, tol=0.0),
-    lambda g: prr3.vertices([1.0, 2.0], g),
-    lambda g: prr3.sliders([1.0, 2.0j, 3.0], g),
-    lambda g: prr3.radicands("pose", g),
-    lambda g: prr3.loop_residuals([0.0, 0.0, 0.0], [[1.0, 2.0]], g),
-    lambda g: prr3.direct_jacobian([0.0, 0.0, np.nan], [0.0, 0.0, 0.0], g),
-    lambda g: prr3.inverse_jacobian([0.0, 0.0, 0.0], [0.0, 0.0], g),
-    lambda g: prr3.jacobian_dets([0.0, 0.0, 0.0], [np.inf, 0.0, 0.0], g),
-    lambda g: prr3.polynomial([1.0, 2.0], g),
-    lambda g: prr3.polynomial([1e300, 0.0, 0.0], g),
+    lambda g: prr3.inverse(g, [0.0, np.inf, 0.0]),
+    lambda g: prr3.inverse(g, [[0.0, 0.0, 0.0]]),
+    lambda g: prr3.inverse(g, [0.6, 0.4, 0.0], tol=-1),
+    lambda g: prr3.inverse(g, [0.6, 0.4, 0.0], tol=np.nan),
+    lambda g: prr3.branch_inputs(g, [0.6, 0.4, 0.0], (1, 0, 1)),
+    lambda g: prr3.branch_inputs(g, [0.6, 0.4]),
+    lambda g: prr3.workspace(g, [0.0, 1.0], [0.0, 1.0, 2.0], 0.0),
+    lambda g: prr3.workspace(g, 0.0, np.nan, 0.0),
+    lambda g: prr3.workspace(g, 0.0, 0.0, 0.0, tol=0.0),
+    lambda g: prr3.vertices(g, [1.0, 2.0]),
+    lambda g: prr3.sliders(g, [1.0, 2.0j, 3.0]),
+    lambda g: prr3.radicands(g, "pose"),
+    lambda g: prr3.loop_residuals(g, [0.0, 0.0, 0.0], [[1.0, 2.0]]),
+    lambda g: prr3.direct_jacobian(g, [0.0, 0.0, np.nan], [0.0, 0.0, 0.0]),
+    lambda g: prr3.inverse_jacobian(g, [0.0, 0.0, 0.0], [0.0, 0.0]),
+    lambda g: prr3.jacobian_dets(g, [0.0, 0.0, 0.0], [np.inf, 0.0, 0.0]),
+    lambda g: prr3.polynomial(g, [1.0, 2.0]),
+    lambda g: prr3.polynomial(g, [1e300, 0.0, 0.0]),
     lambda g: prr3.deflate([1.0, 2.0, 3.0]),
-    lambda g: prr3.equations([[0.4, 0.1, 0.6]] * 2, g),
-    lambda g: prr3.direct([1.0, 2.0], g),
-    lambda g: prr3.direct([1.0, np.nan, 0.0], g),
-    lambda g: prr3.direct([[[0.4, 0.1, 0.6]]], g),
-    lambda g: prr3.direct([0.4, 0.1, 0.6], g, imag_tol=-1),
-    lambda g: prr3.direct([0.4, 0.1, 0.6], g, residual_tol=np.nan),
-    lambda g: prr3.direct_by_newton([0.4, 0.1, 0.6], g, [0.0, 0.0, 0.0]),
-    lambda g: prr3.direct_by_newton([0.4, 0.1, 0.6], g, [[0.0, 0.0, 0.0]], tol=-1),
-    lambda g: prr3.draw(None, [[0.6, 0.4, 0.0]] * 2, [1.5, 0.5, 0.2], g),
+    lambda g: prr3.equations(g, [[0.4, 0.1, 0.6]] * 2),
+    lambda g: prr3.forward(g, [1.0, 2.0]),
+    lambda g: prr3.forward(g, [1.0, np.nan, 0.0]),
+    lambda g: prr3.forward(g, [[[0.4, 0.1, 0.6]]]),
+    lambda g: prr3.forward(g, [0.4, 0.1, 0.6], imag_tol=-1),
+    lambda g: prr3.forward(g, [0.4, 0.1, 0.6], residual_tol=np.nan),
+    lambda g: prr3.forward(g, np.zeros((DIRECT.MAX_INPUTS + 1, 3))),  # a bound on the work
+    lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], np.zeros((DIRECT.MAX_INPUTS + 1, 3))),
+    lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], [0.0, 0.0, 0.0]),
+    lambda g: prr3.forward_by_newton(g, [0.4, 0.1, 0.6], [[0.0, 0.0, 0.0]], tol=-1),
+    lambda g: prr3.draw(FIG[1], g, ([1.5, 0.5, 0.2], [[0.6, 0.4, 0.0]] * 2)),
+    lambda g: prr3.draw(None, g, ([1.5, 0.5, 0.2], [0.6, 0.4, 0.0])),
+    lambda g: prr3.draw(FIG[1], g, [0.6, 0.4, 0.0]),
+    lambda g: prr3.draw(FIG[1], g, ([1.5, 0.5, 0.2], [0.6, 0.4, 0.0]), guides=1),
+    # R4: poses and inputs that do not broadcast; D13: NaN where a solution must be
+    lambda g: prr3.loop_residuals(g, np.zeros((2, 3)), np.zeros((3, 3))),
+    lambda g: prr3.bars(g, np.zeros((2, 3)), np.zeros((4, 3))),
+    lambda g: prr3.jacobian_dets(g, np.zeros((2, 3)), np.zeros((3, 3))),
+    lambda g: prr3.solutions_from_equations(g, [[np.nan, 0.0, 1.0, 0.0]]),
+    lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0, 1.0]]),  # cos^2 + sin^2 = 2
+    lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0]]),
+    # R6: no geometry, or another mechanism's
+    lambda g: prr3.forward(None, [0.4, 0.1, 0.6]),
+    lambda g: prr3.vertices(None, [0.6, 0.4, 0.0]),
+    lambda g: prr3.radicands(hacksaw.STUDY, [0.6, 0.4, 0.0]),
+    lambda g: prr3.inverse(None, [0.6, 0.4, 0.0]),
+    lambda g: prr3.singular_points(None, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5]),
+    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], kind="both"),
+    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3], (1, -1, -1)),
+    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, 2, -1)),
+    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], samples=10 ** 7),
+    lambda g: prr3.mode_change_path(g, [2.2, 0.5, 3.0], [2.3, 0.5, 3.2], (1, 1, 1),
+                                    bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(2000, 2000, 2)),
 ])
 def test_bad_input_raises_a_value_error_that_names_it(call):
     with pytest.raises(ValueError, match="pose|lambdas|tol|signs|x, y|psi|y must|overflow|"
-                                         "c must|starts|takes one|shape"):
+                                         "c must|seeds|takes one|shape|mech must be|ax must|"
+                                         "state must|guides|points|kind|start|end|samples|inputs"):
         call(EXAMPLES["Table 6"][0])
 
 
 def test_an_empty_batch_is_valid_everywhere():
     g = TABLE_5
     empty = np.empty((0, 3))
-    sol = prr3.direct(empty, g)
+    sol = prr3.forward(g, empty)
     assert sol.poses.shape == (0, 3) and sol.counts.shape == (0,)
-    assert prr3.branch_inputs(empty, g).shape == (0, 3)
-    assert prr3.radicands(empty, g).shape == (0, 3)
-    assert prr3.loop_residuals(empty, empty, g).shape == (0, 3)
-    assert prr3.direct_jacobian(empty, empty, g).shape == (0, 3, 3)
-    assert prr3.jacobian_dets(empty, empty, g)[1].shape == (0,)
-    assert prr3.polynomial(empty, g).shape == (0, 9)
-    assert prr3.direct_by_newton([0.4, 0.1, 0.6], g, empty).shape == (0, 3)
+    assert prr3.branch_inputs(g, empty).shape == (0, 3)
+    assert prr3.radicands(g, empty).shape == (0, 3)
+    assert prr3.loop_residuals(g, empty, empty).shape == (0, 3)
+    assert prr3.direct_jacobian(g, empty, empty).shape == (0, 3, 3)
+    assert prr3.jacobian_dets(g, empty, empty)[1].shape == (0,)
+    assert prr3.polynomial(g, empty).shape == (0, 9)
+    assert prr3.forward_by_newton(g, [0.4, 0.1, 0.6], empty).shape == (0, 3)
 
 
 def test_draw_draws_the_guides_bars_sliders_and_platform():
@@ -496,16 +532,34 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
     import matplotlib.pyplot as plt
 
     g, pose = EXAMPLES["Table 3"]
-    lam = prr3.inverse(pose, g)[0]
+    lam = prr3.inverse(g, pose)[0]
     fig, ax = plt.subplots()
-    assert len(prr3.draw(ax, pose, lam, g)) == len(prr3.draw(ax, pose, lam, g, guides=False)) + 3
-    artists = prr3.draw(ax, pose, lam, g, guides=False)
-    lines = [a for a in artists if hasattr(a, "get_xdata")]
-    bars = [np.column_stack([a.get_xdata(), a.get_ydata()]) for a in lines
-            if len(a.get_xdata()) == 2]
-    assert len(bars) == 3  # one segment C_i P_i per leg, each of length L
-    assert_allclose([np.linalg.norm(b[1] - b[0]) for b in bars], g.L, atol=1e-12)
+    assert len(prr3.draw(ax, g, (lam, pose))) == len(prr3.draw(ax, g, (lam, pose),
+                                                               guides=False)) + 3
+    artists = prr3.draw(ax, g, (lam, pose), guides=False)
+    legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]  # C_i, P_i and a break
+    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, lam), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 1], prr3.vertices(g, pose), rtol=1e-15, atol=1e-15)
+    assert_allclose(np.linalg.norm(legs[:, 1] - legs[:, 0], axis=1), g.L, rtol=1e-12)
+    assert_allclose(artists["platform"].get_xy()[:3], prr3.vertices(g, pose), rtol=1e-15)
+    other = prr3.inverse(g, pose)[5]  # another working mode: the drawing moves, nothing added
+    count = len(ax.lines) + len(ax.patches)
+    assert prr3.draw(ax, g, (other, pose), artists=artists, guides=False) is artists
+    assert len(ax.lines) + len(ax.patches) == count
+    legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]
+    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, other), rtol=1e-15, atol=1e-15)
+    with pytest.warns(DeprecationWarning, match=r"draw\(ax, pose, lambdas, geometry\)"):
+        old = prr3.draw(ax, pose, lam, g)
+    assert sorted(old) == sorted(prr3.draw(ax, g, (lam, pose)))
     plt.close(fig)
+
+
+def test_animate_moves_the_platform_along_a_path():
+    g, pose = EXAMPLES["Table 3"]
+    path = pose + np.outer(np.linspace(0, 0.1, 4), [1.0, 0.5, 0.2])
+    inputs = prr3.branch_inputs(g, path)
+    html = animate(prr3.draw, g, list(zip(inputs, path)))
+    assert html.count("data:image/png;base64") == 4
 
 
 def test_reproduce_gives_every_quantity_of_the_chapter():
@@ -519,20 +573,21 @@ def test_reproduce_gives_every_quantity_of_the_chapter():
 def _assert_singularity_free(path, g, signs):
     dense = np.concatenate([a + np.linspace(0, 1, 50)[:, None] * (b - a)
                             for a, b in zip(path[:-1], path[1:])])
-    lam = prr3.branch_inputs(dense, g, signs)
-    assert np.all(prr3.radicands(dense, g) > 0)
-    dets = prr3.jacobian_dets(dense, lam, g)[1]
+    lam = prr3.branch_inputs(g, dense, signs)
+    assert np.all(prr3.radicands(g, dense) > 0)
+    dets = prr3.jacobian_dets(g, dense, lam)[1]
     assert np.all(np.sign(dets) == np.sign(dets[0])) and np.all(np.abs(dets) > 0)
 
 
 def test_mode_change_path_joins_two_assembly_modes_of_one_input():
     g, signs = TABLE_5, (1, 1, 1)
     lam0 = np.array([3.1266, 1.8887, 3.6427])
-    sol = prr3.direct(lam0, g)
+    sol = prr3.forward(g, lam0)
     start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
-    assert_allclose(prr3.branch_inputs(sol.poses[[1, 3]], g, signs), [lam0, lam0], atol=1e-9)
-    path = prr3.mode_change_path(start, end, g, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
-    assert_allclose(path[[0, -1]], [start, end], atol=1e-12)
+    assert_allclose(prr3.branch_inputs(g, sol.poses[[1, 3]], signs), [lam0, lam0], rtol=0,
+                    atol=1e-9)
+    path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
+    assert_allclose(path[[0, -1]], [start, end], rtol=0, atol=1e-12)
     _assert_singularity_free(path, g, signs)
 
 
@@ -543,10 +598,10 @@ def _assemblable_poses():
     rng = np.random.default_rng(5)
     poses = np.column_stack([rng.uniform(1.6, 3.4, 4000), rng.uniform(0.05, 0.95, 4000),
                              rng.uniform(0.0, 2 * np.pi, 4000)])
-    lam = prr3.branch_inputs(poses, TABLE_5, (1, 1, 1))
+    lam = prr3.branch_inputs(TABLE_5, poses, (1, 1, 1))
     built = np.all(np.isfinite(lam), axis=1)
     poses, lam = poses[built], lam[built]
-    det = prr3.jacobian_dets(poses, lam, TABLE_5)[1]
+    det = prr3.jacobian_dets(TABLE_5, poses, lam)[1]
     return poses[det > 0], poses[det < 0]
 
 
@@ -558,8 +613,7 @@ SAME_SIGN_POSES = _assemblable_poses()
 def test_mode_change_path_is_singularity_free_or_none(side, i, j):
     g, signs, pool = TABLE_5, (1, 1, 1), SAME_SIGN_POSES[side]
     a, b = pool[i % len(pool)], pool[j % len(pool)]
-    path = prr3.mode_change_path(a, b, g, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
-                                 shape=(12, 6, 24))
+    path = prr3.mode_change_path(g, a, b, signs, bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(12, 6, 24))
     if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
         assert pose_gap(path[0], a)[0] < 1e-12 and pose_gap(path[-1], b)[0] < 1e-12
         _assert_singularity_free(path, g, signs)
@@ -575,7 +629,7 @@ def test_mode_change_path_is_singularity_free_or_none(side, i, j):
 ])
 def test_mode_change_path_refuses_bad_input(kwargs, message):
     args = dict(start=[2.5338, 0.8053, 3.0427], end=[2.4711, 0.7552, 4.3283],
-                geometry=TABLE_5, signs=(1, 1, 1), bounds=[[-0.5, 4.5], [-1.0, 1.0]]) | kwargs
+                mech=TABLE_5, signs=(1, 1, 1), bounds=[[-0.5, 4.5], [-1.0, 1.0]]) | kwargs
     with pytest.raises(ValueError, match=message):
         prr3.mode_change_path(**args)
 
@@ -606,4 +660,77 @@ def test_direct_emits_no_overflow_far_away():
     g = EXAMPLES["Table 6"][0]
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no overflow in the polynomial of far-apart sliders
-        assert prr3.direct([[1e100, 0.0, 0.0], [1e300, 0.0, -1e300]], g).counts.tolist() == [0, 0]
+        assert prr3.forward(g, [[1e100, 0.0, 0.0], [1e300, 0.0, -1e300]]).counts.tolist() == [0, 0]
+
+
+# --- singular points ------------------------------------------------------------------------
+
+def test_singular_points_find_the_direct_singularity_that_brentq_finds():
+    pose, lam = singular_pose()  # brentq on the determinant, in this file
+    found = prr3.singular_points(TABLE_5, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, -1, -1))
+    assert found.shape == (1, 3)
+    assert_allclose(found[0], pose, rtol=1e-14)
+    assert abs(prr3.jacobian_dets(TABLE_5, found[0], lam)[1]) < 1e-12
+
+
+@MANY
+@given(case=reachable(), signs=st.sampled_from(SIGNS), seed=st.integers(0, 2 ** 32 - 1))
+def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, seed):
+    g, pose = case
+    end = pose + np.random.default_rng(seed).normal(0, 0.3, 3)
+    found = prr3.singular_points(g, pose, end, signs, samples=50)
+    s = np.linspace(0, 1, 2001)  # an independent count on a finer grid of the segment
+    line = pose + np.outer(s, end - pose)
+    lam = prr3.branch_inputs(g, line, signs)
+    det = np.full(len(s), np.nan)  # NaN where the mode does not assemble
+    built = np.all(np.isfinite(lam), axis=1)
+    det[built] = prr3.jacobian_dets(g, line[built], lam[built])[1]
+    changes = np.sum(det[:-1] * det[1:] <= 0)  # an exact zero on the grid counts twice
+    for p in found:
+        assert abs(prr3.jacobian_dets(g, p, prr3.branch_inputs(g, p, signs))[1]) < 1e-9
+    assert len(found) <= changes  # the coarse grid may miss two close zeros, never invent one
+
+
+def test_inverse_singular_points_are_where_a_leg_turns_tangent():
+    ws = prr3.WORKSPACE_GEOMETRY
+    found = prr3.singular_points(ws, [0.5, 0.0, 0.3], [0.5, 1.5, 0.3], kind="inverse")
+    assert len(found) >= 1
+    for p in found:  # some radicand vanishes there
+        assert np.abs(prr3.radicands(ws, p)).min() < 1e-12
+
+
+# --- deprecated forms -------------------------------------------------------------------------
+
+G6, LAM6 = EXAMPLES["Table 6"]
+POSE3 = EXAMPLES["Table 3"][1]
+OLD_FORMS = [  # the old call, and the new one it must equal
+    (lambda: prr3.direct(LAM6, G6).poses, lambda: prr3.forward(G6, LAM6).poses),
+    (lambda: prr3.direct(LAM6, geometry=G6, imag_tol=1e-5).poses,
+     lambda: prr3.forward(G6, LAM6, imag_tol=1e-5).poses),
+    (lambda: prr3.direct(G6, LAM6).poses, lambda: prr3.forward(G6, LAM6).poses),
+    (lambda: prr3.direct_by_newton(LAM6, G6, [[1.2, 0.6, 0.2]]),
+     lambda: prr3.forward_by_newton(G6, LAM6, [[1.2, 0.6, 0.2]])),
+    (lambda: prr3.direct_by_newton(LAM6, G6, starts=[[1.2, 0.6, 0.2]], tol=1e-10),
+     lambda: prr3.forward_by_newton(G6, LAM6, seeds=[[1.2, 0.6, 0.2]], tol=1e-10)),
+    (lambda: prr3.inverse(POSE3, G6), lambda: prr3.inverse(G6, POSE3)),
+    (lambda: prr3.branch_inputs(POSE3, G6, (1, 1, 1)), lambda: prr3.branch_inputs(
+        G6, POSE3, (1, 1, 1))),
+    (lambda: prr3.workspace(0.6, 0.4, 0.0, G6), lambda: prr3.workspace(G6, 0.6, 0.4, 0.0)),
+    (lambda: prr3.polynomial(LAM6, G6), lambda: prr3.polynomial(G6, LAM6)),
+    (lambda: prr3.loop_residuals(POSE3, LAM6, G6), lambda: prr3.loop_residuals(G6, POSE3, LAM6)),
+    (lambda: prr3.jacobian_dets(POSE3, LAM6, G6), lambda: prr3.jacobian_dets(G6, POSE3, LAM6)),
+    (lambda: prr3.vertices(POSE3, G6), lambda: prr3.vertices(G6, POSE3)),
+    (lambda: prr3.solutions_from_equations([[0.5, 0.25, 0.0, 1.0]], G6),
+     lambda: prr3.solutions_from_equations(G6, [[0.5, 0.25, 0.0, 1.0]])),
+]
+
+
+@pytest.mark.parametrize("old, new", OLD_FORMS)
+def test_old_forms_warn_and_give_the_new_forms_answer(old, new):
+    with pytest.warns(DeprecationWarning, match="deprecated and will be removed in 0.3"):
+        before = old()
+    np.testing.assert_array_equal(np.asarray(before), np.asarray(new()))
+
+
+def test_the_drawing_figure_closes():
+    plt.close(FIG[0])

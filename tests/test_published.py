@@ -7,9 +7,19 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.published import (COLUMNS, agrees, below, check_row, half_unit, is_claim,
-                              read_findings, read_published, read_registry,
-                              reproduction_table)
+from mechnum.published import (
+    COLUMNS,
+    agrees,
+    below,
+    check_row,
+    half_unit,
+    is_claim,
+    read_findings,
+    read_published,
+    read_registry,
+    reproduction_table,
+    verdict_summary,
+)
 
 
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
@@ -91,12 +101,26 @@ def test_reproduction_table_renders_and_checks(tmp_path):
                     "000,\"Tab. 1, |x|\",q,0,,<1e-25,reproduced,ch1,,\n")
     table = reproduction_table("ch1", {"T": 1.9416259, "q": 1e-30}, path)
     assert table._repr_markdown_().splitlines()[2:] == [
-        "| Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |",
-        "| Tab. 1, \\|x\\| | q | 0 | <1e-25 | reproduced |  |"]
+        "| Sec. 4 | T |  | 1.942 s | 1.941626 | reproduced |",
+        "| Tab. 1, \\|x\\| | q |  | 0 | <1e-25 | reproduced |"]
     with pytest.raises(AssertionError, match="bounds it"):
         reproduction_table("ch1", {"T": 1.9416259, "q": 1e-3}, path)
     with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
         reproduction_table("ch9", {}, path)
+
+
+def test_verdict_summary_counts_checked_rows(tmp_path):
+    path = tmp_path / "registry.csv"
+    path.write_text(",".join(COLUMNS) + "\n000,Sec. 4,T,1.942,s,1.941626,reproduced,ch1,,\n"
+                    "002,Slide,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\n"
+                    "002,Slide,T3,1.883,s,1.941626,source-error,ch1,T-2T,slip\n")
+    values = {"T": 1.9416259, "T2": 1.9416259, "T3": 1.9416259}
+    assert verdict_summary("ch1", values, path)._repr_markdown_().splitlines()[2:] == [
+        "| reproduced | 1 |  |", "| source-error | 2 | T-2T |"]
+    with pytest.raises(AssertionError, match="the registry says"):
+        verdict_summary("ch1", {**values, "T": 1.95}, path)
+    with pytest.raises(ValueError, match="no row for the chapter 'ch9'"):
+        verdict_summary("ch9", {}, path)
 
 
 # --- the valid domain and just outside it (issue 13) -------------------------------------------
@@ -144,3 +168,26 @@ def test_read_published_gives_the_printed_text_by_quantity(tmp_path):
     path.write_text(",".join(COLUMNS) + "\n000,a,q1,1.50,s,1.5,reproduced,01,,\n"
                     "000,a,q2,7,s,7,reproduced,02,,\n")
     assert read_published(path, "01") == {"q1": "1.50"}
+
+
+@pytest.mark.parametrize("published, value, match", [
+    ("1.0", "x", "value must be a real number"),  # was a TypeError of abs()
+    ("1.0", None, "value must be a real number"),
+    ("1.0", 1 + 2j, "value must be a real number"),
+    ("1.0", True, "value must be a real number"),
+    (1.0, 1.0, "published must be the printed text"),  # was an AttributeError
+])
+def test_agrees_names_what_is_no_number(published, value, match):
+    with pytest.raises(ValueError, match=match):
+        agrees(published, value)
+
+
+def test_agrees_takes_numpy_numbers_and_nan_agrees_with_nothing():
+    assert agrees("1.942", np.float32(1.9416)) and agrees("62", np.int64(62))
+    assert not agrees("0", float("nan")) and not agrees("<1e-13", float("nan"))
+
+
+@pytest.mark.parametrize("bound", [0.0, -1e-13, float("nan"), float("inf"), "1e-13"])
+def test_below_refuses_a_bound_that_is_no_positive_number(bound):
+    with pytest.raises(ValueError, match="bound must be"):
+        below(1e-20, bound)

@@ -29,7 +29,7 @@ def test_table7_equilibria_and_their_properties(table7):
     assert eq.stable.all() and eq.settled.all()
     assert eq.rods_cross.tolist() == [1, 0, 0] and not eq.self_cross.any()
     np.testing.assert_allclose(eq.forces.sum(axis=1), np.broadcast_to(MECH.force, (3, 2)),
-                               atol=1e-12)
+                               rtol=0, atol=1e-12)
     assert np.abs(rfr2.residual(MECH, THETA, eq.chart)).max() < 1e-12
 
 
@@ -62,7 +62,7 @@ def test_shooting_agrees_with_the_closed_form(table7):
     assert ik.newton.converged.all() and np.abs(ik.theta - THETA).max() < 1e-10
     # round trip: shooting -> the study's (psi, k_rel) -> the closed form
     path = rfr2.forward_path(MECH, np.array([THETA]), eq.chart[0], nodes=801)
-    np.testing.assert_allclose(path.chart[0], eq.chart[0], atol=1e-9)
+    np.testing.assert_allclose(path.chart[0], eq.chart[0], rtol=0, atol=1e-9)
 
 
 def test_the_study_n41_shooting_misses_by_rk4_error(table7):
@@ -72,13 +72,13 @@ def test_the_study_n41_shooting_misses_by_rk4_error(table7):
 
 
 def test_shooting_jacobian_matches_finite_differences(table7):
-    fun, jac, _ = rfr2._shooting_system(MECH, 41, "theta")
+    fun, jac, _ = rfr2.shooting_system(MECH, 41, "theta")
     X = rfr2.shooting_guess(MECH, THETA, table7.chart[:1], unknown="theta")
     known = table7.P[:1]
     h = 1e-7
     fd = np.stack([(fun(X + h * e, known) - fun(X - h * e, known)) / (2 * h)
                    for e in np.eye(8)], axis=-1)
-    np.testing.assert_allclose(jac(X, known), fd, atol=1e-6 * np.abs(fd).max())
+    np.testing.assert_allclose(jac(X, known), fd, rtol=0, atol=1e-6 * np.abs(fd).max())
 
 
 def test_closed_form_jacobian_of_the_mechanism(table7):
@@ -96,8 +96,7 @@ def test_singularity_determinants(table7):
     path = rfr2.forward_path(MECH, thetas, table7.chart[2], method="elliptic")
     fd = (path.P[1:] - path.P[0]).T / 1e-6
     np.testing.assert_allclose(J.dP_dtheta[2], fd, rtol=1e-4)
-    np.testing.assert_allclose(np.linalg.det(J.dP_dtheta) * J.det_fk,
-                               MECH.L ** 2 * J.det_ik, rtol=1e-10)
+    np.testing.assert_allclose(np.linalg.det(J.dP_dtheta) * J.det_fk, J.det_ik, rtol=1e-10)
 
 
 def test_inverse_path_by_both_methods(table7):
@@ -106,7 +105,7 @@ def test_inverse_path_by_both_methods(table7):
     study = rfr2.inverse_path(MECH, points, THETA, table7.chart[2], nodes=201)
     assert fast.converged.all() and study.converged.all()
     assert np.abs(fast.theta - study.theta).max() < 1e-7
-    np.testing.assert_allclose(fast.P, points, atol=1e-12)
+    np.testing.assert_allclose(fast.P, points, rtol=0, atol=1e-12)
 
 
 def test_shooting_path_crosses_a_mode_change(table7):
@@ -126,22 +125,52 @@ def test_forward_map_starts_at_the_equilibrium(table7):
     assert np.abs(rfr2.residual(MECH, grid.theta, grid.chart)).max() < 1e-11
 
 
-def test_draw_returns_artists(table7):
+def test_draw_returns_artists_on_the_rods(table7):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots()
-    artists = rfr2.draw(ax, MECH, THETA, table7.chart[0])
-    assert len(artists) >= 8 and len(ax.lines) >= 7
+    artists = rfr2.draw(ax, MECH, table7.state(0))
+    assert len(artists) == 8 and len(ax.lines) == 7
+    x, y = rfr2.shapes(MECH, THETA, table7.chart[0])
+    for r, line in ((0, artists[0]), (1, artists[3])):
+        # each rod from its own motor, along its motor's angle, to the end effector
+        np.testing.assert_allclose(np.column_stack(line.get_data()),
+                                   np.column_stack((x[r], y[r])), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(line.get_xydata()[0], MECH.origins[r], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(line.get_xydata()[-1], table7.P[0], rtol=0, atol=1e-9)
+        start = line.get_xydata()[1] - MECH.origins[r]         # the first chord, L / 200
+        assert abs(np.arctan2(start[1], start[0]) - THETA[r]) < 0.03
+        tangent = np.diff(artists[3 * r + 1].get_xydata(), axis=0)[0]
+        np.testing.assert_allclose(np.arctan2(tangent[1], tangent[0]), THETA[r], rtol=1e-12)
+    # moved to another equilibrium: the same artists, on its rods
+    again = rfr2.draw(ax, MECH, table7.state(2), artists=artists)
+    assert again is artists and len(ax.lines) == 7
+    np.testing.assert_allclose(artists[0].get_xydata()[-1], table7.P[2], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(artists[-1].xy, table7.P[2] + 0.3 * MECH.force, rtol=1e-12)
+    with pytest.raises(ValueError, match="ax must be"):
+        rfr2.draw(None, MECH, table7.state(0))
+    with pytest.raises(ValueError, match="artists must be"):
+        rfr2.draw(ax, MECH, table7.state(0), artists=artists[:3])
+    with pytest.warns(DeprecationWarning, match="State"):
+        assert len(rfr2.draw(ax, MECH, THETA, table7.chart[0])) == 8
     plt.close(fig)
 
 
 def test_study_paths():
     assert rfr2.path("inverse line").shape == (101, 2)
-    np.testing.assert_allclose(rfr2.path("inverse line")[-1], [-0.5, 0.0], atol=1e-15)
-    assert rfr2.path("direct circles").shape == (41, 2)
+    np.testing.assert_allclose(rfr2.path("inverse line")[-1], [-0.5, 0.0], rtol=0, atol=1e-15)
+    circles = rfr2.path("direct circles")
+    assert circles.shape == (41, 2)
+    # five circles of diameters 0.04 to 0.2, eight points each from angle 0, and the centre
+    radii = np.hypot(*circles.T)
+    np.testing.assert_allclose(np.unique(np.round(radii, 12)), [0, 0.02, 0.04, 0.06, 0.08, 0.1],
+                               rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(circles[1], [0.02, 0.0], rtol=1e-12)
     corners = rfr2.path("inverse rectangles")
-    assert corners.shape == (65, 2) and np.abs(corners).max() == pytest.approx(0.1)
+    assert corners.shape == (65, 2) and np.abs(corners).max() == pytest.approx(0.1, rel=1e-12)
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.circles(0.2, 10**4, 10**3)
 
 
 # --- bad input ------------------------------------------------------------------------------
@@ -192,3 +221,207 @@ def test_reproduce_matches_the_registry_keys():
     assert set(values) <= {row["quantity"] for row in rows}
     for row in rows:
         check_row(row, values.get(row["quantity"]))
+
+
+# --- the mechanism protocol and the shared results (issue 22) --------------------------------
+
+def test_forward_follows_the_result_contract(table7):
+    eq = table7
+    assert rfr2.forward is rfr2.forward_elliptic
+    assert eq.status.tolist() == ["converged"] * 3 and eq.converged.all()
+    assert eq.x is eq.chart and eq.nfev > 0 and eq.njev > 0
+    assert "3 equilibria from 200 starts" in eq.message and "no other" in eq.message
+    # the inputs given, one pose per equilibrium; the 2RFR's names for them
+    assert eq.theta is eq.inputs and eq.P is eq.pose and eq.P.shape == (3, 2)
+    state = eq.state(1)
+    assert state.modes == (1, 1) and np.array_equal(state.chart, eq.chart[1])
+
+
+def test_inverse_finds_every_equilibrium_at_an_end_effector(table7):
+    eq = rfr2.inverse(MECH, table7.P[2], rng=0)
+    # the forward equilibrium is among them, with its motor angles
+    k = np.argmin(np.abs(eq.theta - THETA).max(axis=1))
+    assert np.abs(eq.theta[k] - THETA).max() < 1e-10
+    np.testing.assert_allclose(eq.chart[k], table7.chart[2], rtol=0, atol=1e-9)
+    # every one of them an equilibrium with its end effector at P (checked independently)
+    assert np.abs(rfr2.residual(MECH, eq.theta, eq.chart)).max() < 1e-12
+    tips = rfr2.rods(MECH, eq.theta, eq.chart, jacobian=False)[0]
+    assert np.abs(tips - table7.P[2]).max() < 1e-12
+    assert eq.pose.shape == (2,) and eq.theta.shape == (len(eq.chart), 2)
+    assert eq.search.complete and len(eq.chart) >= 2
+    fun, jac = rfr2.inverse_system(MECH, table7.P[2])
+    h, z = 1e-6, eq.chart + 0.01
+    fd = np.stack([(fun(z + h * e) - fun(z - h * e)) / (2 * h) for e in np.eye(4)], axis=-1)
+    np.testing.assert_allclose(jac(z), fd, rtol=1e-6, atol=1e-6)
+
+
+def test_strain_is_the_largest_bending_strain(table7):
+    from mechnum.rods import regular
+    strain = rfr2.strain(MECH, THETA, table7.chart)
+    np.testing.assert_array_equal(strain, table7.strain)
+    # sampled along the rods (20001 nodes): the closed form is the supremum of the samples
+    for z, e in zip(table7.chart, strain):
+        rod = regular.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
+        sampled = 0.5 * MECH.diameter * np.abs(rod.m).max(axis=-1) / MECH.EI
+        assert (sampled <= e * (1 + 1e-12)).all() and (sampled > e * (1 - 1e-7)).all()
+    # music wire bends 0.77 %: Table 7's solution 1 needs 0.79 %, so only the equilibrium
+    # whose rods neither cross nor yield can be built
+    assert table7.elastic.tolist() == [True, True, False]
+    assert table7.crossing_free.tolist() == [False, True, True]
+    assert table7.buildable.tolist() == [False, True, False]
+    stronger = rfr2.Mechanism(MECH.origins, MECH.force, strain_limit=0.01)
+    assert rfr2.forward_elliptic(stronger, THETA, rng=0).buildable.tolist() == [
+        False, True, True]
+
+
+def test_the_jump_of_chapter_5_across_a_fold_is_no_converged_point():
+    # Chapter 5's inverse circles from its first equilibrium: between points 22 and 23 Newton
+    # leapt across a fold (det_ik from -1e4 to +1e4, theta2 from 89 to 136 deg)
+    eq = rfr2.forward_elliptic(MECH, THETA, rng=2)
+    circles = eq.P[0] + rfr2.path("inverse circles")
+    ik = rfr2.inverse_path(MECH, circles, THETA, eq.chart[0])
+    assert ik.converged[:22].all() and ik.status[22] == "branch-jump"
+    assert not ik.converged[22:].any() and np.isnan(ik.theta[22:]).all()
+    assert (np.sign(ik.det_ik[ik.converged]) == -1).all()
+    assert "22 of 41 points converged" in ik.message
+
+
+def test_dP_dtheta_is_the_derivative_for_rods_of_any_length():
+    long = rfr2.Mechanism([[-0.6, 0.0], [0.6, 0.0]], force=[1.2, -0.4], L=2.0)
+    eq = rfr2.forward_elliptic(long, THETA, n_starts=100, check=1, rng=0)
+    J = rfr2.jacobians(long, THETA, eq.chart)
+    h = 1e-6
+    for k in range(len(eq.chart)):
+        steps = np.array([THETA, THETA + [h, 0], THETA + [0, h]])
+        path = rfr2.forward_path(long, steps, eq.chart[k], method="elliptic")
+        fd = (path.P[1:] - path.P[0]).T / h
+        np.testing.assert_allclose(J.dP_dtheta[k], fd, rtol=1e-4, atol=1e-6)
+    np.testing.assert_allclose(np.linalg.det(J.dP_dtheta) * J.det_fk, J.det_ik, rtol=1e-9)
+
+
+def test_workspace_ends_where_the_inverse_problem_folds(table7):
+    edge = rfr2.workspace(MECH, table7.P[2], THETA, table7.chart[2], directions=4, step=0.02,
+                          levels=4)
+    assert edge.P.shape == (4, 2) and edge.converged.all()
+    reach = np.hypot(*(edge.P - table7.P[2]).T)
+    assert (reach > 0.4).all() and (reach < 0.8).all()
+    # where the rods kept their modes, the closed form's det_ik has fallen to a hundredth of
+    # its value at the start: the branch folds there (shooting changed a mode on one ray)
+    kept = (edge.modes == 1).all(axis=1)
+    centre = rfr2.jacobians(MECH, THETA, table7.chart[2]).det_ik
+    end = rfr2.jacobians(MECH, edge.theta[kept], edge.chart[kept]).det_ik
+    assert kept.sum() >= 2 and (np.abs(end) < 0.01 * np.abs(centre)).all()
+
+
+def test_singular_points_of_a_map(table7):
+    g = np.radians(np.linspace(0.0, 180.0, 19))
+    grid = rfr2.forward_map(MECH, g, g, THETA, table7.chart[0])
+    points = rfr2.singular_points(MECH, grid)
+    assert len(points) > 0
+    # each between two grid neighbours where det_ik changes sign, on the map's grid axes
+    step = g[1] - g[0]
+    assert ((points >= g[0]) & (points <= g[-1])).all()
+    on_lines = np.isclose(np.remainder(points / step + 0.5, 1.0) - 0.5, 0.0, atol=1e-9)
+    assert on_lines.any(axis=1).all()
+    with pytest.raises(ValueError, match="grid must be a map"):
+        rfr2.singular_points(MECH, rfr2.inverse_path(MECH, table7.P[:1], THETA,
+                                                     table7.chart[0]))
+
+
+def test_the_private_names_of_chapter_5_warn_and_still_work(table7):
+    with pytest.warns(DeprecationWarning, match="rfr2.rods"):
+        tip = rfr2._rods(MECH, np.ones(2), table7.chart[:1], THETA)[0]
+    np.testing.assert_allclose(tip[0, 0], table7.P[0], rtol=0, atol=1e-12)
+    with pytest.warns(DeprecationWarning):
+        assert rfr2._shooting_system is rfr2.shooting_system
+    with pytest.raises(AttributeError):
+        rfr2._memoised      # noqa: B018 (the private memoiser is gone: rods.assembly.memoised)
+
+
+# --- issue 23: bad input, empty batches, bounds ---------------------------------------------
+
+@pytest.mark.parametrize("method", ["shooting", "elliptic"])
+def test_empty_paths_are_valid(table7, method):
+    ik = rfr2.inverse_path(MECH, np.empty((0, 2)), THETA, table7.chart[2], method=method)
+    fk = rfr2.forward_path(MECH, [], table7.chart[2], method=method)
+    for path in (ik, fk):
+        assert path.theta.shape == (0, 2) and path.chart.shape == (0, 4)
+        assert path.status.shape == (0,) and path.message == "0 of 0 points converged"
+
+
+def test_an_empty_grid_is_a_valid_map(table7):
+    grid = rfr2.forward_map(MECH, [], np.radians([58.0, 60.0]), THETA, table7.chart[2])
+    assert grid.P.shape == (0, 2, 2) and grid.converged.shape == (0, 2)
+
+
+@pytest.mark.parametrize("call", [
+    lambda z: rfr2.residual(MECH, np.zeros((3, 2)), np.stack([z, z])),
+    lambda z: rfr2.shapes(MECH, np.zeros((3, 2)), np.stack([z, z])),
+    lambda z: rfr2.crossings(MECH, np.zeros((3, 2)), np.stack([z, z])),
+    lambda z: rfr2.jacobians(MECH, np.zeros((3, 2)), np.stack([z, z])),
+])
+def test_shapes_that_do_not_broadcast_are_named(table7, call):
+    with pytest.raises(ValueError, match="chart of shape .* and theta of shape"):
+        call(table7.chart[0])
+
+
+def test_shooting_batches_that_do_not_match_are_named(table7):
+    X = rfr2.shooting_guess(MECH, THETA, table7.chart[:2], unknown="theta")
+    with pytest.raises(ValueError, match="3 known values for 2 guesses"):
+        rfr2.inverse_shooting(MECH, np.zeros((3, 2)), X)
+    with pytest.raises(ValueError, match="thetas must have a last axis of 2"):
+        rfr2.forward_path(MECH, np.zeros((4, 3)), table7.chart[0])
+
+
+@pytest.mark.parametrize("rng", ["a", -1, 1.5])
+def test_bad_rng_is_a_value_error(rng):
+    with pytest.raises(ValueError, match="rng must be"):
+        rfr2.forward_elliptic(MECH, THETA, n_starts=8, rng=rng)
+
+
+@pytest.mark.parametrize("mech", [None, "TABLE7", object()])
+def test_a_mechanism_of_the_wrong_kind_is_named(mech):
+    from mechnum.mechanisms import pfr3
+    for bad in (mech, pfr3.TABLE8):
+        with pytest.raises(ValueError, match="mech must be a Mechanism"):
+            rfr2.forward_elliptic(bad, THETA, n_starts=8, rng=0)
+
+
+@pytest.mark.parametrize("rtol", [0.0, 1e-300, -1e-8, 0.1])
+def test_verify_refuses_tolerances_it_cannot_meet(table7, rtol):
+    with pytest.raises(ValueError, match="rtol"):
+        rfr2.verify(MECH, THETA, table7.chart, rtol=rtol)
+
+
+def test_stability_checks_its_resolutions_and_its_equilibrium(table7):
+    z = table7.chart[0]
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.stability(MECH, THETA, z, segments=(200, 10**6))
+    with pytest.raises(ValueError, match="pair of integers"):
+        rfr2.stability(MECH, THETA, z, segments=200)
+    with pytest.warns(DeprecationWarning, match="index"):
+        assert rfr2.stability(MECH, THETA, z, segments=(200,)) == (0,)
+    assert rfr2.index(MECH, THETA, z, segments=100) == 0
+    with pytest.raises(ValueError, match="no equilibrium"):
+        rfr2.stability(MECH, THETA, [1.0, 0.5, 2.0, 0.5])
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.eigenvalues(MECH, THETA, z, segments=10**5)
+
+
+@pytest.mark.parametrize("flag", ["yes", 1, None])
+def test_flags_must_be_bools(table7, flag):
+    with pytest.raises(ValueError, match="resume must be True or False"):
+        rfr2.forward_path(MECH, [THETA], table7.chart[0], resume=flag)
+    with pytest.raises(ValueError, match="jacobian must be True or False"):
+        rfr2.rods(MECH, THETA, table7.chart[0], jacobian=flag)
+
+
+def test_sizes_are_bounded(table7):
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.forward_elliptic(MECH, THETA, n_starts=10**6)
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.forward_elliptic(MECH, THETA, check=1000)
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.forward_path(MECH, [THETA], table7.chart[0], nodes=10**7)
+    with pytest.raises(ValueError, match="bound on the work"):
+        rfr2.workspace(MECH, table7.P[0], THETA, table7.chart[0], step=1e-6)

@@ -21,17 +21,28 @@ ValueError: x0 must be finite, got [ 1. nan]
 import operator
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
-def _shown(value):
-    """A short text of ``value`` for an error message."""
+def shown(value: object) -> str:
+    """A short text of ``value`` for an error message.
+
+    Examples
+    --------
+    >>> shown(np.arange(100.0))
+    '[ 0.  1. ... 98. 99.]'
+    """
     if isinstance(value, np.ndarray):
         return np.array2string(value, threshold=8, edgeitems=2, precision=6)
     text = repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
 
 
-def array(value, name, *, ndim=None, shape=None, finite=True):
+_shown = shown  # the name other modules used before it was public
+
+
+def array(value: ArrayLike, name: str, *, ndim: int | tuple | None = None,
+          shape: tuple | None = None, finite: bool = True) -> np.ndarray:
     """``value`` as a real float array, checked.
 
     Parameters
@@ -71,11 +82,11 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError) as error:  # ragged nested lists, for example
-        raise ValueError(f"{name} must be a numeric array, got {_shown(value)}: {error}") from None
+        raise ValueError(f"{name} must be a numeric array, got {shown(value)}: {error}") from None
     if np.iscomplexobj(raw):
-        raise ValueError(f"{name} must be real, got {_shown(raw)}")
+        raise ValueError(f"{name} must be real, got {shown(raw)}")
     if raw.dtype.kind not in "biuf":
-        raise ValueError(f"{name} must be numeric, got {_shown(value)} (dtype {raw.dtype})")
+        raise ValueError(f"{name} must be numeric, got {shown(value)} (dtype {raw.dtype})")
     out = raw.astype(float)
     if ndim is not None and out.ndim not in ((ndim,) if isinstance(ndim, int) else ndim):
         raise ValueError(f"{name} must have {ndim} dimension(s), got shape {out.shape}")
@@ -85,11 +96,12 @@ def array(value, name, *, ndim=None, shape=None, finite=True):
                  ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name} must have shape {wanted}, got shape {out.shape}")
     if finite and not np.isfinite(out).all():   # the method: some microseconds cheaper
-        raise ValueError(f"{name} must be finite, got {_shown(out)}")
+        raise ValueError(f"{name} must be finite, got {shown(out)}")
     return out
 
 
-def scalar(value, name, *, positive=False, nonnegative=False):
+def scalar(value: ArrayLike, name: str, *, positive: bool = False,
+           nonnegative: bool = False) -> float:
     """``value`` as a finite real float, checked (optionally ``> 0`` or ``>= 0``).
 
     Examples
@@ -110,7 +122,7 @@ def scalar(value, name, *, positive=False, nonnegative=False):
     return out
 
 
-def positive(value, name):
+def positive(value: ArrayLike, name: str) -> np.ndarray:
     """``value`` as a float array whose every entry is finite and positive.
 
     Examples
@@ -120,11 +132,11 @@ def positive(value, name):
     """
     out = array(value, name)
     if not np.all(out > 0):
-        raise ValueError(f"{name} must be positive, got {_shown(out)}")
+        raise ValueError(f"{name} must be positive, got {shown(out)}")
     return out
 
 
-def tolerance(value, name="tol"):
+def tolerance(value: ArrayLike, name: str = "tol") -> float:
     """A tolerance: a finite positive float.
 
     Examples
@@ -137,7 +149,8 @@ def tolerance(value, name="tol"):
     return scalar(value, name, positive=True)
 
 
-def maxiter(value, name="maxiter", minimum=1, maximum=None):
+def maxiter(value: object, name: str = "maxiter", minimum: int = 1,
+            maximum: int | None = None) -> int:
     """An iteration (or node, or start) count: an integer ``>= minimum`` (and ``<= maximum``).
 
     Floats with an integer value are accepted; ``inf``, NaN, fractions, booleans are not. Every
@@ -174,7 +187,7 @@ def maxiter(value, name="maxiter", minimum=1, maximum=None):
     return out
 
 
-def flag(value, name):
+def flag(value: object, name: str) -> bool:
     """A yes/no option: a ``bool`` (or numpy's), nothing that is merely truthy.
 
     Examples
@@ -187,11 +200,11 @@ def flag(value, name):
     ValueError: damping must be True or False, got 'yes'
     """
     if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be True or False, got {_shown(value)}")
+        raise ValueError(f"{name} must be True or False, got {shown(value)}")
     return bool(value)
 
 
-def rng(value, name="rng"):
+def rng(value: object, name: str = "rng") -> np.random.Generator:
     """A random generator: ``None``, a non-negative integer seed, or a ``numpy.random.Generator``.
 
     Examples
@@ -209,10 +222,10 @@ def rng(value, name="rng"):
             and value >= 0:
         return np.random.default_rng(value)
     raise ValueError(f"{name} must be None, a non-negative integer seed or a "
-                     f"numpy.random.Generator, got {_shown(value)}")
+                     f"numpy.random.Generator, got {shown(value)}")
 
 
-def choice(value, options, name):
+def choice(value: object, options: tuple, name: str) -> object:
     """``value`` if it is one of ``options``.
 
     Examples

@@ -18,7 +18,7 @@ class MechnumError(Exception):
         kept so that the caller can inspect the history.
     """
 
-    def __init__(self, message, result=None):
+    def __init__(self, message: str, result: object = None) -> None:
         super().__init__(message)
         self.result = result
 
@@ -29,6 +29,12 @@ class ConvergenceError(MechnumError):
 
 class DivergenceError(ConvergenceError):
     """An iteration was detected to diverge (growing residual or overflow)."""
+
+
+class NonFiniteError(MechnumError):
+    """A computation from finite input produced NaN or infinity: a user function returned a
+    non-finite value at a finite argument, or the numbers overflowed (an integration step far
+    too large for the equation, a root beyond the largest float)."""
 
 
 class SingularJacobianError(MechnumError):

@@ -19,18 +19,35 @@ made homogeneous by powers of ``x0``, plus one random linear equation ``h . X = 
 affine chart) that keeps every path bounded; a path ending with ``x0 = 0`` went to infinity,
 the others give ``x = (x1, ..., xn) / x0``, polished by Newton on ``F``.
 
+A path that ends at a *singular* solution (a double root: two paths meet there) cannot be
+tracked to ``s = 1`` exactly, since the Jacobian is singular at its end. A path the tracker
+follows to within :data:`ENDGAME` of ``s = 1`` is finished by Newton's method on ``F`` itself,
+which converges linearly to a multiple root (to about the square root of round-off for a double
+root); the paths that end at one solution are counted as its ``multiplicity``.
+
 This is the method of Sommese and Wampler's *The Numerical Solution of Systems of Polynomials*
-(2005), kept small for teaching: no endgame (a path ending at a singular solution is only
-accurate to about the square root of the tracking tolerance), and one path after the other.
+(2005), kept small for teaching: that simple endgame instead of a Cauchy or power-series one,
+and one path after the other.
+
+Examples
+--------
+>>> F = PolynomialSystem.from_dicts([{(2,): 1, (0,): -2}])     # x^2 = 2
+>>> sorted(solve(F, rng=0).real().ravel().round(12).tolist())
+[-1.414213562373, 1.414213562373]
 """
 
+import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import product
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.polynomials import PolynomialSystem
+from mechnum.errors import ConvergenceError
+from mechnum.polynomials import PolynomialSystem, bezout_bound
+from mechnum.results import Result, status_counts
 
 # Newton's corrector may take this many steps at each s: more means the predictor went too far.
 _CORRECTOR_STEPS = 3
@@ -43,25 +60,84 @@ _MIN_STEP = 1e-12
 # An endpoint whose x0 is below this (relative to |X|) lies at infinity: a finite solution of
 # a problem scaled to unit size has |x0| of order 1 on a random chart.
 _AT_INFINITY = 1e-6
-# Newton steps polishing a finite endpoint on F itself, and the residual it must reach
-# (relative to the equations' coefficients): round-off of unit-sized terms.
-_POLISH_STEPS = 8
+# Newton steps polishing a finite endpoint on F itself (linear convergence to a multiple root
+# needs tens), and the residual it must reach (relative to the equations' coefficients):
+# round-off of unit-sized terms.
+_POLISH_STEPS = 60
 _POLISH_TOL = 1e-10
-STATUSES = ("finite", "at-infinity", "lost")
-"""What becomes of a path: it ends at a finite solution, at infinity, or the tracker lost it."""
+# A solution whose Jacobian has a condition number above this is singular (a multiple root):
+# its digits are those of sqrt(eps), and it is grouped with others within sqrt(same).
+_SINGULAR_COND = 1e8
+TOL = 1e-9
+"""Default corrector tolerance of :func:`track` (relative): the paths need not be followed more
+accurately than to keep them apart; the endpoints are polished on the system itself."""
+SAME = 1e-6
+"""Default distance below which two polished endpoints are one solution: far above the round-off
+of a simple root, far below the distance of two roots of a system scaled to unit size."""
+IMAG_TOL = 1e-8
+"""Default of :meth:`HomotopyResult.real`: a solution whose imaginary parts are below this is
+real. The polished solutions of a problem scaled to unit size carry round-off of 1e-15; the
+margin keeps a real root of condition up to 1e7 real."""
+ENDGAME = 1e-3
+"""A path lost at ``s >= 1 - ENDGAME`` has reached the neighbourhood of a singular end (a
+multiple root, or a root at infinity): its endpoint is finished by Newton on the system."""
+MAX_STEPS_LIMIT = 10_000_000
+"""The most steps :func:`track` accepts for one path."""
+PATHS_LIMIT = 100_000
+"""The most paths (Bezout's number) :func:`solve` follows: each path takes milliseconds to
+seconds, so a hundred thousand is hours."""
+ENDS = ("finite", "at-infinity", "lost")
+"""Where a path of :func:`solve` ends (its :attr:`HomotopyResult.ends`): at a finite solution, at
+infinity, or nowhere known (the tracker lost it)."""
 
 
-@dataclass(frozen=True)
-class TrackResult:
-    """One tracked path: its end ``x``, the ``s`` it reached, steps taken and rejected."""
+def __getattr__(name):
+    if name == "STATUSES":
+        warnings.warn("mechnum.homotopy.STATUSES is deprecated: the ends of the paths are "
+                      "homotopy.ENDS (HomotopyResult.ends); status is the shared vocabulary of "
+                      "mechnum.results.STATUSES", DeprecationWarning, stacklevel=2)
+        return ENDS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    x: np.ndarray
+
+@dataclass(frozen=True, kw_only=True)
+class TrackResult(Result):
+    """One tracked path (:func:`track`).
+
+    Attributes
+    ----------
+    x : ndarray of complex
+        Where the path ended.
+    status : str
+        ``"converged"`` if it reached ``s = 1``; ``"lost"`` if the step fell below
+        ``1e-12`` or ``max_steps`` ran out; ``"non-finite"`` if ``x`` overflowed.
+    message, nfev, njev
+        As in :class:`~mechnum.results.Result` (calls of ``homotopy``, which gives both).
+    iterations : int
+        Steps tried, accepted and rejected.
+    s : float
+        How far it got.
+    steps, rejected : int
+        Steps accepted, and rejected (the step halved).
+    """
+
     s: float
     steps: int
     rejected: int
 
 
-def track(homotopy, x0, *, tol=1e-9, h0=0.01, max_steps=20000):
+def _checked(homotopy, x, s):
+    """``homotopy(x, s)`` checked: ``H`` and ``H_s`` of shape ``(m,)``, ``H_x`` ``(m, m)``."""
+    H, Hx, Hs = (np.asarray(v) for v in homotopy(x, s))
+    m = x.shape[0]
+    if H.shape != (m,) or Hx.shape != (m, m) or Hs.shape != (m,):
+        raise ValueError(f"homotopy must return H ({m},), H_x ({m}, {m}) and H_s ({m},) for x "
+                         f"of shape ({m},), got {H.shape}, {Hx.shape}, {Hs.shape}")
+    return H, Hx, Hs
+
+
+def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.01,
+          max_steps: int = 20000) -> TrackResult:
     """Follow a solution of ``H(x, s) = 0`` from ``s = 0`` to ``s = 1``.
 
     Parameters
@@ -70,13 +146,15 @@ def track(homotopy, x0, *, tol=1e-9, h0=0.01, max_steps=20000):
         ``homotopy(x, s) -> (H, H_x, H_s)``: the value (shape ``(m,)``), its Jacobian in ``x``
         (``(m, m)``) and its derivative in ``s`` (``(m,)``), complex.
     x0 : array_like, shape (m,)
-        A solution at ``s = 0``.
+        A solution at ``s = 0``, finite.
     tol : float, optional
         Newton's corrector accepts a step when its last update is below ``tol * (1 + |x|)``.
     h0 : float, optional
-        The first step in ``s``.
+        The first step in ``s``: it doubles after three accepted steps in a row (up to
+        ``0.1``) and halves after a rejected one.
     max_steps : int, optional
-        Steps (accepted and rejected) before the path is declared lost.
+        Steps (accepted and rejected) before the path is declared lost, at most
+        :data:`MAX_STEPS_LIMIT`.
 
     Returns
     -------
@@ -90,68 +168,117 @@ def track(homotopy, x0, *, tol=1e-9, h0=0.01, max_steps=20000):
     >>> import numpy as np
     >>> H = lambda x, s: (x**2 - (1 + 3 * s), np.diag(2 * x), np.array([-3.0 + 0j]))
     >>> end = track(H, [1.0 + 0j])
-    >>> end.s, np.round(end.x.real, 12).tolist()
-    (1.0, [2.0])
+    >>> end.s, np.round(end.x.real, 12).tolist(), end.status
+    (1.0, [2.0], 'converged')
     """
     tol = _validate.tolerance(tol)
-    max_steps = _validate.maxiter(max_steps, "max_steps")
-    x, s, h = np.asarray(x0, dtype=complex), 0.0, _validate.tolerance(h0, "h0")
-    steps = rejected = successes = 0
+    max_steps = _validate.maxiter(max_steps, "max_steps", maximum=MAX_STEPS_LIMIT)
+    h = _validate.tolerance(h0, "h0")
+    x = np.asarray(x0)
+    if x.dtype.kind not in "biufc" or x.ndim != 1 or x.size == 0:
+        raise ValueError(f"x0 must be a non-empty 1-D numeric array, got "
+                         f"{_validate.shown(x0)}")
+    x = x.astype(complex)
+    if not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be finite, got {_validate.shown(x)}")
+    s, steps, rejected, successes, calls = 0.0, 0, 0, 0, 0
 
     def velocity(x, s):
-        _, Hx, Hs = homotopy(x, s)
+        _, Hx, Hs = _checked(homotopy, x, s)
         return -np.linalg.solve(Hx, Hs)
 
     while s < 1.0 and steps + rejected < max_steps and h >= _MIN_STEP:
+        last = h >= 1.0 - s  # this step ends the path
         h = min(h, 1.0 - s)
         try:  # predictor: one classical Runge-Kutta step along the path's tangent
-            k1 = velocity(x, s)
-            k2 = velocity(x + h / 2 * k1, s + h / 2)
-            k3 = velocity(x + h / 2 * k2, s + h / 2)
-            k4 = velocity(x + h * k3, s + h)
-            y = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-            for _ in range(_CORRECTOR_STEPS):  # corrector: Newton at the new s
-                value, Hx, _ = homotopy(y, s + h)
-                dy = np.linalg.solve(Hx, -value)
-                y = y + dy
-                if np.linalg.norm(dy) <= tol * (1 + np.linalg.norm(y)):
-                    break
-            else:
-                raise np.linalg.LinAlgError("corrector did not converge")
+            with np.errstate(all="ignore"):  # a non-finite stage is a rejected step
+                k1 = velocity(x, s)
+                k2 = velocity(x + h / 2 * k1, s + h / 2)
+                k3 = velocity(x + h / 2 * k2, s + h / 2)
+                k4 = velocity(x + h * k3, s + h)
+                calls += 4
+                y = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+                for _ in range(_CORRECTOR_STEPS):  # corrector: Newton at the new s
+                    value, Hx, _ = _checked(homotopy, y, s + h)
+                    calls += 1
+                    dy = np.linalg.solve(Hx, -value)
+                    y = y + dy
+                    if np.linalg.norm(dy) <= tol * (1 + np.linalg.norm(y)):
+                        break
+                else:
+                    raise np.linalg.LinAlgError("corrector did not converge")
+            if not np.all(np.isfinite(y)):
+                raise np.linalg.LinAlgError("the corrector overflowed")
         except np.linalg.LinAlgError:  # a singular Jacobian or a failed corrector: shorten
             h, successes, rejected = h / 2, 0, rejected + 1
             continue
-        x, s, steps, successes = y, (1.0 if s + h >= 1.0 else s + h), steps + 1, successes + 1
+        x, s, steps, successes = y, (1.0 if last else s + h), steps + 1, successes + 1
         if successes >= _SUCCESSES_TO_GROW:
             h, successes = min(2 * h, _MAX_STEP), 0
-    return TrackResult(x, s, steps, rejected)
+    status = "converged" if s == 1.0 else "lost"
+    why = ("reached s = 1" if status == "converged" else
+           f"lost at s = {s:.12g}: " + ("max_steps ran out" if h >= _MIN_STEP
+                                        else f"the step fell below {_MIN_STEP:g}"))
+    return TrackResult(x=x, status=status, message=f"{why} after {steps} steps ({rejected} "
+                       f"rejected)", iterations=steps + rejected, nfev=calls, njev=calls, s=s,
+                       steps=steps, rejected=rejected)
 
 
-@dataclass(frozen=True)
-class HomotopyResult:
+@dataclass(frozen=True, kw_only=True)
+class HomotopyResult(Result):
     """The outcome of :func:`solve`.
 
     Attributes
     ----------
-    solutions : ndarray of complex, shape (k, n)
-        The distinct finite solutions, polished by Newton on the system itself.
+    x : ndarray of complex, shape (k, n)
+        The distinct finite solutions, polished by Newton on the system itself (also
+        :attr:`solutions`).
     status : ndarray of str, shape (paths,)
-        What became of each path (:data:`STATUSES`).
+        What became of each path, in the shared vocabulary (:data:`~mechnum.results.STATUSES`):
+        ``"converged"`` (followed to ``s = 1``), ``"singular"`` (to a singular end, finished by
+        the endgame: a multiple root or one at infinity) or ``"lost"``.
+    message : str
+        The counts of the ends and of the solutions.
+    iterations : ndarray of int, shape (paths,)
+        Accepted steps of each path (also :attr:`steps`).
+    nfev, njev : int
+        Evaluations of the homotopy (each gives the values and the Jacobian).
+    ends : ndarray of str, shape (paths,)
+        Where each path ended (:data:`ENDS`): ``"finite"``, ``"at-infinity"`` or ``"lost"``.
     endpoints : ndarray of complex, shape (paths, n + 1)
         Where each path ended, in projective coordinates ``(x0, x1, ..., xn)``.
-    steps : ndarray of int, shape (paths,)
-        Accepted steps of each path.
+    multiplicity : ndarray of int, shape (k,)
+        How many paths end at each solution: 1 for a simple root, 2 for a double one.
     """
 
-    solutions: np.ndarray
-    status: np.ndarray
+    ends: np.ndarray
     endpoints: np.ndarray
-    steps: np.ndarray
+    multiplicity: np.ndarray
 
-    def real(self, imag_tol=1e-8):
-        """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays."""
+    @property
+    def solutions(self) -> np.ndarray:
+        """ndarray of complex, shape (k, n): the distinct finite solutions (``x``)."""
+        return self.x
+
+    @property
+    def steps(self) -> np.ndarray:
+        """ndarray of int, shape (paths,): accepted steps of each path (``iterations``)."""
+        return self.iterations
+
+    def real(self, imag_tol: float = IMAG_TOL) -> np.ndarray:
+        """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays;
+        below ``imag_tol ** (1 / m)`` for a root of multiplicity ``m``, which round-off
+        blurs by the ``m``-th root of its size (a double root carries half the digits).
+
+        Examples
+        --------
+        >>> F = PolynomialSystem.from_dicts([{(2,): 1, (1,): -2, (0,): 1}])    # (x - 1)^2
+        >>> solve(F, rng=0).real().round(6).tolist()
+        [[1.0]]
+        """
         imag_tol = _validate.tolerance(imag_tol, "imag_tol")
-        keep = np.all(np.abs(self.solutions.imag) <= imag_tol, axis=1)
+        limit = imag_tol ** (1.0 / np.maximum(self.multiplicity, 1))
+        keep = np.all(np.abs(self.solutions.imag) <= limit[:, None], axis=1)
         return self.solutions[keep].real
 
 
@@ -163,30 +290,46 @@ def _start_points(degrees, chart):
 
 
 def _polish(system, x):
-    """Newton on ``system`` from ``x``; the last iterate and whether its residual is tiny."""
+    """Newton on ``system`` from ``x`` (least squares where the Jacobian is singular): the
+    last iterate, whether its residual is tiny, and whether its Jacobian is singular."""
     scale = max(np.abs(c).max() for _, c in system.terms)
-    for _ in range(_POLISH_STEPS):
-        try:
-            x = x - np.linalg.solve(system.jacobian(x), system(x))
-        except np.linalg.LinAlgError:
-            break
-    return x, np.abs(system(x)).max() <= _POLISH_TOL * scale * (1 + np.abs(x).max()) ** \
-        max(system.degrees)
+    floor = _POLISH_TOL * scale
+    with np.errstate(all="ignore"):
+        last = np.inf
+        for _ in range(_POLISH_STEPS):
+            residual = np.abs(system(x)).max()
+            # stop once at round-off: below the floor and no longer falling by half (a simple
+            # root falls quadratically to its floor, a double one by a quarter per step)
+            if not np.isfinite(residual) or (residual <= floor and residual > 0.5 * last):
+                break
+            last = residual
+            x = x + np.linalg.lstsq(system.jacobian(x), -system(x), rcond=None)[0]
+        residual = np.abs(system(x)).max()
+        cond = np.linalg.cond(system.jacobian(x))
+    ok = bool(residual <= floor * (1 + np.abs(x).max()) ** max(system.degrees))
+    return x, ok, not cond < _SINGULAR_COND
 
 
-def solve(system, *, rng=None, tol=1e-9, same=1e-6):
+def solve(system: PolynomialSystem, *, rng: np.random.Generator | int | None = None,
+          tol: float = TOL, same: float = SAME, raise_on_failure: bool = True) -> HomotopyResult:
     """Every isolated finite solution of a square polynomial system, by a total-degree homotopy.
 
     Parameters
     ----------
     system : PolynomialSystem
-        ``n`` equations in ``n`` unknowns. Scale it so its solutions are of order 1.
+        ``n`` equations in ``n`` unknowns, Bezout's number at most :data:`PATHS_LIMIT`. Scale
+        it so its solutions are of order 1.
     rng : numpy.random.Generator or int, optional
         Draws ``gamma`` and the projective chart: no hidden randomness.
     tol : float, optional
         The path tracker's corrector tolerance (:func:`track`).
     same : float, optional
-        Two finite endpoints closer than this are one solution (the paths of a multiple root).
+        Two polished endpoints closer than this are one solution (the paths of a multiple
+        root); ``sqrt(same)`` where the solution is singular (its digits are those of the
+        square root of round-off).
+    raise_on_failure : bool, optional
+        Raise if a path is lost (then some solution may be missing); with False, return the
+        result and let the caller read ``status``.
 
     Returns
     -------
@@ -196,7 +339,10 @@ def solve(system, *, rng=None, tol=1e-9, same=1e-6):
     Raises
     ------
     ValueError
-        If the system is not square, or ``tol`` or ``same`` is not a positive number.
+        If the system is not square, has too many paths, or an option is invalid.
+    ConvergenceError
+        If a path is lost (and ``raise_on_failure``): the solutions may be incomplete; the
+        error's ``result`` holds the :class:`HomotopyResult`.
 
     Examples
     --------
@@ -205,8 +351,16 @@ def solve(system, *, rng=None, tol=1e-9, same=1e-6):
     >>> import numpy as np
     >>> F = PolynomialSystem.from_dicts([{(1, 1): 1, (0, 0): -1}, {(2, 0): 1, (0, 0): -4}])
     >>> result = solve(F, rng=1)
-    >>> result.status.tolist().count("at-infinity"), np.round(result.real(), 10).tolist()
+    >>> result.ends.tolist().count("at-infinity"), np.round(result.real(), 10).tolist()
     (2, [[-2.0, -0.5], [2.0, 0.5]])
+
+    ``(x - 1)^2 = 0`` and ``y = 1``: both paths end at the double root ``(1, 1)``:
+
+    >>> F = PolynomialSystem.from_dicts([{(2, 0): 1, (1, 0): -2, (0, 0): 1},
+    ...                                  {(0, 1): 1, (0, 0): -1}])
+    >>> result = solve(F, rng=0)
+    >>> np.round(result.real(), 6).tolist(), result.multiplicity.tolist()
+    ([[1.0, 1.0]], [2])
     """
     if not isinstance(system, PolynomialSystem):
         raise ValueError(f"system must be a PolynomialSystem, got {type(system).__name__}")
@@ -214,8 +368,12 @@ def solve(system, *, rng=None, tol=1e-9, same=1e-6):
     if len(system.terms) != n:
         raise ValueError(f"the system must be square: {len(system.terms)} equations in {n} "
                          "unknowns")
+    if bezout_bound(system) > PATHS_LIMIT:
+        raise ValueError(f"Bezout's number {bezout_bound(system)} is more paths than "
+                         f"{PATHS_LIMIT} (a bound on the work)")
     tol, same = _validate.tolerance(tol), _validate.tolerance(same, "same")
-    rng = np.random.default_rng(rng)
+    raise_on_failure = _validate.flag(raise_on_failure, "raise_on_failure")
+    rng = _validate.rng(rng)
     gamma = np.exp(2j * np.pi * rng.uniform())
     chart = rng.standard_normal(n + 1) + 1j * rng.standard_normal(n + 1)
     target = system.homogenized()
@@ -230,22 +388,47 @@ def solve(system, *, rng=None, tol=1e-9, same=1e-6):
         Hx = np.vstack([(1 - s) * gamma * start.jacobian(X) + s * target.jacobian(X), chart])
         return H, Hx, np.r_[F - gamma * G, 0.0]
 
-    ends, status, steps = [], [], []
-    for X0 in _start_points(degrees, chart):
-        path = track(homotopy, X0, tol=tol)
+    paths = [track(homotopy, X0, tol=tol) for X0 in _start_points(degrees, chart)]
+    ends, status, found, multiplicity, singular = [], [], [], [], []
+    for path in paths:
         X = path.x
-        if abs(X[0]) <= _AT_INFINITY * np.linalg.norm(X):
-            status.append("at-infinity" if path.s > 1 - 1e-3 else "lost")
-        else:
-            status.append("finite" if path.s == 1.0 else "lost")
-        ends.append(X)
-        steps.append(path.steps)
+        near_end = path.s == 1.0 or path.s >= 1.0 - ENDGAME
+        end = "lost"
+        if near_end and abs(X[0]) <= _AT_INFINITY * np.linalg.norm(X):
+            end = "at-infinity"
+        elif near_end:
+            x, ok, flat = _polish(system, X[1:] / X[0])
+            if ok:
+                end = "finite"
+                _group(found, multiplicity, singular, x, flat, same)
+        ends.append(end)
+        status.append("lost" if end == "lost" else "converged" if path.s == 1.0 else "singular")
     ends, status = np.array(ends), np.array(status)
-    found = []
-    for X in ends[status == "finite"]:
-        x, ok = _polish(system, X[1:] / X[0])
-        if ok and not any(np.abs(x - y).max() <= same for y in found):
-            found.append(x)
     solutions = np.array(found).reshape(-1, n)
-    order = np.lexsort(solutions.real.T[::-1]) if len(found) else np.arange(0)
-    return HomotopyResult(solutions[order], status, ends, np.array(steps))
+    # ordered by their real parts, rounded: the digits round-off leaves to a multiple root
+    # (1e-8) must not decide the order
+    order = np.lexsort(np.round(solutions.real, 6).T[::-1]) if len(found) else np.arange(0)
+    counts = {e: int(np.sum(ends == e)) for e in ENDS}
+    result = HomotopyResult(
+        x=solutions[order], status=status, iterations=np.array([p.steps for p in paths]),
+        message=f"{len(paths)} paths: {counts}; {len(found)} distinct finite solutions "
+                f"({status_counts(status)['singular']} paths to a singular end)",
+        nfev=sum(p.nfev for p in paths), njev=sum(p.njev for p in paths), ends=ends,
+        endpoints=np.array([p.x for p in paths]),
+        multiplicity=np.array(multiplicity, dtype=int)[order])
+    if raise_on_failure and counts["lost"]:
+        raise ConvergenceError(f"{counts['lost']} of {len(paths)} paths were lost: solutions "
+                               f"may be missing ({result.message})", result)
+    return result
+
+
+def _group(found, multiplicity, singular, x, flat, same):
+    """Add the polished endpoint ``x`` to the solution it coincides with (within ``same``, or
+    ``sqrt(same)`` if either is singular), or as a new one."""
+    for i, y in enumerate(found):
+        if np.abs(x - y).max() <= (np.sqrt(same) if flat or singular[i] else same):
+            multiplicity[i] += 1
+            return
+    found.append(x)
+    multiplicity.append(1)
+    singular.append(flat)

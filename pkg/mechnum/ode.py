@@ -15,30 +15,50 @@ continuity of the state between segments to the equations: each segment is short
 nearly linear, and a guess of the whole solution (a shape, not only its start) steers Newton.
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
+from mechnum.errors import NonFiniteError
 
 _STEP = 1e-30  # complex step: f(x + i h) = f(x) + i h f'(x) + O(h^2), with no cancellation
+OUTPUT_LIMIT = 100_000_000
+"""The most numbers :func:`rk4` returns (nodes times the size of the state): 800 MB."""
+MAXITER_LIMIT = 1000
+"""The most Newton iterations of :func:`multiple_shooting`: damped Newton on a boundary value
+problem that converges at all does so in tens."""
 
 
 def _rk4(f, y, s):
-    """The RK4 sweep of :func:`rk4`, without its checks (``s`` a list of floats)."""
+    """The RK4 sweep of :func:`rk4`, without its checks of ``y0`` and ``s`` (``s`` a list of
+    floats); a stage of the wrong shape raises, and a complex stage makes the states complex."""
     out = np.empty((len(s),) + y.shape, dtype=y.dtype)
     out[0] = y
-    k1 = f(s[0], y)
+    shape = y.shape
+
+    def stage(si, yi):
+        k = np.asarray(f(si, yi))
+        if k.shape != shape:
+            raise ValueError(f"f returned shape {k.shape} at s = {si!r}, expected {shape}")
+        return k
+
+    k1 = stage(s[0], y)
     for i in range(len(s) - 1):
         h = s[i + 1] - s[i]
         half = 0.5 * h
-        k2 = f(s[i] + half, y + half * k1)
-        k3 = f(s[i] + half, y + half * k2)
-        k4 = f(s[i + 1], y + h * k3)
+        k2 = stage(s[i] + half, y + half * k1)
+        k3 = stage(s[i] + half, y + half * k2)
+        k4 = stage(s[i + 1], y + h * k3)
         y = y + (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
+        if y.dtype != out.dtype:  # f returned complex values for a real state
+            out = out.astype(np.result_type(out.dtype, y.dtype))
         out[i + 1] = y
         if i + 2 < len(s):
-            k1 = f(s[i + 1], y)
+            k1 = stage(s[i + 1], y)
     return out
 
 
@@ -53,7 +73,7 @@ def _nodes(s):
     return s.tolist()  # Python floats: cheaper than numpy scalars in the loop
 
 
-def rk4(f, y0, s):
+def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
     """Integrate ``dy/ds = f(s, y)`` from ``y(s[0]) = y0`` by classical RK4 on the nodes ``s``.
 
     One step from ``s_i`` to ``s_{i+1}`` with ``h = s_{i+1} - s_i`` is::
@@ -71,12 +91,13 @@ def rk4(f, y0, s):
     f : callable
         ``f(s, y) -> ndarray`` of ``y``'s shape; ``s`` is a float, ``y`` has shape
         ``y0.shape`` (for example ``(batch, n)``: the last axis is the state, the leading
-        ones a batch of independent problems).
+        ones a batch of independent problems). If it returns complex values for a real
+        ``y0``, the states are complex from there on.
     y0 : array_like
         The initial state (or batch of states), real or complex; must be finite.
     s : array_like, shape (N,)
         The nodes, ``N >= 2``, strictly monotone (increasing or decreasing); the grid may be
-        non-uniform.
+        non-uniform. ``N`` times the size of ``y0`` is at most :data:`OUTPUT_LIMIT`.
 
     Returns
     -------
@@ -87,7 +108,10 @@ def rk4(f, y0, s):
     ------
     ValueError
         If ``y0`` is not numeric or not finite, ``s`` has fewer than two nodes or is not
-        strictly monotone, or ``f`` returns the wrong shape.
+        strictly monotone, the output would be too large, or ``f`` returns the wrong shape.
+    NonFiniteError
+        If a state is not finite: ``f`` returned NaN or infinity, or a step overflowed (a step
+        far too large for ``f``); the message names the first node.
 
     Examples
     --------
@@ -95,6 +119,8 @@ def rk4(f, y0, s):
     >>> y = rk4(lambda s, y: -y, [1.0, 2.0], np.linspace(0.0, 1.0, 11))
     >>> y.shape, np.round(y[-1] / np.exp(-1.0), 6).tolist()    # exact: [1, 2]
     ((11, 2), [1.000001, 2.000002])
+    >>> np.round(rk4(lambda s, y: 1j * y, [1.0], [0.0, 0.1])[-1], 6)    # exp(0.1 i)
+    array([0.995004+0.099833j])
     """
     y = np.asarray(y0)
     if y.dtype.kind not in "biufc":
@@ -103,10 +129,18 @@ def rk4(f, y0, s):
     if not np.all(np.isfinite(y)):
         raise ValueError(f"y0 must be finite, got {y0!r}")
     s = _nodes(s)
-    k1 = np.asarray(f(s[0], y))
-    if k1.shape != y.shape:
-        raise ValueError(f"f returned shape {k1.shape}, expected {y.shape}")
-    return _rk4(f, y, s)
+    if len(s) * max(y.size, 1) > OUTPUT_LIMIT:
+        raise ValueError(f"rk4 would return {len(s)} x {y.size} numbers, more than "
+                         f"{OUTPUT_LIMIT} (a bound on the memory)")
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = _rk4(f, y, s)
+    finite = np.isfinite(out.reshape(len(s), -1)).all(axis=1)
+    if not finite.all():
+        i = int(np.argmin(finite))
+        raise NonFiniteError(f"the state is not finite at node {i} (s = {s[i]!r}), after a step "
+                             f"of h = {s[i] - s[i - 1]:.3g} from a finite one: f returned NaN "
+                             f"or infinity there, or the step overflowed")
+    return out
 
 
 @dataclass(frozen=True)
@@ -131,7 +165,14 @@ class BVPSolution:
     newton: newton.NewtonResult
 
 
-def multiple_shooting(f, bc, s, y_guess, *, segments=4, tol=1e-10, maxiter=50):
+BVP_TOL = 1e-10
+"""Default residual tolerance of :func:`multiple_shooting` (absolute: the boundary conditions and
+the states are the caller's to scale to order one)."""
+
+
+def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLike, *,
+                      segments: int = 4,
+                      tol: float = BVP_TOL, maxiter: int = 50) -> "BVPSolution":
     """Solve ``y' = f(s, y)``, ``bc(y(s[0]), y(s[-1])) = 0`` by multiple shooting with RK4.
 
     The nodes are cut into ``segments`` runs of (nearly) equal numbers of steps. The unknowns
@@ -155,7 +196,8 @@ def multiple_shooting(f, bc, s, y_guess, *, segments=4, tol=1e-10, maxiter=50):
     segments : int, optional
         Number of segments, ``1 <= segments <= N - 1``.
     tol, maxiter
-        Newton stops when the residual norm is below ``tol``; most iterations.
+        Newton stops when the residual norm is below ``tol``; most iterations (at most
+        :data:`MAXITER_LIMIT`).
 
     Returns
     -------
@@ -186,22 +228,16 @@ def multiple_shooting(f, bc, s, y_guess, *, segments=4, tol=1e-10, maxiter=50):
     if segments > len(nodes) - 1:
         raise ValueError(f"segments must be at most the number of steps, {len(nodes) - 1}, "
                          f"got {segments}")
-    tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
+    tol = _validate.tolerance(tol)
+    maxiter = _validate.maxiter(maxiter, maximum=MAXITER_LIMIT)
     starts = np.linspace(0, len(nodes) - 1, segments + 1).round().astype(int)
-    grids = [nodes[i:j + 1] for i, j in zip(starts[:-1], starts[1:])]
-    memo = {}
+    grids = [nodes[i:j + 1] for i, j in pairwise(starts)]
 
     def sweeps(Y):
-        """Every segment from its start, with ``n`` complex-step copies: (states, Phi)."""
-        key = Y.tobytes()
-        if key not in memo:
-            memo.clear()
-            Y = Y.reshape(segments, n)
-            copies = Y[:, None, :] + 1j * _STEP * np.eye(n)        # (segments, n, n)
-            with np.errstate(over="ignore", invalid="ignore"):      # Newton reads non-finite
-                ends = [_rk4(f, c, g) for c, g in zip(copies, grids)]
-            memo[key] = ends
-        return memo[key]
+        """Every segment from its start, with ``n`` complex-step copies of its state."""
+        copies = Y.reshape(segments, n)[:, None, :] + 1j * _STEP * np.eye(n)
+        with np.errstate(over="ignore", invalid="ignore"):      # Newton reads non-finite
+            return [_rk4(f, c, g) for c, g in zip(copies, grids)]
 
     def bc_value(ya, yb):
         out = np.asarray(bc(ya, yb))
@@ -209,30 +245,28 @@ def multiple_shooting(f, bc, s, y_guess, *, segments=4, tol=1e-10, maxiter=50):
             raise ValueError(f"bc returned shape {out.shape}, expected ({n},)")
         return out
 
-    def fun(Y):  # Y of shape (segments * n,), or (1, segments * n) in the line search
-        last = [e[-1, 0].real for e in sweeps(Y)]                      # phi_j(Y_j)
+    def system(Y):
+        """The defects and their Jacobian, from one sweep of the complex-step copies (Newton's
+        ``jac=True``: the sweep is shared, and no cache is needed)."""
+        ends = sweeps(Y)
+        last = [e[-1, 0].real for e in ends]                            # phi_j(Y_j)
+        Phi = [e[-1].imag.T / _STEP for e in ends]                      # d phi_j / d Y_j
         Z = Y.reshape(segments, n)
         defects = [bc_value(Z[0], last[-1]).real] + [last[j] - Z[j + 1]
                                                      for j in range(segments - 1)]
-        return np.concatenate(defects).reshape(Y.shape)
-
-    def jac(Y):
-        ends = sweeps(Y)
-        Phi = [e[-1].imag.T / _STEP for e in ends]               # d phi_j / d Y_j, (n, n)
-        Y = Y.reshape(segments, n)
-        ya, yb, step = Y[0], ends[-1][-1, 0].real, 1j * _STEP * np.eye(n)
-        Ba = np.column_stack([bc_value(ya + e, yb).imag for e in step]) / _STEP
-        Bb = np.column_stack([bc_value(ya, yb + e).imag for e in step]) / _STEP
+        step = 1j * _STEP * np.eye(n)
+        Ba = np.column_stack([bc_value(Z[0] + e, last[-1]).imag for e in step]) / _STEP
+        Bb = np.column_stack([bc_value(Z[0], last[-1] + e).imag for e in step]) / _STEP
         J = np.zeros((segments * n, segments * n))
         J[:n, :n] += Ba
         J[:n, -n:] += Bb @ Phi[-1]
         for j in range(segments - 1):
             J[(j + 1) * n:(j + 2) * n, j * n:(j + 1) * n] = Phi[j]
             J[(j + 1) * n:(j + 2) * n, (j + 1) * n:(j + 2) * n] -= np.eye(n)
-        return J
+        return np.concatenate(defects), J
 
     x0 = guess[starts[:-1]].ravel()
-    result = newton.solve(fun, x0, jac, tol=tol, maxiter=maxiter, criterion="residual",
+    result = newton.solve(system, x0, jac=True, tol=tol, maxiter=maxiter, criterion="residual",
                           damping=True)
     ends = sweeps(result.x)
     y = np.concatenate([ends[0][:, 0].real] + [e[1:, 0].real for e in ends[1:]])

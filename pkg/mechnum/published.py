@@ -25,7 +25,9 @@ registry stores such a ``computed`` value as ``"<1e-13"`` too.
 """
 
 import csv
+import numbers
 from decimal import Decimal, InvalidOperation
+from os import PathLike
 
 import numpy as np
 
@@ -55,7 +57,7 @@ _EPS = float(np.finfo(float).eps)
 _ROOT_10 = 10 ** 0.5  # an order of magnitude spans a factor sqrt(10) either way of its power
 
 
-def half_unit(printed):
+def half_unit(printed: str) -> float:
     """Half a unit in the last digit of a printed number: the rounding it may hide.
 
     Examples
@@ -80,7 +82,7 @@ def _within_half_unit(value, printed):
     return bool(abs(value - number) <= half_unit(printed) + slack)
 
 
-def is_claim(published):
+def is_claim(published: str) -> bool:
     """Whether a published text is a number or a numeric claim that :func:`agrees` can test.
 
     Examples
@@ -88,6 +90,8 @@ def is_claim(published):
     >>> is_claim("1.942"), is_claim("<1e-13"), is_claim("~1e-12"), is_claim("n_y cos(theta)")
     (True, True, True, False)
     """
+    if not isinstance(published, str):
+        raise ValueError(f"published must be the printed text (a str), got {published!r:.80}")
     try:
         half_unit(published.lstrip("<~"))
     except ValueError:
@@ -95,8 +99,22 @@ def is_claim(published):
     return True
 
 
-def agrees(published, value):
+def _number(value, name="value"):
+    """``value`` as a float, if it is one real number (a Python or NumPy number, not text)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
+            or isinstance(value, np.complexfloating):
+        raise ValueError(f"{name} must be a real number, got {value!r:.80}")
+    return float(value)
+
+
+def agrees(published: str, value: float) -> bool:
     """Whether ``value`` bears out a published number or claim, by the rules of the module.
+
+    Raises
+    ------
+    ValueError
+        If ``published`` is no printed number or numeric claim, or ``value`` is not a real
+        number (NaN agrees with nothing).
 
     Examples
     --------
@@ -107,6 +125,7 @@ def agrees(published, value):
     """
     if not is_claim(published):
         raise ValueError(f"not a printed number or numeric claim: {published!r}")
+    value = _number(value)
     if published.startswith("<"):
         return bool(abs(value) < float(published[1:]))
     if published.startswith("~"):
@@ -117,7 +136,7 @@ def agrees(published, value):
     return _within_half_unit(value, published)
 
 
-def below(value, bound):
+def below(value: object, bound: float) -> str:
     """Check that a round-off-level quantity is below ``bound``, and return ``"< bound"``.
 
     The text to print in place of the quantity's own digits, which differ from machine to
@@ -138,6 +157,9 @@ def below(value, bound):
     >>> below([np.zeros(3), np.full(6, 1e-30)], 1e-25), below(0.04, 0.5), below(2e-6, 1e-5)
     ('< 1e-25', '< 0.5', '< 1e-5')
     """
+    bound = _number(bound, "bound")
+    if not (np.isfinite(bound) and bound > 0):
+        raise ValueError(f"bound must be a finite positive number, got {bound!r}")
     parts = value if isinstance(value, (list, tuple)) else [value]
     largest = max(np.max(np.abs(np.asarray(p, dtype=float)), initial=0.0) for p in parts)
     if not largest < bound:
@@ -154,7 +176,7 @@ def _read(path, columns):
         return list(reader)
 
 
-def read_findings(path):
+def read_findings(path: str | PathLike) -> list[dict]:
     """The findings (dicts keyed by :data:`FINDING_COLUMNS`), in the file's order.
 
     Examples
@@ -168,21 +190,22 @@ def read_findings(path):
     return _read(path, FINDING_COLUMNS)
 
 
-def read_registry(path, chapter=None):
+def read_registry(path: str | PathLike, chapter: str | None = None) -> list[dict]:
     """The registry's rows (dicts keyed by :data:`COLUMNS`), optionally of one chapter only.
 
     Examples
     --------
     >>> import pathlib, tempfile
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
-    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> _ = path.write_text(",".join(COLUMNS)
+    ...                     + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
     >>> [row["published"] for row in read_registry(path, chapter="01")]
     ['1.942']
     """
     return [row for row in _read(path, COLUMNS) if chapter is None or row["chapter"] == chapter]
 
 
-def read_published(path, chapter):
+def read_published(path: str | PathLike, chapter: str) -> dict[str, str]:
     """The numbers a chapter's study publishes, as printed: ``{quantity: published text}``.
 
     For a chapter that works with the study's printed numbers (a table it audits, a value it
@@ -192,14 +215,15 @@ def read_published(path, chapter):
     --------
     >>> import pathlib, tempfile
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
-    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
+    >>> _ = path.write_text(",".join(COLUMNS)
+    ...                     + "\\n000,Tab. 1,T,1.942,s,1.941626,reproduced,01,,\\n")
     >>> read_published(path, "01")
     {'T': '1.942'}
     """
     return {row["quantity"]: row["published"] for row in read_registry(path, chapter)}
 
 
-def check_row(row, value):
+def check_row(row: dict, value: float | None) -> None:
     """Assert what a registry row says of ``value``, the package's number for it (or None).
 
     * The ``computed`` column is what the package computes: ``value`` lies within half a unit of
@@ -246,7 +270,7 @@ def check_row(row, value):
 class Markdown:
     """Markdown text that a notebook displays rendered, and a console prints as it is."""
 
-    def __init__(self, text):
+    def __init__(self, text: str):
         self.text = text
 
     def _repr_markdown_(self):
@@ -260,12 +284,15 @@ def _cell(text):
     return text.replace("|", "\\|").replace("\n", " ")
 
 
-def reproduction_table(chapter, values, path="published_values.csv"):
+def reproduction_table(chapter: str, values: dict,
+                       path: str | PathLike = "published_values.csv") -> Markdown:
     """Check a chapter's registry rows against the package, and render them as a table.
 
     Every row of ``chapter`` is checked by :func:`check_row` with ``values[quantity]``; the
-    table shows, for each, where the study prints it, the quantity, the published and computed
-    numbers, the verdict and the finding.
+    table shows, for each, where the study prints it, the quantity, the finding that explains it
+    (first after the quantity, so that a reader who scrolls no further still sees it), the
+    published and computed numbers and the verdict. A lecture page shows the narrow
+    :func:`verdict_summary` instead; the full table belongs on the study page.
 
     Parameters
     ----------
@@ -294,19 +321,63 @@ def reproduction_table(chapter, values, path="published_values.csv"):
     >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Sec. 4,T,1.942,s,1.941626,reproduced,"
     ...                     "ch1,,\\n000,Sec. 4,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\\n")
     >>> print(reproduction_table("ch1", {"T": 1.9416259, "T2": 1.9416259}, path))
-    | where | quantity | published | computed | verdict | finding |
+    | where | quantity | finding | published | computed | verdict |
     |---|---|---|---|---|---|
-    | Sec. 4 | T | 1.942 s | 1.941626 | reproduced |  |
-    | Sec. 4 | T2 | 1.883 s | 1.941626 | source-error | T-2T |
+    | Sec. 4 | T |  | 1.942 s | 1.941626 | reproduced |
+    | Sec. 4 | T2 | T-2T | 1.883 s | 1.941626 | source-error |
     """
+    lines = ["| where | quantity | finding | published | computed | verdict |",
+             "|---|---|---|---|---|---|"]
+    for row in _checked_rows(chapter, values, path):
+        published = f"{row['published']} {row['unit']}".strip()
+        lines.append(f"| {_cell(row['location'])} | {_cell(row['quantity'])} | {row['finding']} "
+                     f"| {_cell(published)} | {_cell(row['computed']) or '-'} | {row['verdict']} |")
+    return Markdown("\n".join(lines))
+
+
+def _checked_rows(chapter, values, path):
+    """The registry rows of ``chapter``, each checked by :func:`check_row` against ``values``."""
     rows = read_registry(path, chapter)
     if not rows:
         raise ValueError(f"the registry {path} has no row for the chapter {chapter!r}")
-    lines = ["| where | quantity | published | computed | verdict | finding |",
-             "|---|---|---|---|---|---|"]
     for row in rows:
         check_row(row, values.get(row["quantity"]))
-        published = f"{row['published']} {row['unit']}".strip()
-        lines.append(f"| {_cell(row['location'])} | {_cell(row['quantity'])} | {_cell(published)} "
-                     f"| {_cell(row['computed']) or '-'} | {row['verdict']} | {row['finding']} |")
+    return rows
+
+
+def verdict_summary(chapter: str, values: dict,
+                    path: str | PathLike = "published_values.csv") -> Markdown:
+    """Check a chapter's registry rows as :func:`reproduction_table` does, and count them.
+
+    The narrow table a lecture page shows (it fits the book's column): for each verdict, the
+    number of rows and the findings that explain them; the study page shows every row.
+
+    Parameters
+    ----------
+    chapter, values, path
+        As for :func:`reproduction_table`.
+
+    Returns
+    -------
+    Markdown
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "registry.csv"
+    >>> _ = path.write_text(",".join(COLUMNS) + "\\n000,Sec. 4,T,1.942,s,1.941626,reproduced,"
+    ...                     "ch1,,\\n000,Sec. 4,T2,1.883,s,1.941626,source-error,ch1,T-2T,slip\\n")
+    >>> print(verdict_summary("ch1", {"T": 1.9416259, "T2": 1.9416259}, path))
+    | verdict | rows | findings |
+    |---|---|---|
+    | reproduced | 1 |  |
+    | source-error | 1 | T-2T |
+    """
+    rows = _checked_rows(chapter, values, path)
+    lines = ["| verdict | rows | findings |", "|---|---|---|"]
+    for verdict in VERDICTS:
+        mine = [r for r in rows if r["verdict"] == verdict]
+        if mine:
+            findings = sorted({r["finding"] for r in mine if r["finding"]})
+            lines.append(f"| {verdict} | {len(mine)} | {', '.join(findings)} |")
     return Markdown("\n".join(lines))

@@ -31,6 +31,7 @@ array([ True, False])
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 STATUSES = (
     "converged",
@@ -38,6 +39,7 @@ STATUSES = (
     "singular",
     "non-finite",
     "stagnated",
+    "diverged",
     "left-domain",
     "branch-jump",
     "lost",
@@ -51,6 +53,11 @@ STATUSES = (
 * ``non-finite``: a residual, a Jacobian or an iterate stopped being finite;
 * ``stagnated``: no progress: a line search found no decrease, or a step length shrank below its
   floor;
+* ``diverged``: the iterates grew without bound while still finite (a stationary method whose
+  residual grew far beyond its start: its iteration matrix has a spectral radius above one).
+  Added to the first seven words because neither ``non-finite`` (the numbers are still finite)
+  nor ``stagnated`` (there is progress, the wrong way) says it, and the linear solvers detect it
+  long before an overflow;
 * ``left-domain``: an iterate left the domain where the equations make sense;
 * ``branch-jump``: a path-following method left the branch it followed (a sign change of the
   Jacobian's determinant, or a step in the unknowns beyond its bound): the point is not part of the
@@ -58,6 +65,19 @@ STATUSES = (
 * ``lost``: a tracked path could not be followed to its end;
 * ``undecided``: a proof (an interval test) could neither confirm nor exclude.
 """
+
+
+def status_counts(status: ArrayLike) -> dict:
+    """How many systems (paths, starts) ended in each word of :data:`STATUSES`.
+
+    Examples
+    --------
+    >>> counts = status_counts(np.array(["converged", "maxiter", "converged"]))
+    >>> counts["converged"], counts["maxiter"], counts["lost"]
+    (2, 1, 0)
+    """
+    status = np.asarray(status)
+    return {word: int(np.sum(status == word)) for word in STATUSES}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -86,12 +106,12 @@ class Result:
     njev: int
 
     def __post_init__(self):
-        unknown = set(np.atleast_1d(self.status).tolist()) - set(STATUSES)
+        unknown = set(np.ravel(self.status).tolist()) - set(STATUSES)
         if unknown:
             raise ValueError(f"status must be one of {STATUSES}, not {sorted(unknown)}")
 
     @property
-    def converged(self):
+    def converged(self) -> bool | np.ndarray:
         """bool, or ndarray of bool for a batch: whether the status is ``"converged"``."""
         converged = np.asarray(self.status) == "converged"
         return bool(converged) if converged.ndim == 0 else converged

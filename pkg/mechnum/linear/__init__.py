@@ -22,32 +22,36 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
   :func:`iterative_refinement`.
 """
 
-from mechnum.linear.checks import check_matrix, condition_number
-from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION, LeastSquares,
+from mechnum.linear.checks import OMEGAS_LIMIT, SUBNORMAL_FLOOR, check_matrix, condition_number
+from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION,
+                                   REFINEMENT_MAXITER, REFINEMENT_TOL, LeastSquares,
                                    iterative_refinement, least_squares)
-from mechnum.linear.krylov import SYMMETRY_RTOL, conjugate_gradient, poisson2d
+from mechnum.linear.krylov import POISSON_LIMIT, SYMMETRY_RTOL, conjugate_gradient, poisson2d
 from mechnum.linear.spectra import (BLOCK_ENTRIES, OMEGA_GRID, OMEGA_XTOL, OptimalOmega,
                                     iteration_matrix, optimal_omega, sor_spectral_radii,
                                     spectral_radius, young_omega)
-from mechnum.linear.stationary import (CHUNK, CRITERIA, DIAGNOSTIC_ORDER, DIVERGENCE_GROWTH, NORMS,
-                                       IterationResult, SorSweep, StoppingRule, gauss_seidel,
-                                       jacobi, sor, sor_sweep)
+from mechnum.linear.stationary import (CHUNK, CRITERIA, DIAGNOSTIC_ORDER, DIVERGENCE_GROWTH,
+                                       MAXITER_LIMIT, NORMS, TOL, IterationResult,
+                                       SorSweep, StoppingRule, gauss_seidel, jacobi, sor,
+                                       sor_sweep)
 from mechnum.linear.sweeps import METHODS, Splitting, splitting, sweep_by_components
 
 __all__ = [
     # checks
-    "check_matrix", "condition_number",
+    "check_matrix", "condition_number", "OMEGAS_LIMIT", "SUBNORMAL_FLOOR",
     # sweeps
     "METHODS", "sweep_by_components", "Splitting", "splitting",
     # spectra
     "OMEGA_GRID", "OMEGA_XTOL", "BLOCK_ENTRIES", "iteration_matrix", "spectral_radius",
     "sor_spectral_radii", "young_omega", "OptimalOmega", "optimal_omega",
     # stationary
-    "CRITERIA", "NORMS", "DIVERGENCE_GROWTH", "CHUNK", "DIAGNOSTIC_ORDER", "StoppingRule",
+    "TOL", "MAXITER_LIMIT", "CRITERIA", "NORMS", "DIVERGENCE_GROWTH", "CHUNK",
+    "DIAGNOSTIC_ORDER", "StoppingRule",
     "IterationResult", "sor", "gauss_seidel", "jacobi", "SorSweep", "sor_sweep",
     # krylov
-    "SYMMETRY_RTOL", "conjugate_gradient", "poisson2d",
+    "SYMMETRY_RTOL", "POISSON_LIMIT", "conjugate_gradient", "poisson2d",
     # direct
-    "LEAST_SQUARES_METHODS", "REFINEMENT_CONTRACTION", "LeastSquares", "least_squares",
+    "LEAST_SQUARES_METHODS", "REFINEMENT_CONTRACTION", "REFINEMENT_TOL", "REFINEMENT_MAXITER",
+    "LeastSquares", "least_squares",
     "iterative_refinement",
 ]

@@ -9,12 +9,22 @@ relaxation factor outside ``(0, 2)``, where ``rho(M_SOR) >= |omega - 1| >= 1``.
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import RelaxationFactorError, SingularJacobianError
 
+#: A residual (or a refinement's correction) of at most two units of the smallest subnormal
+#: number is round-off, whatever the size of the solution: the relative tests accept it
+#: (``tol ||x||`` underflows to zero for a subnormal ``x``, which no step would then meet, and a
+#: subnormal solution's iterates may cycle through a few units).
+SUBNORMAL_FLOOR = 2 * np.finfo(float).smallest_subnormal
+#: The most relaxation factors one call takes (:func:`~mechnum.linear.sor_sweep` runs an
+#: iteration for each, :func:`~mechnum.linear.sor_spectral_radii` an eigenvalue problem).
+OMEGAS_LIMIT = 10_000
 
-def check_matrix(A, square=True):
+
+def check_matrix(A: ArrayLike | sp.sparray, square: bool = True) -> np.ndarray | sp.csr_array:
     """``A`` as a finite real float matrix, dense or compressed-row sparse, or a ValueError.
 
     Parameters
@@ -40,7 +50,9 @@ def check_matrix(A, square=True):
     if sp.issparse(A):
         if A.dtype.kind not in "biuf":
             raise ValueError(f"A must be a real numeric matrix, got dtype {A.dtype}")
-        A = sp.csr_array(A, dtype=float)
+        # astype first: scipy converts some formats holding float16 (which it does not support)
+        # only element by element
+        A = sp.csr_array(A.astype(float, copy=False))
         if not A.has_canonical_format:
             A = A.copy()
             A.sum_duplicates()
@@ -81,6 +93,9 @@ def _relaxation_factors(omegas):
         omegas = _validate.array(omegas, "omegas", ndim=1)
     except ValueError as error:
         raise RelaxationFactorError(f"SOR needs relaxation factors in (0, 2): {error}")
+    if omegas.size > OMEGAS_LIMIT:
+        raise ValueError(f"at most {OMEGAS_LIMIT} relaxation factors (a bound on the work), got "
+                         f"{omegas.size}")
     for omega in omegas:
         _relaxation_factor(omega)
     return omegas
@@ -99,7 +114,7 @@ def _check_system(A, b):
     return A, b
 
 
-def condition_number(A, p=2):
+def condition_number(A: ArrayLike, p: float | str = 2) -> float:
     """The condition number ``||A|| ||A^+||`` in the norm ``p`` (dense ``A``).
 
     Parameters

@@ -9,16 +9,20 @@ sparse, on which SOR at Young's factor and conjugate gradients are compared.
 import numba
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.linear.checks import check_matrix
-from mechnum.linear.stationary import (IterationResult, StoppingRule, _initial_guess,
+from mechnum.linear.stationary import (TOL, IterationResult, StoppingRule, _initial_guess,
                                        _keeps_history)
 
 #: A matrix is symmetric for conjugate gradients when ``max abs(A - A^T)`` is at most this
 #: times ``max abs(A)``: the round-off of forming a product such as ``A^T A``, with a margin.
 SYMMETRY_RTOL = 1e-12
+#: The largest grid of :func:`~mechnum.linear.poisson2d`: ``m = 2000`` is four million unknowns
+#: and twenty million non-zeros (a quarter of a gigabyte).
+POISSON_LIMIT = 2000
 
 
 @numba.njit(cache=True)
@@ -37,7 +41,9 @@ def _check_symmetric(A):
         raise ValueError(f"conjugate gradients need a symmetric A: max |A - A^T| = {gap:.3g}")
 
 
-def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=None):
+def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+                       tol: float = TOL, maxiter: int | None = None,
+                       keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` for a symmetric positive definite ``A`` by conjugate gradients.
 
     Each step costs one product ``A p``; in exact arithmetic the method ends in at most ``n``
@@ -51,7 +57,8 @@ def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=N
     tol : float, optional
         Stop when the (recursively updated) residual ``||r_k||_2 <= tol ||b||_2``.
     maxiter : int, optional
-        Most steps (default ``10 n``).
+        Most steps (default ``10 n``; at most
+        :data:`~mechnum.linear.stationary.MAXITER_LIMIT`).
     keep_history : bool, optional
         As in :func:`sor`.
 
@@ -81,6 +88,11 @@ def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=N
     rule = StoppingRule(tol, 10 * b.size if maxiter is None else maxiter, "residual", 2, True)
     x = _initial_guess(x0, b)  # a new array: updated in place below
     keep = _keeps_history(A, keep_history)
+    # b and x scaled by a power of two near |b|: exact, and it keeps the squares of the dot
+    # products in range (b = 1e-162 would make b . b subnormal and alpha meaningless)
+    size = max(np.abs(b).max(), np.abs(x).max())
+    scale = 2.0 ** np.round(np.log2(size)) if size > 0 else 1.0
+    b, x = b / scale, x / scale
     r = b - A @ x
     p, rr, limit = r.copy(), _dot(r, r), rule.tol * np.sqrt(_dot(b, b))
     history, residuals, steps = [x.copy()], [np.sqrt(rr)], []
@@ -100,16 +112,22 @@ def conjugate_gradient(A, b, x0=None, *, tol=1e-10, maxiter=None, keep_history=N
             history.append(x.copy())
         residuals.append(np.sqrt(rr))
         steps.append(np.sqrt(_dot(step, step)))
-    result = IterationResult(x, len(steps), bool(residuals[-1] <= limit),
-                             np.array(history) if keep else None, np.array(residuals),
-                             np.array(steps))
-    if not result.converged:
-        raise ConvergenceError(f"conjugate gradients did not converge in {rule.maxiter} steps: "
-                               f"residual {residuals[-1]:.3g} > {limit:.3g}", result)
+    converged = bool(residuals[-1] <= limit)
+    message = (f"conjugate gradients converged in {len(steps)} steps (residual <= {rule.tol:g}"
+               f" ||b||)" if converged else
+               f"conjugate gradients did not converge in {rule.maxiter} steps: residual "
+               f"{residuals[-1] * scale:.3g} > {limit * scale:.3g}")
+    result = IterationResult(x=x * scale, status="converged" if converged else "maxiter",
+                             message=message, iterations=len(steps), nfev=len(steps) + 1,
+                             njev=0, history=np.array(history) * scale if keep else None,
+                             residual_norms=np.array(residuals) * scale,
+                             step_norms=np.array(steps) * scale)
+    if not converged:
+        raise ConvergenceError(message, result)
     return result
 
 
-def poisson2d(m):
+def poisson2d(m: int) -> sp.csr_array:
     """The 5-point Laplacian on an ``m x m`` grid of interior nodes, as a sparse matrix.
 
     ``h^2`` times the discrete ``-(u_xx + u_yy)`` with zero boundary values, nodes numbered row
@@ -125,7 +143,7 @@ def poisson2d(m):
            [-1.,  0.,  4., -1.],
            [ 0., -1., -1.,  4.]])
     """
-    m = _validate.maxiter(m, "m")
+    m = _validate.maxiter(m, "m", maximum=POISSON_LIMIT)
     T = sp.diags_array([-1.0, 2.0, -1.0], offsets=[-1, 0, 1], shape=(m, m))
     I = sp.eye_array(m)
     return sp.csr_array(sp.kron(I, T) + sp.kron(T, I))

@@ -11,6 +11,7 @@ gives ``rho(M_SOR(omega))`` for a whole sweep of relaxation factors at once, and
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from mechnum import _validate
@@ -48,7 +49,7 @@ class OptimalOmega:
     how: str
 
 
-def iteration_matrix(A, method, omega=1.0):
+def iteration_matrix(A: ArrayLike, method: str, omega: float = 1.0) -> np.ndarray:
     """The iteration matrix ``M = P^{-1} N`` of Jacobi, Gauss-Seidel or SOR (dense ``A``).
 
     Parameters
@@ -89,7 +90,7 @@ def _sor_matrices(A, omegas):
     return np.linalg.solve(D - w * L, (1 - w) * D + w * U)
 
 
-def spectral_radius(M):
+def spectral_radius(M: ArrayLike) -> float:
     """The largest modulus of the eigenvalues of a square matrix.
 
     Parameters
@@ -108,7 +109,7 @@ def spectral_radius(M):
     return float(np.max(np.abs(np.linalg.eigvals(_dense(M, "spectral_radius")))))
 
 
-def sor_spectral_radii(A, omegas):
+def sor_spectral_radii(A: ArrayLike, omegas: ArrayLike) -> np.ndarray:
     """``rho(M_SOR(omega))`` for every ``omega`` of a sweep, in batched dense algebra.
 
     Parameters
@@ -138,7 +139,7 @@ def sor_spectral_radii(A, omegas):
     return radii
 
 
-def young_omega(rho_jacobi):
+def young_omega(rho_jacobi: float) -> float:
     """Young's optimal SOR factor ``2 / (1 + sqrt(1 - rho_J^2))`` from Jacobi's spectral radius.
 
     It is the optimum for consistently ordered matrices whose Jacobi eigenvalues are real
@@ -164,7 +165,7 @@ def _young_applies(A):
     return bool(np.all(np.linalg.eigvalsh(A) > 0))
 
 
-def optimal_omega(A):
+def optimal_omega(A: ArrayLike) -> "OptimalOmega":
     """The SOR relaxation factor of smallest spectral radius, and how it was found.
 
     For a symmetric positive definite tridiagonal matrix (consistently ordered, Jacobi

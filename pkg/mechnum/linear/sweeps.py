@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import SingularJacobianError
@@ -59,7 +60,7 @@ class Splitting:
     diagonal: np.ndarray
     rows: tuple = dataclasses.field(repr=False)
 
-    def sweep(self, x, b):
+    def sweep(self, x: ArrayLike, b: ArrayLike) -> np.ndarray:
         """One sweep from ``x``: the next iterate (``x`` itself is not changed).
 
         Examples
@@ -76,7 +77,8 @@ class Splitting:
         return x
 
 
-def splitting(A, method="gauss_seidel", omega=1.0):
+def splitting(A: ArrayLike | sp.sparray, method: str = "gauss_seidel",
+              omega: float = 1.0) -> "Splitting":
     """The splitting of ``A`` for a stationary method, checked and ready to sweep.
 
     Parameters
@@ -119,7 +121,8 @@ def splitting(A, method="gauss_seidel", omega=1.0):
     return Splitting(A, method, omega, diagonal, rows)
 
 
-def sweep_by_components(A, b, x, omega=1.0):
+def sweep_by_components(A: ArrayLike, b: ArrayLike, x: ArrayLike,
+                        omega: float = 1.0) -> np.ndarray:
     """One Gauss-Seidel (``omega = 1``) or SOR sweep, component by component, in plain Python.
 
     The textbook loop, written to be read: the solvers run the same loop compiled

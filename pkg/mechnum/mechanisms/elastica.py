@@ -7,12 +7,18 @@ along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) 
 one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
-loop, on the package's RK4 rod (:func:`mechnum.rods.shooting.integrate`).
+loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`).
+
+The thesis's budget (its Section 14 and Tabla 9) is study material, not a method: it moves to
+the chapter's study page, and :func:`budget` is deprecated (it warns, and goes in release 0.3);
+:func:`reproduce` still returns the registry's budget rows until that page computes them.
 """
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, rods
 from mechnum.errors import ConvergenceError, SingularJacobianError
@@ -21,6 +27,7 @@ LENGTH = 1.0                                  # m
 YOUNG = 210e9                                 # Pa
 DIAMETER = 2e-3                               # m
 EI = YOUNG * 0.25 * np.pi * (0.5 * DIAMETER) ** 4   # N m^2 (I = pi r^4 / 4)
+_STUDY_EI = EI                                # the default of study_shooting's argument EI
 NODES = 61
 TARGET = np.array([0.8, 0.1])                 # m, the pinned tip
 GUESS = np.array([0.1, 0.1, 0.1])             # (m0 [N m], n_x [N], n_y [N]), the study's
@@ -28,6 +35,11 @@ TOL = 1e-7
 FD_STEP = 1e-10
 HALVING_FLOOR = 1e-3                          # the study's: halve a step while |delta| > 1e-3 tol
 _MAX_COND = 1.0 / np.finfo(float).eps         # a Jacobian past this condition has no digit left
+MAX_NODES = 10_000
+"""Most RK4 nodes of :func:`study_shooting` (a bound on the work: four sweeps per iteration on
+Python floats; the study uses 61)."""
+MAX_ITER = 1_000
+"""Most iterations of :func:`study_shooting` (a bound on the work; the study has none)."""
 
 # A benchmark the thesis does not give, for validating any cantilever solver: Mattiasson
 # (1981), Table 1 (after Bisshopp and Drucker 1945), a cantilever under a transverse tip load
@@ -70,19 +82,31 @@ class StudyShooting:
     max_residual: float
 
     @property
-    def iterations(self):
+    def iterations(self) -> int:
         """Newton steps taken."""
         return len(self.history) - 1
 
 
-def _residual(p, target, ei, length, nodes):
+def _residual(p, target, EI, L, nodes):
     """Tip residuals ``(x - x_t, y - y_t, m(L))`` of a batch of unknowns ``p`` (batch, 3)."""
-    rod = rods.integrate(ei, length, p[:, 0], p[:, 1:], nodes=nodes)
+    rod = rods.integrate(EI, L, p[:, 0], p[:, 1:], nodes=nodes)
     return np.column_stack((rod.tip - target, rod.m[:, -1])), rod
 
 
-def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NODES, tol=TOL,
-                   maxiter=200):
+def _renamed(new, old, value, old_value, default):
+    """``value`` of the argument ``new``, or of its deprecated old name ``old`` (warning)."""
+    if old_value is None:
+        return value
+    if value is not default:
+        raise ValueError(f"give {new} or its old name {old}, not both")
+    warnings.warn(f"study_shooting's argument {old!r} is deprecated: call it {new!r} (the old "
+                  f"name goes in release 0.3)", DeprecationWarning, stacklevel=3)
+    return old_value
+
+
+def study_shooting(guess: ArrayLike = GUESS, target: ArrayLike = TARGET, *, EI: float = EI,
+                   L: float = LENGTH, nodes: int = NODES, tol: float = TOL, maxiter: int = 200,
+                   ei: float | None = None, length: float | None = None) -> StudyShooting:
     """The thesis's shooting loop (Annex II, 1.2: ``IK_NewRaph``), step by step.
 
     Parameters
@@ -91,10 +115,15 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
         Initial ``(m0, n_x, n_y)``.
     target : array_like, shape (2,)
         The pinned tip (m).
-    ei, length, nodes, tol
-        The rod and the loop's settings; the study's by default.
+    EI, L : float, optional
+        Bending stiffness (N m^2) and length (m) of the rod; the study's by default.
+    nodes, tol
+        The loop's RK4 nodes (``2 <= nodes <=`` :data:`MAX_NODES`) and tolerance; the study's
+        by default.
     maxiter : int, optional
-        Most outer iterations (the study has no limit).
+        Most outer iterations (the study has no limit; at most :data:`MAX_ITER`).
+    ei, length : float, optional
+        Deprecated names of ``EI`` and ``L`` (they warn; removed in release 0.3).
 
     Returns
     -------
@@ -116,23 +145,24 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
     >>> res.iterations, round(float(res.rod.clamp_moment), 4), np.round(res.rod.force, 3).tolist()
     (6, -0.6076, [-3.231, -1.163])
     """
+    EI = _validate.scalar(_renamed("EI", "ei", EI, ei, _STUDY_EI), "EI", positive=True)
+    L = _validate.scalar(_renamed("L", "length", L, length, LENGTH), "L", positive=True)
     p = _validate.array(guess, "guess", shape=(3,))
     target = _validate.array(target, "target", shape=(2,))
-    ei = _validate.scalar(ei, "ei", positive=True)
-    length = _validate.scalar(length, "length", positive=True)
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-    tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
-    resid = _residual(p[None], target, ei, length, nodes)[0][0]
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
+    tol = _validate.tolerance(tol)
+    maxiter = _validate.maxiter(maxiter, maximum=MAX_ITER)
+    resid = _residual(p[None], target, EI, L, nodes)[0][0]
     resid0 = np.zeros(3)
     history, halvings = [p.copy()], 0
     while (np.max(np.abs(resid)) > tol and np.max(np.abs(resid - resid0)) > tol
            and len(history) <= maxiter):
         resid0 = resid
         perturbed = p + np.vstack((np.zeros(3), FD_STEP * np.eye(3)))
-        values = _residual(perturbed, target, ei, length, nodes)[0]
+        values = _residual(perturbed, target, EI, L, nodes)[0]
         jac = (values[1:] - values[0]).T / FD_STEP
         if not np.linalg.cond(jac) < _MAX_COND:   # also inf and NaN: the study's J\r fails
-            rod = rods.integrate(ei, length, p[0], p[1:], nodes=nodes)
+            rod = rods.integrate(EI, L, p[0], p[1:], nodes=nodes)
             raise SingularJacobianError(
                 f"the study's shooting loop met a singular Jacobian at iteration "
                 f"{len(history) - 1}, (m0, n_x, n_y) = {p.tolist()} (a straight rod: no "
@@ -140,15 +170,15 @@ def study_shooting(guess=GUESS, target=TARGET, *, ei=EI, length=LENGTH, nodes=NO
                 StudyShooting(rod, np.array(history), halvings, float(np.max(np.abs(resid)))))
         delta = -np.linalg.solve(jac, resid0)
         p = p + delta
-        resid = _residual(p[None], target, ei, length, nodes)[0][0]
+        resid = _residual(p[None], target, EI, L, nodes)[0][0]
         while (np.max(np.abs(resid)) > np.max(np.abs(resid0))
                and np.max(np.abs(delta)) > tol * HALVING_FLOOR):
             delta = 0.5 * delta
             p = p - delta
-            resid = _residual(p[None], target, ei, length, nodes)[0][0]
+            resid = _residual(p[None], target, EI, L, nodes)[0][0]
             halvings += 1
         history.append(p.copy())
-    rod = rods.integrate(ei, length, p[0], p[1:], nodes=nodes)
+    rod = rods.integrate(EI, L, p[0], p[1:], nodes=nodes)
     result = StudyShooting(rod, np.array(history), halvings, float(np.max(np.abs(resid))))
     if not result.max_residual <= tol:
         raise ConvergenceError(
@@ -162,8 +192,23 @@ def _q(rod):
     return 2.0 / np.pi * rods.elliptic_parameters(EI, LENGTH, rod.clamp_moment, rod.force)[3]
 
 
-def budget():
+def _budget():
+    """The rows of :func:`budget`, without its warning (for :func:`reproduce`)."""
+    licence_rate = LICENCE / LICENCE_HOURS
+    computer_rate = COMPUTER / (COMPUTER_YEARS * COMPUTER_HOURS)
+    rows = {"Matlab": LICENCE + licence_rate * HOURS["senior"],
+            "computers": computer_rate * (HOURS["junior"] + HOURS["senior"]),
+            "senior": HOURS["senior"] * RATES["senior"],
+            "junior": HOURS["junior"] * RATES["junior"]}
+    return {"licence rate": licence_rate, "computer rate": computer_rate, **rows,
+            "total": sum(rows.values())}
+
+
+def budget() -> dict:
     """The thesis's budget (Section 14, Tabla 9), recomputed from the hours and rates it states.
+
+    Deprecated: the budget is study material; it moves to the chapter's study page, which
+    computes it in a cell (this function warns, and goes in release 0.3).
 
     Returns
     -------
@@ -176,27 +221,30 @@ def budget():
 
     Examples
     --------
-    >>> {name: round(value, 2) for name, value in budget().items()}
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", DeprecationWarning)
+    ...     costs = _budget()
+    >>> {name: round(value, 2) for name, value in costs.items()}
     ... # doctest: +NORMALIZE_WHITESPACE
     {'licence rate': 2.0, 'computer rate': 0.25, 'Matlab': 900.0, 'computers': 75.0,
      'senior': 2000.0, 'junior': 6250.0, 'total': 9225.0}
     """
-    licence_rate = LICENCE / LICENCE_HOURS
-    computer_rate = COMPUTER / (COMPUTER_YEARS * COMPUTER_HOURS)
-    rows = {"Matlab": LICENCE + licence_rate * HOURS["senior"],
-            "computers": computer_rate * (HOURS["junior"] + HOURS["senior"]),
-            "senior": HOURS["senior"] * RATES["senior"],
-            "junior": HOURS["junior"] * RATES["junior"]}
-    return {"licence rate": licence_rate, "computer rate": computer_rate, **rows,
-            "total": sum(rows.values())}
+    warnings.warn("elastica.budget is deprecated: the thesis's budget is study material and "
+                  "moves to the chapter's study page (removed in release 0.3)",
+                  DeprecationWarning, stacklevel=2)
+    return _budget()
 
 
-def reproduce():
+def reproduce(nodes: int = NODES) -> dict:
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
-    ``q`` of the study's (43) is recovered from rods found by RK4 shooting (61 nodes, as in
-    the study): the study's own example (mode 2), a cantilever (mode 1) and the mode-3
-    equilibrium through the same pinned point; the budget rows come from :func:`budget`.
+    ``q`` of the study's (43) is recovered from rods found by RK4 shooting (on ``nodes``
+    nodes, ``2 <= nodes <=`` :data:`MAX_NODES`; 61 as in the study, whose ``q`` deviate from
+    the odd integers by RK4's error, falling like ``nodes**-4``): the study's own example
+    (mode 2), a cantilever (mode 1) and the mode-3 equilibrium of least force through the same
+    pinned point. The budget rows come from the hours and rates of :func:`budget` (until the
+    study page computes them).
 
     Examples
     --------
@@ -204,13 +252,14 @@ def reproduce():
     >>> len(values) > 0 and all(isinstance(v, float) for v in values.values())
     True
     """
-    example = study_shooting().rod
-    cantilever = rods.shoot_cantilever(EI, LENGTH, [0.0, EI / LENGTH ** 2], nodes=NODES).rod
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
+    example = study_shooting(nodes=nodes).rod
+    cantilever = rods.shoot_cantilever(EI, LENGTH, [0.0, EI / LENGTH ** 2], nodes=nodes).rod
     psi, k_rel, mode = rods.pinned_equilibria(EI, LENGTH, TARGET, modes=(3,))[0]
     guess = rods.clamped_pinned(EI, LENGTH, psi, k_rel, mode)
     mode3 = rods.shoot_pinned(EI, LENGTH, TARGET, [guess.clamp_moment, *guess.force],
-                              nodes=NODES).rod
-    costs = budget()
+                              nodes=nodes).rod
+    costs = _budget()
     return {"q of mode 1 (cantilever, P L^2/EI = 1)": float(_q(cantilever)),
             "q of mode 2 (the Annex II 1.1 example)": float(_q(example)),
             "q of mode 3 (same pinned point)": float(_q(mode3)),

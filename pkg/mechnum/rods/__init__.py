@@ -32,55 +32,61 @@ parameter ``m = k**2``. To place a closed-form rod clamped at ``(x0, y0)`` at an
 ``theta0``, rotate its tip and its force by ``theta0`` and add ``(x0, y0)``: ``psi`` is the
 force direction relative to the clamped tangent.
 
-Modules: :mod:`mechnum.rods.shooting` (RK4 sweeps, the complex-step :func:`tip_jacobian`,
-the shooting solvers, single and multiple) and :mod:`mechnum.rods.elliptic` (the closed form
-as the study prints it, its inverse maps, :func:`pinned_equilibria`, and the growing branch in
-a chart that holds every digit, behind :func:`cantilever`), :mod:`mechnum.rods.stability`
-(the second variation) and :mod:`mechnum.rods.loading` (a cantilever's equilibria under a
-growing dead load, for continuation); everything is importable from
-:mod:`mechnum.rods`. In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian`
-once on the batch of all rods: one sweep gives every tip and every
-``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per
-numpy call, not per rod).
+Modules, each importing only those before it: :mod:`mechnum.rods.rod` (the rod, its equations,
+the RK4 sweeps :func:`integrate` and :func:`tip_jacobian`), :mod:`mechnum.rods.jacobi` (Jacobi's
+amplitude from the complementary modulus), :mod:`mechnum.rods.growing` (the growing branch in
+a chart that holds every digit, behind :func:`cantilever`), :mod:`mechnum.rods.regular` (the
+closed form in the regular chart ``(psi, t)``, its Jacobian and shapes),
+:mod:`mechnum.rods.elliptic` (the closed form in the study's chart ``(psi, k_rel)`` and its
+inverses), :mod:`mechnum.rods.pinned` (every equilibrium through a point, and what a shot rod
+is), :mod:`mechnum.rods.shooting` and :mod:`mechnum.rods.multiple` (the shooting solvers,
+single and multiple),
+:mod:`mechnum.rods.stability` and :mod:`mechnum.rods.bodies` (the second variation),
+:mod:`mechnum.rods.crossing` and :mod:`mechnum.rods.loading` (a cantilever's equilibria under a
+growing dead load, for continuation); the main names are importable from :mod:`mechnum.rods`.
+In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of
+all rods: one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little
+more than one rod (the cost of a sweep is per numpy call, not per rod).
 """
 
-import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
+from mechnum.rods.growing import closed_form
 from mechnum.rods.elliptic import (
-    CLOSED_FORM_MAXITER,
-    CLOSED_FORM_TOL,
     TWO_PI,
     EllipticRod,
     NoEquilibriumError,
-    _cantilever,
+    NotAnElasticaError,
     clamped_pinned,
     elliptic_k,
     elliptic_parameters,
     k_rel_for_force,
-    pinned_equilibria,
 )
+from mechnum.rods.certified import certify_pinned
 from mechnum.rods.loading import DeadLoad
+from mechnum.rods.multiple import shoot_pinned_multiple
+from mechnum.rods.pinned import Classification, classify, pinned_equilibria
+from mechnum.rods.rod import MAX_NODES, Rod, equations, integrate, rod_scales, tip_jacobian
 from mechnum.rods.shooting import (
-    Rod,
+    SHOOTING_TOL,
     Shooting,
-    equations,
-    integrate,
+    UnresolvedRodError,
     shoot_cantilever,
     shoot_pinned,
-    shoot_pinned_multiple,
-    tip_jacobian,
 )
 
-__all__ = ["DeadLoad", "EllipticRod", "NoEquilibriumError", "Rod", "Shooting", "cantilever",
-           "clamped_pinned", "elliptic_k", "elliptic_parameters", "equations", "integrate",
-           "k_rel_for_force", "pinned_equilibria", "shoot_cantilever", "shoot_pinned",
-           "shoot_pinned_multiple", "tip_jacobian"]
+__all__ = ["SHOOTING_TOL", "TWO_PI", "Classification", "DeadLoad", "EllipticRod",
+           "NoEquilibriumError", "NotAnElasticaError", "Rod", "Shooting", "UnresolvedRodError",
+           "cantilever", "certify_pinned", "clamped_pinned", "classify", "elliptic_k",
+           "elliptic_parameters", "equations", "integrate", "k_rel_for_force", "pinned_equilibria", "shoot_cantilever",
+           "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian"]
 
 METHODS = ("elliptic", "shooting")
 
 
-def cantilever(EI, L, force, method="elliptic", *, nodes=41):
+def cantilever(EI: float, L: float, force: ArrayLike, method: str = "elliptic", *,
+               nodes: int = 41) -> Rod:
     """A cantilever (clamped at the origin along +x) under a tip force, by either method.
 
     The equilibrium returned is the one that grows continuously from the unloaded rod (mode 1,
@@ -90,7 +96,7 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
 
     The closed form is evaluated in a chart that holds every digit at every load, from
     ``1e-200`` (linear beam theory, ``v = P L**3 / (3 EI)`` to rounding) to ``P L**2 / EI``
-    near ``1e5`` (see :mod:`mechnum.rods.elliptic`); ``nodes=2`` asks for the clamp and the
+    near ``1e5`` (see :mod:`mechnum.rods.growing`); ``nodes=2`` asks for the clamp and the
     tip only, the fastest call.
 
     Parameters
@@ -103,7 +109,8 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
         Closed form (in Carlson's symmetric integrals) or RK4 shooting
         (:func:`shoot_cantilever`, from the closed form's clamp moment).
     nodes : int, optional
-        Nodes of the returned shape (and RK4 nodes for shooting), ``>= 2``.
+        Nodes of the returned shape (and RK4 nodes for shooting),
+        ``2 <= nodes <=`` :data:`~mechnum.rods.rod.MAX_NODES`.
 
     Returns
     -------
@@ -116,10 +123,12 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
         If an input is not finite or out of range, or the load is beyond the closed form's
         range in double precision.
     ConvergenceError
-        If shooting fails (see :func:`shoot_cantilever`).
+        If shooting fails or cannot resolve the load at these nodes
+        (:class:`UnresolvedRodError`; see :func:`shoot_cantilever`).
 
     Examples
     --------
+    >>> import numpy as np
     >>> a = cantilever(2.0, 1.5, [-0.3, 1.0], "elliptic")
     >>> b = cantilever(2.0, 1.5, [-0.3, 1.0], "shooting", nodes=801)
     >>> bool(np.abs(a.tip - b.tip).max() < 1e-11), round(float(a.tip_angle), 6)
@@ -128,12 +137,12 @@ def cantilever(EI, L, force, method="elliptic", *, nodes=41):
     >>> bool(abs(tip[1] / (1e-12 / 3) - 1) < 1e-12)
     True
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     force = _validate.array(force, "force", shape=(2,))
     method = _validate.choice(method, METHODS, "method")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
     if force[1] == 0:
         return integrate(EI, L, 0.0, force, nodes=nodes)
     if method == "shooting":
         return shoot_cantilever(EI, L, force, nodes=nodes).rod
-    return _cantilever(EI, L, force, nodes, CLOSED_FORM_TOL, CLOSED_FORM_MAXITER)
+    return closed_form(EI, L, force, nodes)

@@ -3,11 +3,12 @@ variables.
 
 When rods hold a rigid body (a platform), the configuration is the rods' angles *and* the body's
 pose, tied together by constraints (each rod's tip at its pin on the body). The Hessian of the
-Lagrangian is block diagonal: one tridiagonal block per rod (:func:`mechnum.rods.stability.rod_block`)
-and a small dense block ``D`` for the pose (the body's own terms, for example the work of the
-constraint forces as the body turns). The Hessian of the pose is often singular (a free
-translation costs no energy by itself), so the count of
-:func:`mechnum.rods.stability.constrained_index`, which factors the whole Hessian, does not apply.
+Lagrangian is block diagonal: one tridiagonal block per rod
+(:func:`mechnum.rods.stability.rod_block`) and a small dense block ``D`` for the pose (the
+body's own terms, for example the work of the constraint forces as the body turns). The Hessian
+of the pose is often singular (a free translation costs no energy by itself), so the count of
+:func:`mechnum.rods.stability.constrained_index`, which factors the whole Hessian, does not
+apply.
 Here the Schur complement is taken on the rods' blocks only. With ``G = [G_r, G_d]`` the
 constraints' Jacobian (columns of the rods' angles, then of the dense variables), the bordered
 matrix ``K = [[H_r, 0, G_r^T], [0, D, G_d^T], [G_r, G_d, 0]]`` has (Haynsworth) the inertia of
@@ -20,13 +21,17 @@ with ``O(N)`` work per rod (banded solves, and LAPACK's bisection for the negati
 of each tridiagonal block) and a dense eigenproblem of size ``k + c`` only.
 """
 
+from collections.abc import Sequence
+
 import numpy as np
-from scipy.linalg import eigvalsh_tridiagonal, solve_banded
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
+from mechnum.rods.stability import RodBlock, block_terms, symmetric
 
 
-def constrained_index_with_body(blocks, dense, constraints):
+def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
+                                constraints: ArrayLike) -> int:
     """The index of rods' Hessians and a body's dense Hessian on the constraints' null space.
 
     Parameters
@@ -47,7 +52,10 @@ def constrained_index_with_body(blocks, dense, constraints):
     Raises
     ------
     ValueError
-        If the shapes do not match.
+        If the shapes do not match, a block is not a RodBlock, or ``dense`` is not symmetric
+        (to :data:`mechnum.rods.stability.SYMMETRY_TOL`).
+    SingularJacobianError
+        If a rod's Hessian is singular.
 
     Examples
     --------
@@ -60,24 +68,18 @@ def constrained_index_with_body(blocks, dense, constraints):
     >>> constrained_index_with_body([block], [[0.0]], G)
     0
     """
-    dense = _validate.array(dense, "dense", ndim=2)
+    if not all(isinstance(block, RodBlock) for block in blocks):
+        raise ValueError(f"blocks must be RodBlocks (from rod_block), got "
+                         f"{[type(b).__name__ for b in blocks]}")
+    dense = symmetric(dense, "dense")
     G = _validate.array(constraints, "constraints", ndim=2)
-    sizes = [len(b.diagonal) for b in blocks]
+    rods = sum(len(b.diagonal) for b in blocks)
     k, c = len(dense), len(G)
-    if dense.shape != (k, k) or G.shape[1] != sum(sizes) + k or c >= G.shape[1]:
+    if G.shape[1] != rods + k or c >= G.shape[1]:
         raise ValueError(f"dense {dense.shape} and constraints {G.shape} must be (k, k) and "
-                         f"(c, {sum(sizes)} + k) with c < {sum(sizes)} + k")
-    negative, S, start = 0, np.zeros((c, c)), 0
-    for block, n in zip(blocks, sizes):
-        negative += len(eigvalsh_tridiagonal(block.diagonal, block.off_diagonal, select="v",
-                                             select_range=(-np.inf, 0.0)))
-        bands = np.zeros((3, n))
-        bands[0, 1:], bands[1], bands[2, :-1] = (block.off_diagonal, block.diagonal,
-                                                 block.off_diagonal)
-        g = G[:, start:start + n]
-        S += g @ solve_banded((1, 1), bands, g.T)
-        start += n
-    G_d = G[:, start:]
-    schur = np.block([[dense, G_d.T], [G_d, -S]])
+                         f"(c, {rods} + k) with c < {rods} + k")
+    negative, S = block_terms(blocks, G)
+    G_d = G[:, rods:]
+    schur = np.block([[0.5 * (dense + dense.T), G_d.T], [G_d, -S]])
     rank = np.linalg.matrix_rank(G @ G.T, hermitian=True)     # (c, c): cheaper than G's SVD
     return int(negative + np.sum(np.linalg.eigvalsh(schur) < 0) - rank)

@@ -10,6 +10,7 @@ enough that the polylines follow them (a few hundred nodes for the rods of this 
 """
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 
@@ -56,7 +57,7 @@ def _crossing_pairs(a, b, c, d):
     return i[hit], j[hit]
 
 
-def self_crossings(x, y):
+def self_crossings(x: ArrayLike, y: ArrayLike) -> int:
     """How many times a polyline crosses itself (pairs of non-adjacent segments that cross).
 
     Examples
@@ -70,7 +71,8 @@ def self_crossings(x, y):
     return int(np.count_nonzero(j - i >= 2))
 
 
-def mutual_crossings(x1, y1, x2, y2, *, shared_tip=False):
+def mutual_crossings(x1: ArrayLike, y1: ArrayLike, x2: ArrayLike, y2: ArrayLike, *,
+                     shared_tip: bool = False) -> int:
     """How many times two polylines cross each other.
 
     Parameters
@@ -87,6 +89,7 @@ def mutual_crossings(x1, y1, x2, y2, *, shared_tip=False):
     >>> mutual_crossings(s, s, s, 1 - s), mutual_crossings(s, s, s, s + 0.1)
     (1, 0)
     """
+    shared_tip = _validate.flag(shared_tip, "shared_tip")
     a, b = _segments(x1, y1, "the first polyline")
     c, d = _segments(x2, y2, "the second polyline")
     i, j = _crossing_pairs(a, b, c, d)

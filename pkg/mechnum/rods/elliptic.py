@@ -1,24 +1,45 @@
-"""The closed form in elliptic integrals of a clamped-pinned rod (conventions: mechnum.rods).
+"""The closed form of a clamped-pinned rod in the study's chart ``(psi, k_rel)`` (conventions:
+:mod:`mechnum.rods`).
 
-scipy's ``ellipkinc(phi, m)`` and ``ellipeinc(phi, m)`` are ``F(phi, k)`` and ``E(phi, k)`` with
-the parameter ``m = k**2``; ``ellipj`` gives the amplitude ``phi = am(u | m)``.
+The study parametrises a rod of a given ``mode`` by the direction ``psi`` of its tip force and
+the relative modulus ``k_rel`` (its (89) to (91)). This module keeps that chart for the reader,
+and evaluates it through the regular chart of :mod:`mechnum.rods.regular`, which holds every
+digit where the study's formulas do not (``k_rel -> 0``, ``|k_rel| -> 1``, ``psi = pi``):
+:func:`clamped_pinned` converts ``k_rel`` to the chart's ``t`` exactly
+(:func:`mechnum.rods.regular.t_from_k_rel`). Its inverses: :func:`k_rel_for_force` (the
+growing branch that carries a force, in the chart of :mod:`mechnum.rods.growing`) and
+:func:`elliptic_parameters` (the rod that starts from a clamp moment and a force).
 """
 
 import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ellipeinc, ellipj, ellipkinc, elliprd, elliprf, expit
+from numpy.typing import ArrayLike
+from scipy.special import elliprf
 
-from mechnum import _validate, newton
-from mechnum.errors import ConvergenceError, MechnumError
-from mechnum.rods.shooting import Rod, _vectors
+from mechnum import _validate
+from mechnum.errors import MechnumError
+from mechnum.rods import regular
+from mechnum.rods.growing import growing_branch
+from mechnum.rods.jacobi import amplitude
+from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape, rod_scales
 
 TWO_PI = 2.0 * np.pi
+_EPS = np.finfo(float).eps
+_TINY = np.finfo(float).tiny
+AXIAL = 4.0 * _EPS
+"""A force whose ``|cos(psi/2)|`` is below this is axial: ``psi = numpy.pi`` (which is ``pi`` to
+rounding, ``cos(psi/2) = 6e-17``) is pure compression, with the Euler load as least load."""
 
 
 class NoEquilibriumError(MechnumError):
     """A rod has no equilibrium on the requested branch (a load below a mode's range)."""
+
+
+class NotAnElasticaError(MechnumError, ValueError):
+    """A clamp moment and a force that start no clamped-pinned rod: the moment never vanishes
+    along the rod (``|k| >= 1``, the rod curls in whole turns), so no tip can be pinned."""
 
 
 @dataclass(frozen=True)
@@ -51,7 +72,7 @@ class EllipticRod:
     rod: Rod = None
 
 
-def elliptic_k(psi, k_rel):
+def elliptic_k(psi: ArrayLike, k_rel: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The modulus ``k`` and its least magnitude ``k_min`` from ``(psi, k_rel)``.
 
     ``k_min = |cos(psi/2)|`` and ``k = sign(k_rel) k_min + (1 - k_min) k_rel`` (the study's
@@ -82,7 +103,7 @@ def elliptic_k(psi, k_rel):
     """
     psi, k_rel = _angles(psi), _validate.array(k_rel, "k_rel")
     if np.any((k_rel == 0) | (np.abs(k_rel) >= 1)):
-        raise ValueError(f"k_rel must satisfy 0 < |k_rel| < 1, got {k_rel!r}")
+        raise ValueError(f"k_rel must satisfy 0 < |k_rel| < 1, got {_validate._shown(k_rel)}")
     k_min = np.abs(np.cos(0.5 * psi))
     return np.sign(k_rel) * k_min + _one_minus_k_min(psi) * k_rel, k_min
 
@@ -96,29 +117,13 @@ def _angles(psi):
     """``psi`` as a float array, checked to lie in the open interval ``(0, 2 pi)``."""
     psi = _validate.array(psi, "psi")
     if np.any((psi <= 0) | (psi >= TWO_PI)):
-        raise ValueError(f"psi must lie in the open interval (0, 2 pi), got {psi!r}")
+        raise ValueError("psi must lie in the open interval (0, 2 pi), "
+                         f"got {_validate._shown(psi)}")
     return psi
 
 
-def _mode(mode):
-    mode = _validate.array(mode, "mode")
-    if np.any(mode < 1) or np.any(mode != np.round(mode)):
-        raise ValueError(f"mode must be an integer >= 1, got {mode!r}")
-    return mode
-
-
-def _shape(phi, psi, k, phi1, F1, E1, lam, EI):
-    """``(x, y, theta, m)`` at amplitude ``phi`` (the study's (86), (87), (37) and (42))."""
-    m = k * k
-    dF, dE = ellipkinc(phi, m) - F1, ellipeinc(phi, m) - E1
-    dC = np.cos(phi) - np.cos(phi1)
-    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam
-    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam
-    theta = psi - 2 * np.arccos(np.clip(k * np.sin(phi), -1.0, 1.0))
-    return x, y, theta, 2 * EI * k * lam * np.cos(phi)
-
-
-def clamped_pinned(EI, L, psi, k_rel, mode=1, *, nodes=None):
+def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike,
+                   mode: ArrayLike = 1, *, nodes: int | None = None) -> EllipticRod:
     """The clamped-pinned (or end-loaded cantilever) rod in closed form.
 
     With ``lambda = sqrt(R / EI)``: ``lambda L = F(phi2, k) - F(phi1, k)`` gives ``R``; along the
@@ -128,339 +133,81 @@ def clamped_pinned(EI, L, psi, k_rel, mode=1, *, nodes=None):
         y = -(sin psi (2 dE - dF) - 2 k cos psi dC) / lambda
 
     where ``dE = E(phi, k) - E(phi1, k)``, ``dF`` likewise and ``dC = cos(phi) - cos(phi1)``;
-    ``m = 2 EI k lambda cos(phi)``. Conventions and ranges: see the module docstring.
+    ``m = 2 EI k lambda cos(phi)``. Conventions and ranges: see :mod:`mechnum.rods`. These
+    formulas are evaluated in the regular chart (:func:`mechnum.rods.regular.closed_form` and
+    :func:`mechnum.rods.regular.shape`), which holds every digit at every admissible
+    ``(psi, k_rel)``, ``|k_rel|`` within an ulp of 1 and ``psi = pi`` included.
 
     Parameters
     ----------
     EI, L : float or array_like
-        Bending stiffness (N m^2) and length (m).
+        Bending stiffness (N m^2) and length (m), positive.
     psi, k_rel : array_like
-        Force direction (rad, in ``(0, 2 pi)``) and relative modulus (``0 < |k_rel| < 1``),
-        broadcast together.
+        Force direction (rad, in ``(0, 2 pi)``) and relative modulus (``0 < |k_rel| < 1``).
     mode : int or array_like of int, optional
         Buckling mode, ``>= 1``.
     nodes : int, optional
-        If given (``>= 2``), also sample the shape at this many equally spaced nodes.
+        If given (``2 <= nodes <=`` :data:`~mechnum.rods.rod.MAX_NODES`), also sample the shape
+        at this many equally spaced nodes.
 
     Returns
     -------
     EllipticRod
+        Arrays of the broadcast shape of ``EI``, ``L``, ``psi``, ``k_rel`` and ``mode``.
 
     Raises
     ------
     ValueError
-        If an input is outside its range.
+        If an input is outside its range, or the shapes do not broadcast.
 
     Examples
     --------
     >>> rod = clamped_pinned(1.0, 1.0, np.pi, 1e-6)   # compression at the Euler load
     >>> round(float(rod.R / (np.pi ** 2 / 4)), 9)
     1.0
+    >>> bool(np.isfinite(clamped_pinned(1.0, 1.0, 2.0, 1 - 1e-16).tip).all())
+    True
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
+    (EI, L), mode = rod_scales(EI, L), as_modes(mode)
+    psi, k_rel = _validate.array(psi, "psi"), _validate.array(k_rel, "k_rel")
+    batch_shape(EI=EI.shape, L=L.shape, psi=psi.shape, k_rel=k_rel.shape, mode=mode.shape)
     k, k_min = elliptic_k(psi, k_rel)
-    psi = np.asarray(psi, dtype=float)
+    if nodes is not None:
+        nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
+    one_minus_kmin = _one_minus_k_min(psi)
     # phi1 = arcsin(cos(psi/2) / k), the study's (89), written as an arctan2 of
     # sin(phi1) |k| and cos(phi1) |k| = sqrt((|k| - k_min)(|k| + k_min)), with
     # |k| - k_min = (1 - k_min) |k_rel| exactly: arcsin near 1 would lose half the digits.
     phi1 = np.arctan2(np.cos(0.5 * psi) * np.sign(k),
-                      np.sqrt(_one_minus_k_min(psi) * np.abs(k_rel) * (np.abs(k) + k_min)))
-    phi2 = (_mode(mode) - 0.5) * np.pi
-    m = k * k
-    F1, E1 = ellipkinc(phi1, m), ellipeinc(phi1, m)
-    lam = (ellipkinc(phi2, m) - F1) / L
-    R = EI * lam ** 2
-
-    x2, y2, theta2, _ = _shape(phi2, psi, k, phi1, F1, E1, lam, EI)
-    force = np.stack(np.broadcast_arrays(R * np.cos(psi), R * np.sin(psi)), axis=-1)
-    rod = None
-    if nodes is not None:
-        s = np.linspace(0.0, 1.0, _validate.maxiter(nodes, "nodes", minimum=2)) * L[..., None]
-        phi = ellipj(F1[..., None] + lam[..., None] * s, m[..., None])[3]
-        xs, ys, ts, ms = _shape(phi, *(np.asarray(a)[..., None]
-                                       for a in (psi, k, phi1, F1, E1, lam, EI)))
-        rod = Rod(np.broadcast_to(s, xs.shape), xs, ys, ts, ms, force)
-    return EllipticRod(k, k_min, phi1, phi2, R, force, np.stack((x2, y2), axis=-1), theta2,
-                       2 * EI * k * lam * np.cos(phi1), rod)
+                      np.sqrt(one_minus_kmin * np.abs(k_rel) * (np.abs(k) + k_min)))
+    phi2 = (mode - 0.5) * np.pi
+    t = regular.t_from_k_rel(psi, k_rel)
+    end = regular.closed_form(EI, L, psi, t, mode, jacobian=False)
+    # theta(L) = psi - 2 arccos(k sin(phi2)) = psi - 2 atan2(k', k sin(phi2)), with
+    # k'**2 = 1 - k**2 = (1 - k_min)(1 - |k_rel|)(1 + |k|) exactly
+    complement = np.sqrt(one_minus_kmin * (1.0 - np.abs(k_rel)) * (1.0 + np.abs(k)))
+    tip_angle = psi - 2.0 * np.arctan2(complement, k * np.sin(phi2))
+    R = np.hypot(end.force[..., 0], end.force[..., 1])
+    rod = None if nodes is None else regular.shape(EI, L, psi, t, mode, nodes=nodes)
+    return EllipticRod(k, k_min, phi1, phi2, R, end.force, end.tip, tip_angle,
+                       end.clamp_moment, rod)
 
 
-# The growing branch in Carlson's symmetric form (the cantilever and k_rel_for_force).
-#
-# With a = cos(psi/2), b = sin(psi/2) and zeta >= 0, the branch that grows from the straight rod
-# has k cos(phi1) = sign(a) b tanh(zeta) and 1 - k**2 = (b sech(zeta))**2. Every quantity of
-# the rod is then a smooth function of zeta, computed without cancellation at any load, where
-# the study's formulas lose the small loads (differences of nearly equal integrals, divided by
-# lambda) and the large ones (scipy's ellipkinc(phi, m) receives m = k**2 already rounded).
-# With t = pi/2 - phi (from t1 at the clamp to 0 at the tip), eta = |k| sin(t) / b and
-# s = sech(zeta), DLMF 19.25.5 and 19.25.7 (scaled by b**2) give the arc length and the integral
-# that the position needs:
-#
-#   lambda (L - s_t) = I(t) = (eta / |k|) R_F(s**2 cos(t)**2, s**2 + eta**2, s**2)
-#   G(t) = int_0^t sin(t)**2 dt / Delta(t) = (b**2 eta**3 s**2 / (3 |k|**3)) R_D(same arguments)
-#
-# with lambda L = I(t1) + 2 (mode - 1) K(k), eta(t1) = tanh(zeta) and cos(t1) = |a| / |k|.
-_ZETA_MAX = 350.0  # beyond, 1 - k**2 = (b sech zeta)**2 underflows (lambda L > 350 or so)
-_EPS = np.finfo(float).eps
-_TINY = np.finfo(float).tiny  # keeps R_D finite where a = cos(psi/2) is 0 (its factor a**2 is)
-_TAN_LIMIT = 1.5  # the start's beam-column law arctan(...) is used below the Euler plateau pi/2
-_TANH_LIMIT = 0.999  # and kept away from zeta = infinity
-_B_MIN = 1e-150  # below, sin(psi/2)**2 underflows; the rod deflects by less than b L: none
-_SERIES = 5e-3  # _rf_excess uses its series below: error near 4e-17 of the excess at 5e-3;
-#                  beyond, the difference loses at most eps / 5e-3 of it
-_STRAIGHT = 0.25  # _Branch.tip: a deviation from the straight rod where |excess| is below
-_SMALL_STEP = 1e-8  # a Newton step below 1e-8 t1 leaves an error near 1e-16 t1 (quadratic rate)
-CLOSED_FORM_TOL = 1e-14  # relative residual of lambda L at which the cantilever's modulus is kept
-CLOSED_FORM_MAXITER = 100  # Newton-bisection steps for it: bisection alone needs some 60
-# pinned_equilibria: |k_rel| = logistic(z), clipped where it is within 1e-11 of 0 or 1 (the chart
-# is flat beyond); Newton's most steps from a grid cell; a root is kept if its tip is within
-# 1e-10 L of the point; two roots equal to 9 digits are one
-_LOGIT_CLIP, _POLISH_MAXITER, _TIP_ACCEPT, _SAME_DIGITS = 25.0, 60, 1e-10, 9
-
-
-def _branch(a, b, zeta):
-    """``(tanh(zeta), sech(zeta), |k|)`` of the growing branch, for scalars."""
-    v = math.tanh(zeta)
-    return v, 1.0 / math.cosh(zeta), math.sqrt(a * a + (b * v) ** 2)
-
-
-def _lambda_L(a, b, zeta, mode, slope=True):
-    """``lambda L`` of the growing branch and (or 0) its derivative in ``zeta``, for scalars."""
-    v, s, k = _branch(a, b, zeta)
-    X, Z = max((s * a / k) ** 2, _TINY), s * s
-    rf = float(elliprf(X, 1.0, Z))
-    value = v / k * rf
-    if slope:
-        slope = (Z * a * a / k ** 3 * rf + v * v * Z / (3.0 * k) *
-                 (a * a * float(elliprd(1.0, Z, X)) / k ** 4 + float(elliprd(X, 1.0, Z))))
-    if mode > 1:   # the whole half-waves, 2 (mode - 1) K(k) with K = R_F(0, 1 - k**2, 1)
-        kc2 = (b * s) ** 2
-        value += 2.0 * (mode - 1) * float(elliprf(0.0, kc2, 1.0))
-        slope += 2.0 * (mode - 1) * kc2 * v * float(elliprd(0.0, 1.0, kc2)) / 3.0
-    return value, slope
-
-
-def _zeta(a, b, target, mode, tol, maxiter):
-    """Solve ``lambda L(zeta) = target`` on the growing branch, for one ``(a, b, target)``.
-
-    ``lambda L`` grows with ``zeta`` from its value at 0 (below ``target``: the caller checks),
-    like ``zeta / |a|`` for small loads and like ``zeta + ln(2 / b)`` for large ones, and never
-    falls below ``zeta``: ``[0, target]`` brackets the root. Newton's steps are kept inside the
-    bracket (bisection otherwise); the iteration stops when the residual is below ``tol`` or
-    at the rounding floor of ``zeta`` itself (``2 eps zeta`` times the slope), or after a
-    Newton step so small (``|g| / slope <= 1e-8 zeta``) that the quadratic rate leaves an
-    error of its square.
-    """
-    lo, hi = 0.0, target
-    if hi > _ZETA_MAX:
-        if _lambda_L(a, b, _ZETA_MAX, mode)[0] < target:
-            raise ValueError(f"lambda L = L sqrt(R / EI) = {target:.6g} is beyond the loads that "
-                             f"the closed form represents in double precision (1 - k**2 "
-                             f"underflows): use shooting")
-        hi = _ZETA_MAX
-    # start: the beam-column law lambda L = arctan(tanh(zeta) / |a|) of small loads, or the
-    # large-load asymptote lambda L = zeta + ln(2 / b), whichever is larger
-    zeta = max(math.atanh(min(abs(a) * math.tan(min(target, _TAN_LIMIT)), _TANH_LIMIT)),
-               target - math.log(2.0 / b))
-    if not lo < zeta < hi:
-        zeta = 0.5 * hi
-    for _ in range(maxiter):
-        value, slope = _lambda_L(a, b, zeta, mode)
-        g = value - target
-        if abs(g) <= tol * target + 2.0 * _EPS * zeta * slope:
-            return zeta
-        lo, hi = (zeta, hi) if g < 0 else (lo, zeta)
-        step = g / slope
-        if lo < zeta - step < hi:
-            if abs(step) <= _SMALL_STEP * zeta:
-                return zeta - step
-            zeta -= step
-        else:
-            zeta = 0.5 * (lo + hi)
-    raise ConvergenceError(f"no modulus for lambda L = {target!r} in {maxiter} iterations "
-                           f"(psi = {2.0 * math.atan2(b, a)!r}, mode {mode})")
-
-
-def _arcs(b, s, k, eta, cos_t):
-    """``I(t)`` and ``G(t)`` of the growing branch (see above), for arrays of ``t``.
-
-    The arguments of R_F and R_D are divided by ``s**2 + eta**2`` (they are homogeneous, of
-    degrees -1/2 and -3/2), so that a large load's tiny ``s`` neither underflows nor overflows.
-    """
-    Y = s * s + eta * eta
-    X, Z, r = (s * cos_t) ** 2 / Y, s * s / Y, eta / np.sqrt(Y)
-    return r / k * elliprf(X, 1.0, Z), b * b * r ** 3 * s * s / (3.0 * k ** 3) * elliprd(X, 1.0, Z)
-
-
-def _amplitudes(b, v, s, k, t1, targets, maxiter):
-    """Solve ``I(t) = target`` for ``t`` in ``[0, t1]``, one per target: safeguarded Newton."""
-    lo, hi = np.zeros_like(targets), np.full_like(targets, t1)
-    # start: I(t) = asinh(eta / s) / |k| where cos(t) = 1
-    eta = np.minimum(s * np.sinh(np.minimum(k * targets, _ZETA_MAX)), v)
-    t = np.minimum(np.arcsin(np.minimum(b * eta / k, 1.0)), t1)
-    active = np.ones(targets.shape, dtype=bool)
-    for _ in range(maxiter):
-        eta = k * np.sin(t) / b
-        g = _arcs(b, s, k, eta, np.cos(t))[0] - targets
-        step = g * b * np.sqrt(s * s + eta * eta)        # g / (dI/dt), dI/dt = 1 / Delta(t)
-        lo, hi = np.where(g < 0, t, lo), np.where(g < 0, hi, t)
-        newton = (t - step >= lo) & (t - step <= hi)
-        t = np.where(active, np.where(newton, t - step, 0.5 * (lo + hi)), t)
-        # a Newton step this small leaves an error of its square: done
-        active &= ~(newton & (np.abs(step) <= _SMALL_STEP * t1))
-        if not active.any():
-            return t
-    raise ConvergenceError(f"the shape of the closed-form cantilever did not converge in "
-                           f"{maxiter} iterations")
-
-
-def _cantilever(EI, L, force, nodes, tol, maxiter):
-    """The growing-branch (mode 1) cantilever under a tip force, in closed form: a Rod.
-
-    ``EI``, ``L`` positive floats, ``force`` a finite 2-vector with ``force[1] != 0``,
-    ``nodes >= 2``; the formulas are those of the comment above and of :class:`_Branch`. The
-    clamp and the tip are computed on floats, the nodes between them on arrays.
-    """
-    nx, ny = float(force[0]), float(force[1])
-    R = math.hypot(nx, ny)
-    half = 0.5 * math.atan2(ny, nx)     # psi / 2, folded into (-pi/2, pi/2]
-    sign = 1.0 if half >= 0 else -1.0   # sign(k) = sign(a) = sign(n_y)
-    a, b = sign * math.cos(half), abs(math.sin(half))
-    if b < _B_MIN:  # a force this close to pure tension leaves the rod straight to rounding
-        return Rod(np.linspace(0.0, L, nodes), np.linspace(0.0, L, nodes), np.zeros(nodes),
-                   np.zeros(nodes), np.zeros(nodes), np.array([nx, ny]))
-    Lam = L * math.sqrt(R / EI)
-    rod = _Branch(a, b, Lam, nx / R, ny / R, tol, maxiter)
-    ends = np.array([[0.0, 0.0, 0.0, EI / L * rod.moment(rod.v)],
-                     [*(L * rod.tip()), rod.angle(0.0, 1.0), 0.0]])
-    if nodes > 2:
-        sigma = np.linspace(0.0, 1.0, nodes)[1:-1]
-        v, s, k = rod.v, rod.s, rod.k
-        t = _amplitudes(b, v, s, k, math.atan2(b * v, abs(a)), Lam * (1.0 - sigma), maxiter)
-        eta, cos_t = np.minimum(k * np.sin(t) / b, v), np.cos(t)
-        x, y = rod.position(sigma, eta, _arcs(b, s, k, eta, cos_t)[1])
-        inner = np.column_stack((L * x, L * y, rod.angle(eta, cos_t), EI / L * rod.moment(eta)))
-        ends = np.concatenate((ends[:1], inner, ends[1:]))
-    return Rod(np.linspace(0.0, L, nodes), *ends.T, np.array([nx, ny]))
-
-
-def _clamp_G(a, b, v, s, k):
-    """``G(t1)``, the integral from the tip to the clamp (scalars)."""
-    return b * b * v ** 3 * s * s / (3.0 * k ** 3) * float(elliprd((s * a / k) ** 2, 1.0, s * s))
-
-
-def _rf_excess(a, b, v, w):
-    """``|a| lambda L / v - 1`` of the growing branch (scalars), accurate as the load tends to 0.
-
-    ``lambda L / v = R_F(w a**2, k**2, w k**2)`` (R_F is homogeneous) and ``1 / |a| =
-    R_F(a**2, a**2, a**2)``: for small loads the excess is a difference of nearly equal values.
-    The three arguments exceed ``a**2`` by ``delta = v**2 (-a**2, b**2, b**2 w - a**2)``,
-    computed without cancellation; where they differ from their mean ``A`` by less than
-    ``_SERIES A``, Carlson's series of R_F about ``A`` (DLMF 19.36.1, with an error of the
-    eighth order in the deviations) gives the excess from the ``delta`` alone. Beyond, the
-    plain difference loses at most ``eps / _SERIES`` of the excess.
-    """
-    if a == 0.0:
-        return -1.0
-    aa = abs(a)
-    deltas = (-(v * a) ** 2, (v * b) ** 2, v * v * (b * b * w - a * a))
-    mean = sum(deltas) / 3.0
-    A = a * a + mean
-    X, Y = ((mean - delta) / A for delta in deltas[:2])
-    Z = -X - Y
-    if max(abs(X), abs(Y), abs(Z)) > _SERIES:
-        k2 = a * a + (b * v) ** 2
-        return aa * float(elliprf(w * a * a, k2, w * k2)) - 1.0
-    E2, E3 = X * Y - Z * Z, X * Y * Z
-    series = (-E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0
-              - 5.0 * E2 ** 3 / 208.0 + 3.0 * E3 * E3 / 104.0 + E2 * E2 * E3 / 16.0)
-    root = math.sqrt(A)
-    return (aa * series - mean / (aa + root)) / root   # |a| A**-1/2 (1 + series) - 1
-
-
-class _Branch:
-    """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and the
-    default start of :func:`mechnum.rods.shoot_pinned`: the force direction's ``a`` (signed as
-    ``n_y``) and ``b``, ``Lam = lambda L`` and ``(c, d) = (cos psi, sin psi)``.
-
-    In the force's frame, the point at arc fraction ``sigma`` lies ``L (sigma c + along)``
-    along the force and ``-2 sign(a) b L (v - eta) / Lam`` across it, with ``along = 2 (b
-    v)**2 sigma - 2 k**2 (G1 - G) / Lam``; :meth:`position` rotates it into the clamp's frame.
-    At the tip of a nearly straight rod that rotation would subtract terms of order ``L`` to
-    find a small ``y`` (all digits were lost at loads near 1e-14), so :meth:`tip` writes the
-    tip as the straight rod ``(L, 0)`` plus a deviation computed from small terms only: across
-    the force, ``L across`` beyond ``-L d``, with ``across = 2 sign(a) b (|a| - v / Lam)`` from
-    :func:`_rf_excess`; rotated back with ``c**2 + d**2 = 1``, ``x = L (1 + along c - across
-    d)`` and ``y = L (along d + across c)``.
-    """
-
-    def __init__(self, a, b, Lam, c, d, tol, maxiter):
-        self.a, self.b, self.Lam, self.c, self.d = a, b, Lam, c, d
-        self.sign = 1.0 if a >= 0 else -1.0
-        self.v, self.s, self.k = _branch(a, b, _zeta(a, b, Lam, 1, tol, maxiter))
-        self.G1 = _clamp_G(a, b, self.v, self.s, self.k)
-
-    def _along(self, sigma, G):
-        return 2.0 * (self.b * self.v) ** 2 * sigma - 2.0 * self.k ** 2 * (self.G1 - G) / self.Lam
-
-    def position(self, sigma, eta, G):
-        """``(x / L, y / L)`` at arc fraction ``sigma``, where ``sin(t) = b eta / |k|``."""
-        along = sigma * self.c + self._along(sigma, G)
-        across = -2.0 * self.sign * self.b * (self.v - eta) / self.Lam
-        return along * self.c - across * self.d, along * self.d + across * self.c
-
-    def tip(self):
-        """``(x(L) / L, y(L) / L)``: as a deviation from the straight rod where the rod is nearly
-        straight (``|excess| <= _STRAIGHT``), as :meth:`position` where it is not."""
-        excess = _rf_excess(self.a, self.b, self.v, self.s ** 2)
-        if abs(excess) > _STRAIGHT:
-            return np.array(self.position(1.0, 0.0, 0.0))
-        along = self._along(1.0, 0.0)
-        across = 2.0 * self.sign * self.b * excess * self.v / self.Lam
-        return np.array((1.0 + (along * self.c - across * self.d),
-                         along * self.d + across * self.c))
-
-    def angle(self, eta, cos_t):
-        """``theta`` where ``sin(t) = b eta / |k|``.
-
-        ``theta = psi - 2 beta``, ``beta`` the angle of ``(sign(a) k cos t, b q)`` with ``q =
-        sqrt(s**2 + eta**2)``, written as one arctan of the difference of ``psi / 2`` and
-        ``beta``, whose sine has the factor ``|k| cos t - |a| q = (v**2 - eta**2) / (|k| cos t
-        + |a| q)``: zero at the clamp, and accurate at small loads.
-        """
-        a, b, v, kc = abs(self.a), self.b, self.v, self.k * cos_t
-        q = np.sqrt(self.s ** 2 + eta * eta)
-        return 2.0 * self.sign * np.arctan2(b * (v - eta) * (v + eta),
-                                            (kc + a * q) * (a * kc + b * b * q))
-
-    def moment(self, eta):
-        """``m L / EI`` where ``sin(t) = b eta / |k|``."""
-        return 2.0 * self.Lam * self.sign * self.b * eta
-
-
-def _growing_tip(psi, Lam):
-    """The growing branch at the force direction ``psi`` (any real) and ``lambda L = Lam``
-    (taken as ``|Lam|``, at most the closed form's range): ``(x(L) / L, y(L) / L, m(0) L / EI)``.
-    The chart of the default start of :func:`mechnum.rods.shoot_pinned`."""
-    half = 0.5 * math.remainder(psi, TWO_PI)          # psi / 2 in [-pi/2, pi/2]
-    sign = 1.0 if half >= 0 else -1.0
-    a, b = sign * math.cos(half), max(abs(math.sin(half)), _B_MIN)
-    Lam = min(max(abs(Lam), _TINY), _ZETA_MAX)
-    rod = _Branch(a, b, Lam, math.cos(psi), math.sin(psi), CLOSED_FORM_TOL, CLOSED_FORM_MAXITER)
-    return (*rod.tip(), rod.moment(rod.v))
-
-
-def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
+def k_rel_for_force(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, R: ArrayLike,
+                    mode: ArrayLike = 1, *, tol: float = 1e-14,
+                    maxiter: int = 100) -> np.ndarray:
     """The relative modulus whose clamped-pinned rod carries the tip force ``R`` at ``psi``.
 
     For a given ``psi`` and ``mode``, ``R`` grows strictly with ``|k|`` on the half of
     ``k_rel`` whose sign is that of ``cos(psi/2)`` (the branch that grows from the straight rod:
-    bending towards the force), from ``R_0 = EI (2 (mode - 1) K(k_min) / L)**2`` to infinity.
-    This function solves ``lambda L = F(phi2, k) - F(phi1, k)`` on that half (for ``psi = pi``,
-    ``k_rel > 0``) by Newton's method safeguarded with bisection, in a variable ``zeta`` in
-    which the equation is smooth and well conditioned at every load (``k cos(phi1) =
-    sin(psi/2) tanh(zeta)``, ``1 - k**2 = (sin(psi/2) sech(zeta))**2``; see the module's
-    comments), and checks its residual. On the other half ``R`` is not monotone and one force
-    has several ``k_rel`` (the study's Ilustracion 10).
+    bending towards the force), from ``R_0 = EI (2 (mode - 1) K(k_min) / L)**2`` to infinity
+    (plus the Euler load ``pi**2 EI / (4 L**2)`` where the force is axial: ``psi = pi`` to
+    rounding, see :data:`AXIAL`). This function solves ``lambda L = F(phi2, k) - F(phi1, k)``
+    on that half (for ``psi = pi``, ``k_rel > 0``) by Newton's method safeguarded with
+    bisection, in a variable ``zeta`` in which the equation is smooth and well conditioned at
+    every load (:func:`mechnum.rods.growing.growing_branch`), and checks its residual. On
+    the other half ``R`` is not monotone and one force has several ``k_rel`` (the study's
+    Ilustracion 10).
 
     Parameters
     ----------
@@ -474,7 +221,7 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
         Buckling mode.
     tol, maxiter
         Relative tolerance on ``lambda L = L sqrt(R / EI)`` (or the rounding floor of the
-        solution, if larger) and most iterations per element.
+        solution, if larger) and most iterations per element (at most 10000).
 
     Returns
     -------
@@ -488,7 +235,8 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
         to ``+-1`` (or underflows): the chart ``k_rel`` cannot hold that rod in double
         precision (:func:`mechnum.rods.cantilever` can).
     NoEquilibriumError
-        If ``R <= R_0`` (a mode above the first needs a least load).
+        If ``R <= R_0`` (a mode above the first needs a least load, and an axial force the
+        Euler load).
     ConvergenceError
         If ``maxiter`` iterations do not reach ``tol``.
 
@@ -499,22 +247,24 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
     >>> round(float(rod.R), 12), np.round(rod.tip, 5).tolist()
     (1.0, [0.94357, 0.30172])
     """
-    EI, L, R = (_validate.positive(v, name) for v, name in ((EI, "EI"), (L, "L"), (R, "R")))
-    psi, mode = _angles(psi), _mode(mode)
-    tol, maxiter = _validate.tolerance(tol), _validate.maxiter(maxiter)
+    (EI, L), R = rod_scales(EI, L), _validate.positive(R, "R")
+    psi, mode = _angles(psi), as_modes(mode)
+    tol = _validate.tolerance(tol)
+    maxiter = _validate.maxiter(maxiter, maximum=10_000)
+    batch_shape(EI=EI.shape, L=L.shape, R=R.shape, psi=psi.shape, mode=mode.shape)
     EI, L, R, psi, mode = np.broadcast_arrays(EI, L, R, psi, mode)
     k_rel = np.empty(psi.shape)
     for i in np.ndindex(psi.shape):
         a, b = math.cos(0.5 * psi[i]), math.sin(0.5 * psi[i])
         target = L[i] * math.sqrt(R[i] / EI[i])
         # lambda L at zeta = 0: the whole half-waves, and the Euler load in pure compression
-        low = 2.0 * (mode[i] - 1) * float(elliprf(0.0, b * b, 1.0)) + (0.5 * math.pi if a == 0
-                                                                      else 0.0)
+        low = 2.0 * (mode[i] - 1) * float(elliprf(0.0, b * b, 1.0)) + (
+            0.5 * math.pi if abs(a) < AXIAL else 0.0)
         if target <= low:
             raise NoEquilibriumError(
                 f"mode {mode[i]:.0f} needs R > {EI[i] * (low / L[i]) ** 2:.6g} N at "
                 f"psi = {psi[i]:.6g}, got R = {R[i]:.6g}")
-        v, _, k = _branch(a, b, _zeta(a, b, target, int(mode[i]), tol, maxiter))
+        v, _, k = growing_branch(a, b, target, int(mode[i]), tol=tol, maxiter=maxiter)
         k_rel[i] = (1.0 if a >= 0 else -1.0) * v * v * (1.0 + abs(a)) / (k + abs(a))
         if not _TINY <= abs(k_rel[i]) < 1.0:
             raise ValueError(
@@ -524,28 +274,46 @@ def k_rel_for_force(EI, L, psi, R, mode=1, *, tol=1e-14, maxiter=100):
     return k_rel
 
 
-def elliptic_parameters(EI, L, clamp_moment, force):
-    """``(psi, k_rel, mode)`` of a clamped-pinned rod known by its clamp moment and tip force.
+def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
+                        force: ArrayLike, *, outside: str = "raise") -> tuple[np.ndarray, ...]:
+    """``(psi, k_rel, mode, phi2)`` of the rod that starts from a clamp moment and a tip force.
 
     The inverse of :func:`clamped_pinned`, for identifying a rod found by shooting (local
-    frame, ``theta(0) = 0``): ``psi`` is the direction of ``force`` in ``[0, 2 pi)``,
+    frame, ``theta(0) = 0``): ``psi`` is the direction of ``force`` in ``(0, 2 pi)``,
     ``k sin(phi1) = cos(psi/2)`` and ``k cos(phi1) = m(0) / (2 EI lambda)`` (the study's (37)
-    and (42) at ``s = 0``), and the mode is fixed by the tip amplitude
-    ``phi2 = am(F(phi1, k) + lambda L)``, an odd multiple of ``pi/2``.
+    and (42) at ``s = 0``). The count of quarter periods ``q = (F(phi1, k) + lambda L) / K(k)``
+    is ``2 mode - 1`` where ``m(L) = 0``, and the tip amplitude ``phi2 = am(F(phi1, k) +
+    lambda L)`` is then ``(mode - 1/2) pi``. Everything is computed from the complementary
+    modulus ``k'**2 = 1 - k**2 = sin(psi/2)**2 (1 - v**2)``, ``v = k cos(phi1) / sin(psi/2)``
+    (Carlson's integrals; :func:`mechnum.rods.jacobi.amplitude`), so that a rod within
+    ``1e-12`` of ``|k| = 1`` keeps its mode. ``mode`` rounds ``q`` (it is 0 for a rod whose
+    moment has not vanished by ``s = L``); ``phi2`` is unrounded.
 
     Parameters
     ----------
-    EI, L : float
-        Bending stiffness (N m^2) and length (m).
+    EI, L : float or array_like
+        Bending stiffness (N m^2) and length (m), positive.
     clamp_moment : array_like
         ``m(0)`` (N m).
     force : array_like, shape (..., 2)
-        The tip force (N), not zero.
+        The tip force (N), not zero and not along the clamped tangent.
+    outside : {"raise", "nan"}, optional
+        What a rod outside the family gets (its moment never vanishes): an error, or (for a
+        batch whose caller masks such rods) NaN for its ``k_rel``, ``mode`` and ``phi2``.
 
     Returns
     -------
     psi, k_rel, mode, phi2 : ndarray
-        ``phi2`` unrounded: ``(mode - 1/2) pi`` up to the accuracy of the inputs.
+
+    Raises
+    ------
+    ValueError
+        If an input is malformed, the force is zero, or it points along the clamped tangent
+        (pure tension: the chart has no rod there).
+    NotAnElasticaError
+        If the moment never vanishes along the rod (``|k| >= 1``) and ``outside="raise"``: no
+        clamped-pinned rod, of any length, starts so (for a rod found by shooting: a spurious
+        solution of the discrete equations).
 
     Examples
     --------
@@ -554,8 +322,10 @@ def elliptic_parameters(EI, L, clamp_moment, force):
     >>> round(float(psi), 12), round(float(k_rel), 12), int(mode)
     (2.0, -0.4, 2)
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
-    force, m0 = _vectors(force, "force", 2), _validate.array(clamp_moment, "clamp_moment")
+    EI, L = rod_scales(EI, L)
+    outside = _validate.choice(outside, ("raise", "nan"), "outside")
+    force, m0 = as_vectors(force, "force", 2), _validate.array(clamp_moment, "clamp_moment")
+    batch_shape(EI=EI.shape, L=L.shape, clamp_moment=m0.shape, force=force.shape[:-1])
     R = np.hypot(force[..., 0], force[..., 1])
     if np.any(R == 0):
         raise ValueError("the tip force must not be zero: an unloaded rod has no k")
@@ -564,86 +334,26 @@ def elliptic_parameters(EI, L, clamp_moment, force):
         raise ValueError("a tip force along the clamped tangent (psi = 0, pure tension) has "
                          "no elliptic parameters: its rod is straight")
     lam = np.sqrt(R / EI)
-    a, b = np.cos(0.5 * psi), m0 / (2.0 * EI * lam)
-    k = np.where(b < 0, -1.0, 1.0) * np.hypot(a, b)
-    k_min = np.abs(a)
-    phi1 = np.arctan2(a * np.sign(k), np.abs(b))
-    phi2 = ellipj(ellipkinc(phi1, k * k) + lam * L, k * k)[3]
-    mode = np.round(phi2 / np.pi + 0.5)
-    return psi, np.sign(k) * (np.abs(k) - k_min) / _one_minus_k_min(psi), mode, phi2
-
-
-def pinned_equilibria(EI, L, tip, modes=(1, 2, 3), *, n_psi=120, n_k=80, tol=1e-13):
-    """Every clamped-pinned equilibrium whose tip is at ``tip``, by the closed form.
-
-    As the study does for its mechanisms, the admissible rectangle ``0 < psi < 2 pi``,
-    ``0 < |k_rel| < 1`` of each mode is sampled on a grid (finer near ``k_rel = 0, +-1``); the
-    local minima of the tip distance seed Newton's method (:func:`mechnum.newton.solve`) on
-    ``tip(psi, k_rel) = target``, in variables that keep ``k_rel`` in its half-interval. A
-    grid can miss a solution in a cell smaller than its spacing; refine it to check.
-
-    Parameters
-    ----------
-    EI, L : float
-        Bending stiffness (N m^2) and length (m).
-    tip : array_like, shape (2,)
-        The pinned point in the local frame (m), within ``L`` of the clamp.
-    modes : iterable of int, optional
-        Buckling modes searched.
-    n_psi, n_k : int, optional
-        Grid size per mode (``n_k`` values of ``|k_rel|`` on each sign).
-    tol : float, optional
-        Newton step tolerance.
-
-    Returns
-    -------
-    ndarray, shape (n, 3)
-        Rows ``(psi, k_rel, mode)``, sorted by mode then ``R``; ``n >= 0``.
-
-    Examples
-    --------
-    >>> sols = pinned_equilibria(1.0, 1.0, [0.8, 0.1], modes=(1, 2))   # none in mode 1
-    >>> sols.shape, np.round(sols[:, :2], 4).tolist()
-    ((2, 3), [[3.4872, -0.3223], [3.0352, 0.4212]])
-    """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
-    tip = _validate.array(tip, "tip", shape=(2,))
-    if np.hypot(*tip) >= L:
-        raise ValueError(f"tip must be one point closer than L = {L} to the clamp, got {tip!r}")
-    modes = [int(m) for m in _mode(list(modes)).ravel()]
-    n_psi, n_k = _validate.maxiter(n_psi, "n_psi"), _validate.maxiter(n_k, "n_k")
-    tol = _validate.tolerance(tol)
-    u = (np.arange(n_k) + 0.5) / n_k
-    half = 0.5 * (1 - np.cos(np.pi * u))
-    k_grid = np.concatenate((-half[::-1], half))
-    psi_grid = (np.arange(n_psi) + 0.5) / n_psi * TWO_PI
-    found = []
-    for mode in modes:
-        P, K = np.meshgrid(psi_grid, k_grid, indexing="ij")
-        dist = np.linalg.norm(clamped_pinned(EI, L, P, K, mode).tip - tip, axis=-1)
-        padded = np.pad(dist, 1, constant_values=np.inf)
-        neighbours = np.stack([padded[1 + i:1 + i + n_psi, 1 + j:1 + j + 2 * n_k]
-                               for i in (-1, 0, 1) for j in (-1, 0, 1) if i or j])
-        for i, j in zip(*np.nonzero(dist <= neighbours.min(axis=0))):
-            sign = np.sign(K[i, j])
-
-            def unpack(z, sign=sign):   # psi free (wrapped), |k_rel| = logistic(z[1])
-                return np.mod(z[0], TWO_PI), sign * expit(np.clip(z[1], -_LOGIT_CLIP,
-                                                                  _LOGIT_CLIP))
-
-            def fun(z, mode=mode, unpack=unpack):
-                return clamped_pinned(EI, L, *unpack(z), mode).tip - tip
-
-            z0 = [P[i, j], np.log(abs(K[i, j]) / (1 - abs(K[i, j])))]
-            try:
-                z = newton.solve(fun, z0, tol=tol, maxiter=_POLISH_MAXITER).x
-            except (MechnumError, ValueError):
-                continue
-            if np.linalg.norm(fun(z)) < _TIP_ACCEPT * L:
-                found.append((*unpack(z), mode))
-    if not found:
-        return np.empty((0, 3))
-    found = np.array(found, dtype=float)   # the same root from two cells: keep one, unrounded
-    sols = found[np.unique(np.round(found, _SAME_DIGITS), axis=0, return_index=True)[1]]
-    R = clamped_pinned(EI, L, sols[:, 0], sols[:, 1], sols[:, 2]).R
-    return sols[np.lexsort((R, sols[:, 2]))]
+    a, b = np.cos(0.5 * psi), np.sin(0.5 * psi)
+    c = m0 / (2.0 * EI * lam)                          # k cos(phi1)
+    v = np.abs(c) / b
+    if outside == "nan":
+        v = np.where(v < 1, v, np.nan)
+    elif np.any(v >= 1):
+        raise NotAnElasticaError(
+            f"m(0) = {_validate._shown(m0)} and force {_validate._shown(force)} start no "
+            f"clamped-pinned rod: |k| = sqrt(cos(psi/2)**2 + (m(0) / (2 EI lambda))**2) >= 1, "
+            f"so the moment never vanishes along the rod")
+    m = a * a + c * c                                  # k**2
+    k = np.where(c < 0, -1.0, 1.0) * np.sqrt(m)
+    p = b * b * (1.0 - v) * (1.0 + v)                  # 1 - k**2, without cancellation
+    k_rel = np.sign(k) * v * v * (1.0 + np.abs(a)) / (np.abs(k) + np.abs(a))
+    F1 = a * np.sign(k) / np.abs(k) * elliprf(c * c / m, b * b, 1.0)   # DLMF 19.25.5
+    u = F1 + lam * L
+    mode = np.round(0.5 * (u / elliprf(0.0, p, 1.0) + 1.0))
+    inside = np.isfinite(v)
+    phi2 = np.full(np.shape(u), np.nan)
+    phi2[inside] = amplitude(np.broadcast_to(u, phi2.shape)[inside],
+                             np.broadcast_to(np.sqrt(m), phi2.shape)[inside],
+                             np.broadcast_to(np.sqrt(p), phi2.shape)[inside])
+    return psi, k_rel, mode, phi2[()]

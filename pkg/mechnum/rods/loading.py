@@ -1,7 +1,7 @@
 """A cantilever under a growing dead load: its equilibria as curves, for continuation.
 
 With the direction ``psi`` of the tip force fixed and its magnitude ``R`` free, the
-equilibria of a cantilever (RK4 shooting, :func:`mechnum.rods.shooting.integrate`) form
+equilibria of a cantilever (RK4 shooting, :func:`mechnum.rods.rod.integrate`) form
 curves in the plane of the dimensionless unknowns ``u = (m0 L / EI, R L**2 / EI)``: one equation,
 ``m(L) L / EI = 0``, in two unknowns, the load last. :class:`DeadLoad` gives that equation
 and its derivatives for :func:`mechnum.continuation.pseudo_arclength`, and the stability of
@@ -10,10 +10,11 @@ each equilibrium: the index of the second variation of the energy
 """
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.rods.elliptic import clamped_pinned
-from mechnum.rods.shooting import integrate, tip_jacobian
+from mechnum.rods.rod import MAX_NODES, Rod, integrate, rod_scales, tip_jacobian
 from mechnum.rods.stability import constrained_index, rod_block
 
 
@@ -28,7 +29,7 @@ class DeadLoad:
         Direction of the force (rad); ``pi`` pushes the tip towards the clamp.
     segments : int, optional
         RK4 steps and stability segments: the rod is integrated on ``2 segments + 1`` nodes,
-        whose midpoint angles enter the stability test.
+        whose midpoint angles enter the stability test (``2 <= segments <= MAX_NODES // 2``).
 
     Examples
     --------
@@ -41,38 +42,38 @@ class DeadLoad:
     (True, (1, 2))
     """
 
-    def __init__(self, EI, L, psi, segments=80):
-        self.EI = _validate.scalar(EI, "EI", positive=True)
-        self.L = _validate.scalar(L, "L", positive=True)
+    def __init__(self, EI: float, L: float, psi: float, segments: int = 80):
+        self.EI, self.L = rod_scales(EI, L, scalar=True)
         psi = _validate.scalar(psi, "psi")
         self.psi, self.direction = psi, np.array([np.cos(psi), np.sin(psi)])
-        self.segments = _validate.maxiter(segments, "segments", minimum=2)
+        self.segments = _validate.maxiter(segments, "segments", minimum=2,
+                                          maximum=MAX_NODES // 2)
 
     def _physical(self, u):
         u = _validate.array(u, "u", shape=(2,))
         return u[0] * self.EI / self.L, u[1] * self.EI / self.L ** 2 * self.direction
 
-    def rod(self, u):
-        """The equilibrium's rod (:class:`~mechnum.rods.shooting.Rod`) at
+    def rod(self, u: ArrayLike) -> Rod:
+        """The equilibrium's rod (:class:`~mechnum.rods.rod.Rod`) at
         ``u = (m0 L / EI, R L**2 / EI)``."""
         return integrate(self.EI, self.L, *self._physical(u), nodes=2 * self.segments + 1)
 
-    def fun(self, u):
+    def fun(self, u: ArrayLike) -> np.ndarray:
         """``(m(L) L / EI,)``: zero at an equilibrium."""
         return np.array([self.rod(u).m[-1] * self.L / self.EI])
 
-    def jac(self, u):
+    def jac(self, u: ArrayLike) -> np.ndarray:
         """``d (m(L) L / EI) / d u``, shape ``(1, 2)`` (complex step, exact to rounding)."""
         J = tip_jacobian(self.EI, self.L, *self._physical(u), nodes=2 * self.segments + 1)[1]
         return np.array([[J[3, 0], J[3, 1:] @ self.direction / self.L]])
 
-    def index(self, u):
+    def index(self, u: ArrayLike) -> int:
         """Unstable directions of the equilibrium at ``u`` (0: stable)."""
         rod = self.rod(u)
         block = rod_block(self.EI, self.L, rod.theta[1::2], rod.force)
         return constrained_index([block], np.empty((0, self.segments)))
 
-    def start(self, k_rel, mode=1):
+    def start(self, k_rel: float, mode: int = 1) -> np.ndarray:
         """``u`` of the closed-form rod ``(psi, k_rel, mode)``: a point on a curve (to the RK4
         error, which Newton's corrector removes)."""
         rod = clamped_pinned(self.EI, self.L, np.mod(self.psi, 2.0 * np.pi), k_rel, mode)

@@ -43,10 +43,13 @@ clamped tangent: the straight rod in tension, whose tip does not depend on the f
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ellipeinc, ellipj, elliprd, elliprf
+from numpy.typing import ArrayLike
+from scipy.special import elliprd, elliprf
 
 from mechnum import _validate
-from mechnum.rods.shooting import Rod
+from mechnum.rods.growing import branch_shape, chart_tip
+from mechnum.rods.jacobi import amplitude
+from mechnum.rods.rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape, rod_scales
 
 TWO_PI = 2.0 * np.pi
 # Largest q = t**2 / (1 - t**2): 1 - k**2 = b**2 exp(-q) must stay a normal double (exp(-708)
@@ -54,6 +57,10 @@ TWO_PI = 2.0 * np.pi
 Q_MAX = 600.0
 T_MAX = float(np.sqrt(Q_MAX / (1.0 + Q_MAX)))
 """The largest ``|t|`` the chart accepts (``q = Q_MAX``)."""
+SMALL_LOAD = 1.0
+"""Below this ``lambda L``, :func:`shape` draws the growing branch of mode 1 in the
+cantilever's chart, which holds every digit as the load tends to zero (the study's formulas
+lose about ``eps / (lambda L)`` of ``L``)."""
 
 
 @dataclass(frozen=True)
@@ -86,12 +93,21 @@ def _check(psi, t):
     return psi, t
 
 
+def _inputs(EI, L, psi, t, mode):
+    """The checked inputs of :func:`clamped_pinned_regular` and :func:`shape`."""
+    EI, L = rod_scales(EI, L)
+    psi, t = _check(psi, t)
+    mode = as_modes(mode)
+    batch_shape(EI=EI.shape, L=L.shape, psi=psi.shape, t=t.shape, mode=mode.shape)
+    return EI, L, psi, t, mode
+
+
 def _q(t):
     """``q = t**2 / (1 - t**2)`` without cancellation near ``|t| = 1``."""
     return t * t / ((1.0 - t) * (1.0 + t))
 
 
-def k_rel_from_t(psi, t, *, complement=False):
+def k_rel_from_t(psi: ArrayLike, t: ArrayLike, *, complement: bool = False) -> np.ndarray:
     """The study's ``k_rel`` of the rod ``(psi, t)``, or ``1 - |k_rel|``.
 
     Parameters
@@ -110,6 +126,7 @@ def k_rel_from_t(psi, t, *, complement=False):
     True
     """
     psi, t = _check(psi, t)
+    complement = _validate.flag(complement, "complement")
     a, b = np.abs(np.cos(0.5 * psi)), np.sin(0.5 * psi)
     q = _q(t)
     k = np.sqrt(a * a - np.expm1(-q) * b * b)
@@ -120,7 +137,7 @@ def k_rel_from_t(psi, t, *, complement=False):
     return np.sign(t) * (-np.expm1(-q) * b * b / (k + a)) / one_minus_kmin
 
 
-def t_from_k_rel(psi, k_rel):
+def t_from_k_rel(psi: ArrayLike, k_rel: ArrayLike) -> np.ndarray:
     """The chart's ``t`` of the study's rod ``(psi, k_rel)``, ``0 < |k_rel| < 1``.
 
     Examples
@@ -144,7 +161,8 @@ def t_from_k_rel(psi, k_rel):
     return np.sign(k_rel) * np.sqrt(q / (1.0 + q))
 
 
-def clamped_pinned_regular(EI, L, psi, t, mode=1, *, jacobian=True):
+def clamped_pinned_regular(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike,
+                           mode: ArrayLike = 1, *, jacobian: bool = True) -> RegularRod:
     """Tip, tip force and clamp moment of clamped-pinned rods, with their analytic Jacobian.
 
     Vectorised: ``EI``, ``L``, ``psi``, ``t`` and ``mode`` broadcast together (one call for all
@@ -171,7 +189,7 @@ def clamped_pinned_regular(EI, L, psi, t, mode=1, *, jacobian=True):
     Raises
     ------
     ValueError
-        If an input is outside its range or not finite.
+        If an input is outside its range or not finite, or the shapes do not broadcast.
 
     Examples
     --------
@@ -182,12 +200,8 @@ def clamped_pinned_regular(EI, L, psi, t, mode=1, *, jacobian=True):
     >>> np.round(rod.tip, 6).tolist(), rod.jacobian.shape
     ([[0.235039, -0.642051], [-0.298731, -0.164104]], (2, 5, 2))
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
-    psi, t = _check(psi, t)
-    mode = _validate.array(mode, "mode")
-    if np.any(mode < 1) or np.any(mode != np.round(mode)):
-        raise ValueError(f"mode must be an integer >= 1, got {_validate._shown(mode)}")
-    return _closed_form(EI, L, psi, t, mode, jacobian)
+    EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
+    return closed_form(EI, L, psi, t, mode, jacobian=_validate.flag(jacobian, "jacobian"))
 
 
 def _integrals(a, b, v, w, whole=True):
@@ -196,13 +210,13 @@ def _integrals(a, b, v, w, whole=True):
     m, p = a * a + b * b * v * v, b * b * w
     k = m ** 0.5
     X = w * a * a / m
-    I = v / k * elliprf(X, 1.0, w)
+    Iw = v / k * elliprf(X, 1.0, w)
     G = p * v ** 3 / (3.0 * k ** 3) * elliprd(X, 1.0, w)
     K = Ek = None
     if whole:
         K = elliprf(0.0, p, 1.0)
         Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
-    return m, p, I, G, p * I + m * G, K, Ek
+    return m, p, Iw, G, p * Iw + m * G, K, Ek
 
 
 def _waves(a, b, v, w, j, sgn, rates=True):
@@ -236,16 +250,16 @@ def _waves(a, b, v, w, j, sgn, rates=True):
     given as Python floats. Where ``j == sgn`` everywhere (mode 1 on its growing
     branch) the complete integrals are not needed and not computed.
     """
-    m, p, I, G, Dp, K, Ek = _integrals(a, b, v, w, np.any(np.not_equal(j, sgn)))
+    m, p, Iw, G, Dp, K, Ek = _integrals(a, b, v, w, np.any(np.not_equal(j, sgn)))
     if K is None:
-        Lam, D = I, Dp
+        Lam, D = Iw, Dp
     else:
-        Lam, D = (j - sgn) * K + sgn * I, (j - sgn) * Ek + sgn * Dp
+        Lam, D = (j - sgn) * K + sgn * Iw, (j - sgn) * Ek + sgn * Dp
     if not rates:
         return Lam, D
     sa, aa = np.where(a < 0, -1.0, 1.0), abs(a)   # sign(a) (+1 at a = 0) and |a|
     Lam_d = [(v * G + aa / m) / w, sa * (b * b * v / m - aa * G) / (2.0 * b)]
-    D_d = [(v * p * (Dp - I) / w + aa * b * b) / m, sa * b * (v - aa * w * (Dp - I)) / (2.0 * m)]
+    D_d = [(v * p * (Dp - Iw) / w + aa * b * b) / m, sa * b * (v - aa * w * (Dp - Iw)) / (2.0 * m)]
     if K is not None:
         K_d = (v * (Ek - p * K) / (m * w), -a * (Ek - p * K) / (2.0 * m * b))
         Ek_d = (v * b * b * (Ek - K) / m, -a * b * w * (Ek - K) / (2.0 * m))
@@ -259,24 +273,60 @@ def _chart(psi, t, mode):
     """``(a, b, |v|, w, j, sgn, sign(t))`` of chart points, and ``d|v|/dt``."""
     a, b = np.cos(0.5 * psi), np.sin(0.5 * psi)
     sign, q = np.sign(t), _q(t)
-    v, w = np.sqrt(-np.expm1(-q)), np.exp(-q)
+    # v = sqrt(1 - exp(-q)) = |t| sqrt((1 - exp(-q)) / q / (1 - t**2)): no underflow of v ~ |t|
+    # where t**2 does (t = 1e-300 is in the chart: a rod under a load of 1e-600)
+    ratio = np.divide(-np.expm1(-q), q, out=np.ones_like(q), where=q > 0)
+    v, w = np.abs(t) * np.sqrt(ratio / ((1.0 - t) * (1.0 + t))), np.exp(-q)
     q_t = 2.0 * t / ((1.0 - t) * (1.0 + t)) ** 2
     # d|v|/dt = w q_t / (2 |v|), which tends to sign(t) where |v| ~ |t| underflows
     v_t = np.divide(w * q_t, 2.0 * v, out=np.array(sign * np.ones_like(v)), where=v != 0)
     return a, b, v, w, 2.0 * mode - 1.0, sign * np.where(a < 0, -1.0, 1.0), sign, v_t
 
 
-def _closed_form(EI, L, psi, t, mode, jacobian):
-    """:func:`clamped_pinned_regular` on checked float arrays (for solvers that keep their
-    iterates in the chart's domain, and call it thousands of times)."""
+def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: ArrayLike = 1,
+                *, jacobian: bool = True) -> RegularRod:
+    """:func:`clamped_pinned_regular` without its checks: the fast path for solvers.
+
+    A solver that keeps its iterates inside the chart's domain (``0 < psi < 2 pi``,
+    ``0 < |t| <= T_MAX``, integer ``mode >= 1``, positive ``EI`` and ``L``, shapes that
+    broadcast) and calls the closed form thousands of times saves the checks, about a third
+    of the time of a small batch. Outside that domain the result is meaningless (NaN or
+    finite garbage): check once, then call this.
+
+    Parameters
+    ----------
+    EI, L, psi, t, mode, jacobian
+        As in :func:`clamped_pinned_regular`, as float arrays (or floats).
+
+    Returns
+    -------
+    RegularRod
+
+    Examples
+    --------
+    >>> psi, t = np.array([2.0, 4.0]), np.array([0.5, -0.3])
+    >>> fast = closed_form(1.0, 1.0, psi, t, np.array([1.0, 2.0]))
+    >>> checked = clamped_pinned_regular(1.0, 1.0, psi, t, [1, 2])
+    >>> bool(np.array_equal(fast.tip, checked.tip)), fast.jacobian.shape
+    (True, (2, 5, 2))
+    """
     a, b, v, w, j, sgn, sign, v_t = _chart(psi, t, mode)
     waves = _waves(a, b, v, w, j, sgn, jacobian)
     Lam, D = waves[:2]
     vb = sign * v * b                          # k cos(phi1), signed
-    u, w2 = 1.0 - 2.0 * D / Lam, 2.0 * vb / Lam
+    growing = j == sgn      # mode 1 bending towards the force: Lambda -> 0 with the load
     cos, sin = np.cos(psi), np.sin(psi)
+    with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
+        u, w2 = 1.0 - 2.0 * D / Lam, 2.0 * vb / Lam
+        x, y = u * cos + w2 * sin, u * sin - w2 * cos
+    if np.any(growing):     # there the quotients lose every digit as the load vanishes
+        small = chart_tip(a, b, v, w)
+        du, dw = small[:2]
+        u, w2 = np.where(growing, cos + du, u), np.where(growing, sin + dw, w2)
+        x = np.where(growing, 1.0 + (du * cos + dw * sin), x)
+        y = np.where(growing, du * sin - dw * cos, y)
     L = np.asarray(L)
-    tip = L[..., None] * np.stack((u * cos + w2 * sin, u * sin - w2 * cos), axis=-1)
+    tip = L[..., None] * np.stack((x, y), axis=-1)
     R = EI * Lam ** 2 / L ** 2
     force = R[..., None] * np.stack((cos, sin), axis=-1)
     moment = 2.0 * EI * vb * Lam / L
@@ -287,11 +337,16 @@ def _closed_form(EI, L, psi, t, mode, jacobian):
     (Lam_v, Lam_psi), (D_v, D_psi) = waves[2:]
     Lam_d, D_d = (Lam_psi, Lam_v * v_t), (D_psi, D_v * v_t)
     vb_d = (0.5 * sign * v * a, sign * b * v_t)
-    J = np.empty(np.broadcast_shapes(psi.shape, t.shape, np.shape(EI), L.shape, np.shape(mode))
-                 + (5, 2))
+    J = np.empty(np.broadcast_shapes(np.shape(psi), np.shape(t), np.shape(EI), L.shape,
+                                     np.shape(mode)) + (5, 2))
     for i in range(2):
-        u_d = -2.0 * (D_d[i] * Lam - D * Lam_d[i]) / Lam ** 2
-        w2_d = 2.0 * (vb_d[i] * Lam - vb * Lam_d[i]) / Lam ** 2
+        with np.errstate(divide="ignore", invalid="ignore", under="ignore", over="ignore"):
+            u_d = -2.0 * (D_d[i] * Lam - D * Lam_d[i]) / Lam ** 2
+            w2_d = 2.0 * (vb_d[i] * Lam - vb * Lam_d[i]) / Lam ** 2
+        if np.any(growing):
+            scale = (1.0, v_t)[i]
+            u_d = np.where(growing, small[3 - i] * scale, u_d)
+            w2_d = np.where(growing, sign * small[5 - i] * scale, w2_d)
         dR = 2.0 * EI * Lam * Lam_d[i] / L ** 2
         if i == 0:   # the rotation Rot(psi) and the direction of the force depend on psi too
             u_d, w2_d = u_d + w2, w2_d - u
@@ -304,12 +359,26 @@ def _closed_form(EI, L, psi, t, mode, jacobian):
     return RegularRod(tip, force, moment, J)
 
 
-def place(rod, origin, angle):
+def _closed_form(EI, L, psi, t, mode, jacobian):
+    """The former private name of :func:`closed_form` (positional ``jacobian``), kept for the
+    callers outside :mod:`mechnum.rods` until they call :func:`closed_form`."""
+    return closed_form(EI, L, psi, t, mode, jacobian=jacobian)
+
+
+def place(rod: RegularRod, origin: ArrayLike,
+          angle: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
     """A local-frame :class:`RegularRod` clamped at ``origin`` with its tangent at ``angle``.
 
     Returns the global tip and force, and their derivatives: with respect to the chart
-    ``(psi, t)``, shape ``(..., 4, 2)`` (rows ``tip_x, tip_y, force_x, force_y``), and with
-    respect to the clamp ``angle``, shape ``(..., 4)``. The clamp moment does not change.
+    ``(psi, t)``, shape ``(..., 4, 2)`` (rows ``tip_x, tip_y, force_x, force_y``; None if the
+    rod has no Jacobian), and with respect to the clamp ``angle``, shape ``(..., 4)``. The
+    clamp moment does not change.
+
+    Raises
+    ------
+    ValueError
+        If ``rod`` is not a :class:`RegularRod`, ``origin`` has no last axis of length 2, an
+        input is not finite, or the shapes do not broadcast.
 
     Examples
     --------
@@ -318,7 +387,10 @@ def place(rod, origin, angle):
     >>> np.allclose(tip, [1.0 - rod.tip[1], rod.tip[0]]), d_chart.shape, d_angle.shape
     (True, (4, 2), (4,))
     """
-    origin, angle = _validate.array(origin, "origin"), _validate.array(angle, "angle")
+    if not isinstance(rod, RegularRod):
+        raise ValueError(f"rod must be a RegularRod, got {type(rod).__name__}")
+    origin, angle = as_vectors(origin, "origin", 2), _validate.array(angle, "angle")
+    batch_shape(rod=rod.tip.shape[:-1], origin=origin.shape[:-1], angle=angle.shape)
     c, s = np.cos(angle), np.sin(angle)
     rot = np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)   # (..., 2, 2)
     tip, force = (rot @ rod.tip[..., None])[..., 0], (rot @ rod.force[..., None])[..., 0]
@@ -331,22 +403,42 @@ def place(rod, origin, angle):
     return tip + origin, force, d_chart, d_angle
 
 
-def shape(EI, L, psi, t, mode=1, *, nodes=201):
-    """The shape of clamped-pinned rods of the chart, sampled at ``nodes`` equally spaced points.
+def _second_kind(phi, m, p, complete):
+    """``E(phi, k)`` for any real ``phi``, from ``m = k**2`` and ``p = 1 - k**2``, reduced by
+    whole periods (``E(phi + n pi) = E(phi) + 2 n E(k)``, ``complete = E(k)``)."""
+    turns = np.round(phi / np.pi)
+    r = phi - np.pi * turns
+    s, c = np.sin(r), np.cos(r)
+    delta2 = c * c + p * s * s
+    return (2.0 * turns * complete + s * elliprf(c * c, delta2, 1.0)
+            - m / 3.0 * s ** 3 * elliprd(c * c, delta2, 1.0))
 
-    Along the rod ``F(phi, k) = F(phi1, k) + lambda s`` gives the amplitude ``phi = am(.)``
-    (scipy's ``ellipj``), and the study's (86), (87), (37) and (42) the position, tangent
-    angle and moment (local frame). Unlike an RK4 integration from the clamp, which amplifies
-    its errors by ``cosh(lambda L)``, this stays accurate for rods in any tension (scipy's
-    parameter ``m = k**2`` is rounded, an error of order ``1 - k**2 + 1e-16``, far below what
-    a drawing or a second variation needs).
+
+def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: ArrayLike = 1, *,
+          nodes: int = 201) -> Rod:
+    """Clamped-pinned rods of the chart sampled at ``nodes`` equally spaced points, accurate in
+    any tension and at any load (local frame: clamp at the origin, tangent along +x).
+
+    Along the rod ``F(phi, k) = F(phi1, k) + lambda s`` gives the amplitude ``phi``, and the
+    study's (86), (87), (37) and (42) the position, tangent angle and moment. Every quantity
+    comes from the complementary modulus ``k' = sqrt(1 - k**2)``, which the chart gives to full
+    precision: the amplitude from :func:`mechnum.rods.jacobi.amplitude`, ``E(phi, k)`` in
+    Carlson's form with ``1 - k**2 sin(phi)**2 = cos(phi)**2 + k'**2 sin(phi)**2`` and the
+    tangent angle as ``psi - 2 atan2(dn, k sin(phi))`` with ``dn = sqrt(1 - k**2 sin(phi)**2)``
+    (where ``arccos(k sin(phi))`` would lose half the digits as ``k sin(phi) -> 1``). The
+    rods of the growing branch of mode 1 under a load ``lambda L <`` :data:`SMALL_LOAD`,
+    whose positions the study's formulas find as differences of nearly equal integrals divided
+    by ``lambda`` (all digits lost as the load tends to zero), are drawn in the cantilever's
+    chart instead (:func:`mechnum.rods.growing.branch_shape`). The clamp is at the origin
+    and the last node at :func:`clamped_pinned_regular`'s tip, exactly.
 
     Parameters
     ----------
     EI, L, psi, t, mode
         As in :func:`clamped_pinned_regular`.
     nodes : int, optional
-        Points per rod, clamp and tip included.
+        Points per rod, clamp and tip included, ``2 <= nodes <=``
+        :data:`~mechnum.rods.rod.MAX_NODES`.
 
     Returns
     -------
@@ -355,38 +447,47 @@ def shape(EI, L, psi, t, mode=1, *, nodes=201):
 
     Examples
     --------
-    >>> rod = shape(1.0, 1.0, 2.0, -0.6, 2, nodes=101)
-    >>> tip = clamped_pinned_regular(1.0, 1.0, 2.0, -0.6, 2).tip
-    >>> bool(np.abs(rod.tip - tip).max() < 1e-12), float(rod.theta[0]), bool(abs(rod.m[-1]) < 1e-12)
-    (True, 0.0, True)
+    A rod with ``1 - k**2 ~ 1e-26``, its tip force 60 N (EI = 0.0522 N m^2): the profile ends
+    at the closed form's tip with no moment.
+
+    >>> rod = shape(0.0522, 1.0, 6.0288, 0.9912, nodes=401)
+    >>> tip = clamped_pinned_regular(0.0522, 1.0, 6.0288, 0.9912).tip
+    >>> bool(np.abs(rod.tip - tip).max() < 1e-12), bool(abs(rod.m[-1]) < 1e-12)
+    (True, True)
     """
-    EI, L = _validate.positive(EI, "EI"), _validate.positive(L, "L")
-    psi, t = _check(psi, t)
-    mode = _validate.array(mode, "mode")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-    end = _closed_form(EI, L, psi, t, mode, False)
+    EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
+    end = closed_form(EI, L, psi, t, mode, jacobian=False)
     psi, t, EI, L, mode = np.broadcast_arrays(psi, t, EI, L, mode)
-    a, b, v, w, _, sgn, sign, _ = _chart(psi, t, mode)
-    m, p, I, _, Dp, K, Ek = _integrals(a, b, v, w)
-    F1, E1 = sgn * (K - I), sgn * (Ek - Dp)      # F(phi1, k), E(phi1, k)
-    k, c1 = sign * np.sqrt(m), v * b / np.sqrt(m)
-    lam = np.sqrt(np.hypot(*np.moveaxis(end.force, -1, 0)) / EI)
+    a, b, v, w, j, sgn, sign, _ = _chart(psi, t, mode)
+    p, m = b * b * w, a * a + v * v * b * b                    # 1 - k**2 and k**2
+    k = sign * np.sqrt(m)
+    s1, c1 = sign * a / np.abs(k), v * b / np.abs(k)            # sin, cos of phi1
+    F1 = s1 * elliprf(c1 * c1, b * b, 1.0)
+    E1 = F1 - m / 3.0 * s1 ** 3 * elliprd(c1 * c1, b * b, 1.0)
+    K = elliprf(0.0, p, 1.0)
+    Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
+    lam = np.sqrt(np.hypot(end.force[..., 0], end.force[..., 1]) / EI)
     s = np.linspace(0.0, 1.0, nodes) * L[..., None]
-    ex = [np.asarray(x)[..., None] for x in (psi, k, m, F1, E1, lam, c1, EI)]
-    psi_, k_, m_, F1_, E1_, lam_, c1_, EI_ = ex
-    # reduce u = F1 + lambda s by whole periods 2 K (from the accurate 1 - k**2) before
-    # scipy's am and E, which see m = k**2 rounded and, at m = 1, an infinite period
-    u = F1_ + lam_ * s
-    turns = np.round(u / (2 * K[..., None]))
-    phi_r = ellipj(u - 2 * turns * K[..., None], np.minimum(m_, 1.0))[3]
-    phi = phi_r + np.pi * turns
-    dE = 2 * turns * Ek[..., None] + ellipeinc(phi_r, np.minimum(m_, 1.0)) - E1_
+    psi_, k_, m_, p_, E1_, c1_, lam_, Ek_, EI_ = (np.asarray(x)[..., None] for x in (
+        psi, k, m, p, E1, c1, lam, Ek, EI))
+    phi = amplitude(F1[..., None] + lam_ * s, k_, np.sqrt(p_))
+    dE = _second_kind(phi, m_, p_, Ek_) - E1_
     dC = np.cos(phi) - c1_
-    x = -(np.cos(psi_) * (2 * dE - lam_ * s) + 2 * k_ * np.sin(psi_) * dC) / lam_
-    y = -(np.sin(psi_) * (2 * dE - lam_ * s) - 2 * k_ * np.cos(psi_) * dC) / lam_
-    theta = psi_ - 2 * np.arccos(np.clip(k_ * np.sin(phi), -1.0, 1.0))
+    with np.errstate(divide="ignore", invalid="ignore"):   # replaced below where lam is 0
+        x = -(np.cos(psi_) * (2 * dE - lam_ * s) + 2 * k_ * np.sin(psi_) * dC) / lam_
+        y = -(np.sin(psi_) * (2 * dE - lam_ * s) - 2 * k_ * np.cos(psi_) * dC) / lam_
+    sin_phi = np.sin(phi)
+    dn = np.sqrt(np.cos(phi) ** 2 + p_ * sin_phi ** 2)
+    theta = psi_ - 2 * np.arctan2(dn, k_ * sin_phi)
     moment = 2 * EI_ * k_ * lam_ * np.cos(phi)
-    # the ends exactly: the clamp and the closed-form tip (the profile is continuous)
+    small = (j == sgn) & (lam * L < SMALL_LOAD)
+    for i in np.ndindex(small.shape):
+        if not small[i]:
+            continue
+        x[i], y[i], theta[i], moment[i] = branch_shape(
+            float(EI[i]), float(L[i]), float(psi[i]), float(v[i]), float(w[i]),
+            float(lam[i] * L[i]), nodes).T
     x[..., 0] = y[..., 0] = theta[..., 0] = 0.0
     x[..., -1], y[..., -1] = end.tip[..., 0], end.tip[..., 1]
     return Rod(np.broadcast_to(s, x.shape), x, y, theta, moment, end.force)

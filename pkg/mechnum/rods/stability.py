@@ -31,12 +31,20 @@ optimisation (Nocedal and Wright, *Numerical Optimization*, 2006, Theorem 12.6);
 Maddocks, *Stability and folds*, Arch. Rational Mech. Anal. 99 (1987) 301-328.
 """
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import null_space, solve_banded
+from numpy.typing import ArrayLike
+from scipy.linalg import LinAlgError, eigvalsh_tridiagonal, null_space, solve_banded
 
 from mechnum import _validate
+from mechnum.errors import SingularJacobianError
+from mechnum.rods.rod import rod_scales
+
+SYMMETRY_TOL = 1e-10
+"""Largest asymmetry ``|H - H^T|`` accepted, relative to ``H``'s largest entry: a Hessian
+assembled in floating point is symmetric to rounding; more is an error of assembly."""
 
 
 class TwoResolutions:
@@ -56,12 +64,12 @@ class TwoResolutions:
     """
 
     @property
-    def stable(self):
+    def stable(self) -> np.ndarray:
         """ndarray of bool, shape (n,): stable at both resolutions."""
         return (self.index == 0).all(axis=1)
 
     @property
-    def settled(self):
+    def settled(self) -> np.ndarray:
         """ndarray of bool, shape (n,): both resolutions give the same index."""
         return self.index[:, 0] == self.index[:, 1]
 
@@ -89,13 +97,13 @@ class RodBlock:
     h: float
 
     @property
-    def hessian(self):
+    def hessian(self) -> np.ndarray:
         """ndarray, shape (N, N): the Hessian as a dense matrix."""
         return (np.diag(self.diagonal) + np.diag(self.off_diagonal, 1)
                 + np.diag(self.off_diagonal, -1))
 
 
-def rod_block(EI, L, theta, force):
+def rod_block(EI: float, L: float, theta: ArrayLike, force: ArrayLike) -> RodBlock:
     """The discretised second variation of one rod, from its angles at the segment midpoints.
 
     Parameters
@@ -123,7 +131,7 @@ def rod_block(EI, L, theta, force):
            [ 0., -1.,  2., -1.],
            [ 0.,  0., -1.,  1.]])
     """
-    EI, L = _validate.scalar(EI, "EI", positive=True), _validate.scalar(L, "L", positive=True)
+    EI, L = rod_scales(EI, L, scalar=True)
     theta = _validate.array(theta, "theta", ndim=1)
     force = _validate.array(force, "force", shape=(2,))
     segments = _validate.maxiter(len(theta), "the number of segments", minimum=2)
@@ -136,7 +144,29 @@ def rod_block(EI, L, theta, force):
                     np.full(segments - 1, -EI / h), h * np.stack((-s, c)), h)
 
 
-def constrained_eigenvalues(hessian, constraints):
+def symmetric(matrix: ArrayLike, name: str) -> np.ndarray:
+    """``matrix`` as a finite square float array, checked symmetric to :data:`SYMMETRY_TOL`.
+
+    Examples
+    --------
+    >>> symmetric([[1.0, 2.0], [2.0, 1.0]], "hessian").shape
+    (2, 2)
+    >>> symmetric([[1.0, 2.0], [0.0, 1.0]], "hessian")
+    Traceback (most recent call last):
+    ...
+    ValueError: hessian must be symmetric: |H - H^T| = 2 against its largest entry 2
+    """
+    matrix = _validate.array(matrix, name, ndim=2)
+    if matrix.shape[0] != matrix.shape[1]:
+        raise ValueError(f"{name} must be square, got shape {matrix.shape}")
+    gap, size = np.abs(matrix - matrix.T).max(initial=0.0), np.abs(matrix).max(initial=0.0)
+    if gap > SYMMETRY_TOL * size:
+        raise ValueError(f"{name} must be symmetric: |H - H^T| = {gap:.3g} against its largest "
+                         f"entry {size:.3g}")
+    return matrix
+
+
+def constrained_eigenvalues(hessian: ArrayLike, constraints: ArrayLike) -> np.ndarray:
     """Eigenvalues of a Hessian on the null space of the constraints' Jacobian.
 
     Parameters
@@ -157,7 +187,8 @@ def constrained_eigenvalues(hessian, constraints):
     Raises
     ------
     ValueError
-        If the shapes do not match.
+        If the shapes do not match, or the Hessian is not symmetric (to
+        :data:`SYMMETRY_TOL`).
 
     Examples
     --------
@@ -166,27 +197,67 @@ def constrained_eigenvalues(hessian, constraints):
     >>> constrained_eigenvalues([[2.0, 0.0], [0.0, -2.0]], [[0.0, 1.0]])
     array([2.])
     """
-    hessian = _validate.array(hessian, "hessian", ndim=2)
+    hessian = symmetric(hessian, "hessian")
     constraints = _validate.array(constraints, "constraints", ndim=2)
     n = hessian.shape[0]
-    if hessian.shape != (n, n) or constraints.shape[1] != n or constraints.shape[0] >= n:
+    if constraints.shape[1] != n or constraints.shape[0] >= n:
         raise ValueError(f"hessian {hessian.shape} and constraints {constraints.shape} must be "
                          f"(n, n) and (c, n) with c < n")
     Z = null_space(constraints)    # dependent rows (a straight rod's axial tip) drop out
-    return np.linalg.eigvalsh(Z.T @ hessian @ Z)
+    return np.linalg.eigvalsh(Z.T @ (0.5 * (hessian + hessian.T)) @ Z)
 
 
-def _negative_pivots(diagonal, off_diagonal):
-    """Negative eigenvalues of a symmetric tridiagonal matrix: the negative pivots of its
-    ``L D L^T`` factorisation (Sylvester's law of inertia)."""
-    count, pivot = 0, diagonal[0]
-    for a, b in zip(diagonal[1:], off_diagonal):
-        count += pivot < 0
-        pivot = a - b * b / pivot
-    return int(count + (pivot < 0))
+def block_terms(blocks: Sequence[RodBlock], constraints: np.ndarray) -> tuple[int, np.ndarray]:
+    """The rods' part of an index count: ``neg(H_r)`` and ``G_r H_r^-1 G_r^T``.
+
+    ``blocks`` are :class:`RodBlock` s whose angles are the first columns of ``constraints``
+    (shape ``(c, >= sum of N)``), in order. The negative eigenvalues of each tridiagonal block
+    are counted by LAPACK's bisection (no division by a pivot), ``H_r^-1 G_r^T`` comes from
+    banded solves: ``O(N)`` work per rod.
+
+    Raises
+    ------
+    ValueError
+        If a block is not a :class:`RodBlock`, or the constraints have too few columns.
+    SingularJacobianError
+        If a block is singular (the count is then undecided: use
+        :func:`constrained_eigenvalues`).
+
+    Examples
+    --------
+    A column pushed by ``21 EI / L**2``, beyond the free rod's Euler load ``2.47`` but below its
+    second, ``22.2``: one negative direction of the free rod.
+
+    >>> block = rod_block(1.0, 1.0, np.zeros(50), [-21.0, 0.0])
+    >>> negative, S = block_terms([block], block.tip_gradient)
+    >>> negative, S.shape
+    (1, (2, 2))
+    """
+    if not all(isinstance(block, RodBlock) for block in blocks):
+        raise ValueError(f"blocks must be RodBlocks (from rod_block), got "
+                         f"{[type(b).__name__ for b in blocks]}")
+    sizes = [len(b.diagonal) for b in blocks]
+    if constraints.shape[1] < sum(sizes):
+        raise ValueError(f"constraints have {constraints.shape[1]} columns for {sum(sizes)} "
+                         f"angles")
+    negative, S, start = 0, np.zeros((len(constraints), len(constraints))), 0
+    for i, (block, n) in enumerate(zip(blocks, sizes)):
+        negative += len(eigvalsh_tridiagonal(block.diagonal, block.off_diagonal, select="v",
+                                             select_range=(-np.inf, 0.0)))
+        bands = np.zeros((3, n))
+        bands[0, 1:], bands[1], bands[2, :-1] = (block.off_diagonal, block.diagonal,
+                                                 block.off_diagonal)
+        g = constraints[:, start:start + n]
+        try:
+            S += g @ solve_banded((1, 1), bands, g.T)
+        except LinAlgError:
+            raise SingularJacobianError(f"the Hessian of rod {i} is singular: its index is "
+                                        f"undecided (use constrained_eigenvalues)") from None
+        start += n
+    return negative, S
 
 
-def constrained_index(blocks, constraints):
+def constrained_index(blocks: Sequence[RodBlock], constraints: ArrayLike) -> int:
     """The index (negative eigenvalues on the constraints' null space) of rods' Hessians.
 
     For a Hessian ``H`` made of the tridiagonal blocks of :func:`rod_block` (the rods'
@@ -210,6 +281,13 @@ def constrained_index(blocks, constraints):
     -------
     int
 
+    Raises
+    ------
+    ValueError
+        If a block is not a :class:`RodBlock` or the shapes do not match.
+    SingularJacobianError
+        If a rod's Hessian is singular (its count is undecided).
+
     Examples
     --------
     A clamped column whose tip is pinned buckles at ``P L**2 / EI = 20.19``:
@@ -219,17 +297,9 @@ def constrained_index(blocks, constraints):
     [0, 1]
     """
     G = _validate.array(constraints, "constraints", ndim=2)
-    sizes = [len(b.diagonal) for b in blocks]
-    if G.shape[1] != sum(sizes):
-        raise ValueError(f"constraints have {G.shape[1]} columns for {sum(sizes)} angles")
-    negative, S, start = 0, np.zeros((len(G), len(G))), 0
-    for block, n in zip(blocks, sizes):
-        negative += _negative_pivots(block.diagonal, block.off_diagonal)
-        bands = np.zeros((3, n))
-        bands[0, 1:], bands[1], bands[2, :-1] = (block.off_diagonal, block.diagonal,
-                                                 block.off_diagonal)
-        g = G[:, start:start + n]
-        S += g @ solve_banded((1, 1), bands, g.T)
-        start += n
+    negative, S = block_terms(blocks, G)
+    if G.shape[1] != sum(len(b.diagonal) for b in blocks):
+        raise ValueError(f"constraints have {G.shape[1]} columns for "
+                         f"{sum(len(b.diagonal) for b in blocks)} angles")
     rank = np.linalg.matrix_rank(G)
     return int(negative + np.sum(np.linalg.eigvalsh(S) > 0) - rank)

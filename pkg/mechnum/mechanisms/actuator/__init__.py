@@ -9,8 +9,10 @@ when
 .. math:: (a + l)\\,e^{i\\theta_2} = O_4 + b\\,e^{i\\theta_4},
 
 where ``a(t) = 0.6 + 0.02 sin(2 pi t)`` m is the cylinder's stroke, the one degree of freedom. The
-annex solves the loop from the triangle ``O2 O4 A`` (:func:`positions`); :func:`solve_loop`
-solves the same two equations by :func:`mechnum.newton.solve`.
+annex solves the loop from the triangle ``O2 O4 A`` (:func:`forward`, both assembly modes;
+:func:`positions`, the annex's); :func:`solve_loop` solves the same two equations by
+:func:`mechnum.newton.solve`. :func:`inverse` gives the stroke of a rocker angle, and
+:func:`singular_points` the strokes of the dead points.
 
 Every angular velocity is proportional to the stroke rate: ``omega_j = k_j(a) a_dot``, where
 ``k_j = d theta_j / d a`` is a *velocity coefficient*, and ``eps_j = k_j a_ddot + k_j' a_dot**2``.
@@ -45,6 +47,16 @@ centroidal inertia ``I_G4 = g4**2 m2 / 3`` uses the barrel's mass ``m2`` (printe
 confirms it), and its centre of mass lies ``g4 = 0.6`` m from ``O4`` though the crank ``b`` is
 0.25 m long. Gravity is Mathcad's built-in ``g = 9.80665`` m/s**2, the only value that reproduces
 the printed ``Q(0) = 43.14926`` N.
+
+Every function takes the mechanism, an :class:`Actuator`, first (``f(mech, inputs, ...)``);
+the stroke ``a`` (or the time ``t``) is the input, and a state, what :func:`draw` draws, is the
+pair ``(a, (theta2, theta4))``. The orders of version 0.1, with the mechanism after the stroke,
+are deprecated (CHANGELOG.md). The modules: :mod:`~mechnum.mechanisms.actuator.model` (the
+parameters), :mod:`~mechnum.mechanisms.actuator.loop` (positions and the loop equations),
+:mod:`~mechnum.mechanisms.actuator.velocities` (velocity coefficients, partial velocities),
+:mod:`~mechnum.mechanisms.actuator.dynamics` (the force, the energy, forward dynamics),
+:mod:`~mechnum.mechanisms.actuator.drawing` and :mod:`~mechnum.mechanisms.actuator.annex`
+(the study's numbers).
 """
 
 from mechnum.mechanisms.actuator.annex import reproduce
@@ -61,21 +73,29 @@ from mechnum.mechanisms.actuator.dynamics import (
     virtual_power_force,
 )
 from mechnum.mechanisms.actuator.loop import (
+    MODES,
+    forward,
+    inverse,
+    loop_jacobian,
+    loop_residual,
+    positions,
+    singular_points,
+    solve_loop,
+)
+from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator
+from mechnum.mechanisms.actuator.velocities import (
+    MODELS,
     Kinematics,
     PartialVelocities,
     centres_of_mass,
     kinematics,
-    loop_jacobian,
-    loop_residual,
     partial_velocities,
-    positions,
-    solve_loop,
     stroke_kinematics,
 )
-from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator
 
-__all__ = ["G_MATHCAD", "Actuator", "ANNEX", "positions", "loop_residual", "loop_jacobian",
-           "solve_loop", "Kinematics", "stroke_kinematics", "kinematics", "centres_of_mass",
+__all__ = ["G_MATHCAD", "Actuator", "ANNEX", "MODES", "MODELS", "forward", "positions",
+           "inverse", "singular_points", "loop_residual", "loop_jacobian", "solve_loop",
+           "Kinematics", "stroke_kinematics", "kinematics", "centres_of_mass",
            "PartialVelocities", "partial_velocities", "virtual_power_force", "kane_force",
            "LagrangeTerms", "lagrange_terms", "lagrange_force", "Energy", "energy",
            "ForwardDynamics", "forward_dynamics", "draw", "reproduce"]

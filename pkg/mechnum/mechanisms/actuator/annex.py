@@ -3,8 +3,8 @@
 import numpy as np
 
 from mechnum.mechanisms.actuator.dynamics import lagrange_force, virtual_power_force
-from mechnum.mechanisms.actuator.loop import kinematics
 from mechnum.mechanisms.actuator.model import ANNEX
+from mechnum.mechanisms.actuator.velocities import kinematics
 
 # The cylinder's bore and rod radii (m), printed only inside the annulus area S.
 _BORE_RADIUS, _ROD_RADIUS = 0.016, 0.008
@@ -15,7 +15,7 @@ _ANNEX_FORCE_SCALE = 29.0
 _PRINTED_INSTANTS = (0.0, 0.01, 0.25, 0.75)  # where the annex prints Q_dd (s)
 
 
-def reproduce():
+def reproduce() -> dict[str, float]:
     """Every number of the annex, recomputed; keys are the registry's ``quantity`` column.
 
     Kinematics as the annex approximates them, ``g = 9.80665``, on the annex's grid
@@ -32,7 +32,7 @@ def reproduce():
     0.0132088
     """
     mech = ANNEX
-    kin = kinematics(_ANNEX_GRID, mech, "annex")
+    kin = kinematics(mech, _ANNEX_GRID, "annex")
     q_di = virtual_power_force(kin)
     q_dd = lagrange_force(kin)
     slip = float(np.max(np.abs(lagrange_force(kin, annex_slip=True) - q_di)))

@@ -6,29 +6,33 @@ Lagrange's equation (:func:`lagrange_force`) share the velocity coefficients and
 Lagrange's equation by RK4: the motion that a given force produces.
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate
-from mechnum.mechanisms.actuator.loop import (  # kinematics: for the examples
-    _MODELS,
-    _kinematics,
-    _stroke_kinematics,
+from mechnum import _deprecated, _validate
+from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator, checked
+from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the examples
+    MODELS,
+    Kinematics,
     centres_of_mass,
+    checked_kinematics,
     kinematics,  # noqa: F401
+    kinematics_at,
     partial_velocities,
     stroke_kinematics,  # noqa: F401
 )
-from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, _mechanism
 from mechnum.ode import rk4
+
 
 def _per_link(values, kin):
     """The three links' constants shaped to broadcast against arrays of shape (3,) + a.shape."""
     return np.reshape(values, (3,) + (1,) * kin.a.ndim)
 
 
-def kane_force(kin, g=G_MATHCAD):
+def kane_force(kin: Kinematics, g: float = G_MATHCAD) -> np.ndarray:
     """Actuator force by Kane's equations.
 
     Kane's equation for the generalised speed ``a_dot`` is ``F + F* = 0``: the generalised active
@@ -57,10 +61,10 @@ def kane_force(kin, g=G_MATHCAD):
 
     Examples
     --------
-    >>> round(float(kane_force(kinematics(0.0))), 5)
+    >>> round(float(kane_force(kinematics(ANNEX, 0.0))), 5)
     43.14926
     """
-    kin, g = _kinematics(kin), _validate.scalar(g, "g")
+    kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
     pv = partial_velocities(kin)
     mass = _per_link([kin.mech.m2, kin.mech.m3, kin.mech.m4], kin)
     inertia = _per_link(kin.mech.inertias, kin)
@@ -71,7 +75,8 @@ def kane_force(kin, g=G_MATHCAD):
     return np.sum(inertia_force + mass * g * pv.v.imag, axis=0)
 
 
-def virtual_power_force(kin, g=G_MATHCAD, divide_by_rate=False):
+def virtual_power_force(kin: Kinematics, g: float = G_MATHCAD,
+                        divide_by_rate: bool = False) -> np.ndarray:
     """Actuator force by virtual power, the annex's ``Q_di``.
 
     The accelerations of the centres of mass follow the relative-motion formulas, as the annex
@@ -110,14 +115,14 @@ def virtual_power_force(kin, g=G_MATHCAD, divide_by_rate=False):
 
     Examples
     --------
-    >>> round(float(virtual_power_force(kinematics(0.0))), 5)
+    >>> round(float(virtual_power_force(kinematics(ANNEX, 0.0))), 5)
     43.14926
-    >>> kin = kinematics(0.25)                 # at rest: Mathcad's cos(pi/2) is not 0 either
+    >>> kin = kinematics(ANNEX, 0.25)                 # at rest: Mathcad's cos(pi/2) is not 0 either
     >>> float(kin.a_dot) != 0, round(float(virtual_power_force(kin, divide_by_rate=True)), 5)
     (True, 29.35295)
     """
-    kin, g = _kinematics(kin), _validate.scalar(g, "g")
-    _validate.choice(divide_by_rate, (True, False), "divide_by_rate")
+    kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
+    divide_by_rate = _validate.flag(divide_by_rate, "divide_by_rate")
     m = kin.mech
     e2, e4 = np.exp(1j * kin.theta2), np.exp(1j * kin.theta4)
     w2, w4, eps2, eps4, r3 = kin.omega2, kin.omega4, kin.eps2, kin.eps4, kin.a + m.g3
@@ -156,7 +161,8 @@ class LagrangeTerms:
     potential_slope: np.ndarray
 
 
-def lagrange_terms(kin, g=G_MATHCAD, annex_slip=False):
+def lagrange_terms(kin: Kinematics, g: float = G_MATHCAD,
+                   annex_slip: bool = False) -> "LagrangeTerms":
     """Generalised mass, its slope, and the slope of the potential, at the strokes of ``kin``.
 
     With the stroke ``a`` as generalised coordinate, ``T = M(a) a_dot**2 / 2``, where::
@@ -190,12 +196,12 @@ def lagrange_terms(kin, g=G_MATHCAD, annex_slip=False):
 
     Examples
     --------
-    >>> terms = lagrange_terms(stroke_kinematics(0.6))      # rocker crank at right angles
+    >>> terms = lagrange_terms(stroke_kinematics(ANNEX, 0.6))      # rocker crank at right angles
     >>> round(float(terms.mass), 6), round(float(terms.potential_slope / G_MATHCAD), 6)
     (17.36, 4.4)
     """
-    kin, g = _kinematics(kin), _validate.scalar(g, "g")
-    return _lagrange_terms(kin, g, _validate.choice(annex_slip, (True, False), "annex_slip"))
+    kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
+    return _lagrange_terms(kin, g, _validate.flag(annex_slip, "annex_slip"))
 
 
 def _lagrange_terms(kin, g, annex_slip=False):
@@ -212,7 +218,8 @@ def _lagrange_terms(kin, g, annex_slip=False):
     return LagrangeTerms(mass, slope, potential)
 
 
-def lagrange_force(kin, g=G_MATHCAD, annex_slip=False):
+def lagrange_force(kin: Kinematics, g: float = G_MATHCAD,
+                   annex_slip: bool = False) -> np.ndarray:
     """Actuator force by Lagrange's equation, the annex's ``Q_dd``.
 
     ``Q = d/dt dT/da_dot - dT/da + dV/da = M a_ddot + M' a_dot**2 / 2 + V'``, with the terms of
@@ -240,7 +247,7 @@ def lagrange_force(kin, g=G_MATHCAD, annex_slip=False):
 
     Examples
     --------
-    >>> kin = kinematics([0.0, 0.25])
+    >>> kin = kinematics(ANNEX, [0.0, 0.25])
     >>> np.round(lagrange_force(kin), 5).tolist()
     [43.14926, 29.35295]
     """
@@ -267,7 +274,7 @@ class Energy:
         return self.kinetic + self.potential
 
 
-def energy(kin, g=G_MATHCAD):
+def energy(kin: Kinematics, g: float = G_MATHCAD) -> "Energy":
     """Kinetic and potential energy, from the partial velocities and the positions.
 
     ``T = sum_i (m_i |J_i|**2 + I_Gi k_i**2) a_dot**2 / 2`` and ``V = g sum_i m_i y_Gi``.
@@ -292,11 +299,11 @@ def energy(kin, g=G_MATHCAD):
 
     Examples
     --------
-    >>> e = energy(kinematics(0.0))
+    >>> e = energy(kinematics(ANNEX, 0.0))
     >>> round(float(e.kinetic), 6), round(float(e.potential), 5)
     (0.137069, 40.20726)
     """
-    kin, g = _kinematics(kin), _validate.scalar(g, "g")
+    kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
     pv = partial_velocities(kin)
     mass = _per_link([kin.mech.m2, kin.mech.m3, kin.mech.m4], kin)
     inertia = _per_link(kin.mech.inertias, kin)
@@ -321,7 +328,9 @@ class ForwardDynamics:
     a_dot: np.ndarray
 
 
-def forward_dynamics(force, t, a0, v0, mech=ANNEX, model="exact", g=G_MATHCAD):
+@_deprecated.mech_moved(Actuator, to=4, name="mech", default=ANNEX)
+def forward_dynamics(mech: Actuator, force: Callable, t: ArrayLike, a0: float, v0: float,
+                     model: str = "exact", g: float = G_MATHCAD) -> ForwardDynamics:
     """The motion that a given actuator force produces, by RK4 (forward dynamics).
 
     Lagrange's equation solved for the acceleration,
@@ -330,6 +339,7 @@ def forward_dynamics(force, t, a0, v0, mech=ANNEX, model="exact", g=G_MATHCAD):
 
     Parameters
     ----------
+    mech : Actuator
     force : callable
         ``force(t) -> float``: the actuator force ``Q`` (N) at time ``t`` (s); it is called at
         the nodes and halfway between them.
@@ -337,8 +347,6 @@ def forward_dynamics(force, t, a0, v0, mech=ANNEX, model="exact", g=G_MATHCAD):
         The nodes (s), ``N >= 2``, strictly monotone.
     a0, v0 : float
         Stroke (m) and rate (m/s) at ``t[0]``.
-    mech : Actuator, optional
-        The mechanism.
     model : {"exact", "annex"}, optional
         The velocity coefficients of ``M`` and ``V'`` (:func:`stroke_kinematics`).
     g : float, optional
@@ -362,20 +370,20 @@ def forward_dynamics(force, t, a0, v0, mech=ANNEX, model="exact", g=G_MATHCAD):
 
     >>> t = np.linspace(0.0, 1.0, 101)
     >>> a0, v0, _ = ANNEX.stroke(0.0)
-    >>> motion = forward_dynamics(lambda s: lagrange_force(kinematics(s)), t, a0, v0)
+    >>> motion = forward_dynamics(ANNEX, lambda s: lagrange_force(kinematics(ANNEX, s)), t, a0, v0)
     >>> bool(np.max(np.abs(motion.a - ANNEX.stroke(t)[0])) < 1e-8)
     True
     """
     if not callable(force):
-        raise ValueError(f"force must be a callable force(t), got {_validate._shown(force)}")
+        raise ValueError(f"force must be a callable force(t), got {force!r:.80}")
     t = _validate.array(t, "t", ndim=1)
     y0 = np.array([_validate.scalar(a0, "a0"), _validate.scalar(v0, "v0")])
-    mech, g = _mechanism(mech), _validate.scalar(g, "g")
-    model = _validate.choice(model, _MODELS, "model")
+    mech, g = checked(mech), _validate.scalar(g, "g")
+    model = _validate.choice(model, MODELS, "model")
 
     def rate(time, y):
         q = _validate.scalar(force(time), "force(t)")
-        terms = _lagrange_terms(_stroke_kinematics(y[0], y[1], 0.0, mech, model), g)
+        terms = _lagrange_terms(kinematics_at(mech, y[0], y[1], 0.0, model), g)
         acc = (q - 0.5 * terms.mass_slope * y[1] ** 2 - terms.potential_slope) / terms.mass
         return np.array([y[1], acc])
 

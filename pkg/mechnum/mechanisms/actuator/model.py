@@ -8,6 +8,7 @@ so that a mechanism built with another mass gets its inertia from it.
 from dataclasses import dataclass, field, fields
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError
@@ -22,7 +23,8 @@ _MAY_BE_ZERO = ("o2", "o4", "li", "e", "g3", "amplitude")
 
 @dataclass(frozen=True)
 class Actuator:
-    """Geometry, masses, inertias and stroke law of the actuator mechanism (SI units).
+    """The actuator mechanism: its geometry, masses, inertias and stroke law (SI units), the
+    first argument of every function of the package.
 
     Attributes
     ----------
@@ -55,8 +57,8 @@ class Actuator:
     ValueError
         If a parameter is not a finite real number.
     GeometryError
-        If a length, mass or frequency is not positive, an inertia is negative, or the
-        pivots coincide.
+        If a length, mass or frequency is not positive, an inertia is negative, the pivots
+        coincide, or the cylinder's upper end ``ls`` is not above its lower stop ``li``.
 
     Examples
     --------
@@ -104,6 +106,9 @@ class Actuator:
                 raise GeometryError(f"{f.name} must be positive, got {value!r}")
         if self.d == 0:
             raise GeometryError("the pivots O2 and O4 coincide (o2 = o4 = 0)")
+        if not self.ls > self.li:
+            raise GeometryError(f"the cylinder's upper end ls = {self.ls!r} m must lie above "
+                                f"its lower stop li = {self.li!r} m")
         bars = (self.m2 * (2 * self.g2) ** 2 / 12, self.m3 * self.l**2 / 12,
                 self.m4 * (2 * self.g4) ** 2 / 12)
         given = (self.Ig2, self.Ig3, self.Ig4)
@@ -111,31 +116,31 @@ class Actuator:
                            tuple(bar if i is None else i for bar, i in zip(bars, given)))
 
     @property
-    def d(self):
+    def d(self) -> float:
         """Distance between the ground pivots ``O2`` and ``O4``."""
         return float(np.hypot(self.o2, self.o4))
 
     @property
-    def Io2(self):
+    def Io2(self) -> float:
         """Moment of inertia of the barrel about ``O2``."""
         return self.inertias[0] + self.m2 * self.g2**2
 
     @property
-    def Io4(self):
+    def Io4(self) -> float:
         """Moment of inertia of the rocker about ``O4``."""
         return self.inertias[2] + self.m4 * self.g4**2
 
     @property
-    def hs(self):
+    def hs(self) -> float:
         """Upper clearance of the piston at ``a0``: ``ls - e/2 - a0``."""
         return self.ls - self.e / 2 - self.a0
 
     @property
-    def hi(self):
+    def hi(self) -> float:
         """Lower clearance of the piston at ``a0``: ``a0 - e/2 - li``."""
         return self.a0 - self.e / 2 - self.li
 
-    def stroke(self, t):
+    def stroke(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The stroke ``a(t)`` and its first two time derivatives.
 
         Parameters
@@ -164,7 +169,16 @@ ANNEX = Actuator(Ig4=Actuator.g4**2 * Actuator.m2 / 3)  # the annex: m2 where m4
 """The mechanism as the annex prints it: ``I_G4 := g4**2 m2 / 3``, with the barrel's mass."""
 
 
-def _mechanism(mech):
+def checked(mech: object) -> Actuator:
+    """``mech`` if it is an :class:`Actuator`; else :class:`ValueError` naming it.
+
+    Examples
+    --------
+    >>> checked(None)
+    Traceback (most recent call last):
+    ...
+    ValueError: mech must be an Actuator, got None
+    """
     if not isinstance(mech, Actuator):
-        raise ValueError(f"mech must be an Actuator, got {_validate._shown(mech)}")
+        raise ValueError(f"mech must be an Actuator, got {mech!r:.80}")
     return mech

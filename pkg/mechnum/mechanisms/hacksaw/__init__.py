@@ -27,9 +27,13 @@ The motor starts from rest with a jerk-limited profile: the angular acceleration
 ``alpha_max`` over ``T/3``, holds for ``T/3`` and falls back to zero over ``T/3``, where ``T`` is
 the time of the first revolution; the speed is constant afterwards.
 
-Every public function checks its input (finite real arrays of the right shapes, a
-:class:`Geometry`, known options) and raises :class:`ValueError` naming the argument; the
-solvers work on the unchecked private kernels, so the checks cost nothing inside Newton's loop.
+Every function takes the mechanism, a :class:`Geometry`, first (``f(mech, inputs, ...)``);
+the motor's state ``(theta2, omega2, alpha2)`` (or the time ``t``) is its input, and a state,
+what :func:`draw` draws, is the pair ``(theta2, x)``. Every public function checks its input
+(finite real arrays of the right shapes, a :class:`Geometry`, known options) and raises
+:class:`ValueError` naming the argument; the solvers work on the unchecked kernels
+(:mod:`~mechnum.mechanisms.hacksaw.kernels`), so the checks cost nothing inside Newton's loop.
+The argument orders of version 0.1, with the geometry last, are deprecated (CHANGELOG.md).
 
 The package's modules:
 
@@ -40,8 +44,10 @@ The package's modules:
   (:func:`position_residual`, :func:`position_jacobian`, :func:`rate_jacobian`,
   :func:`velocity_residual`, :func:`acceleration_residual`, :func:`residual`,
   :func:`jacobian`);
+* :mod:`~mechnum.mechanisms.hacksaw.kernels`: their formulas on checked input;
 * :mod:`~mechnum.mechanisms.hacksaw.exact`: the kinematics without iteration, in closed form
-  (:func:`closed_form`) and the rates by linear solves (:func:`solve_rates`);
+  (:func:`closed_form`, both assembly modes: :func:`forward`), the rates by linear solves
+  (:func:`solve_rates`) and the singular points (:func:`singular_points`);
 * :mod:`~mechnum.mechanisms.hacksaw.solvers`: Newton as the study applies it, to one point in
   stages (:func:`solve_consecutive`) or at once (:func:`solve_simultaneous`), and along a
   trajectory (:func:`sweep`);
@@ -50,16 +56,47 @@ The package's modules:
 """
 
 from mechnum.mechanisms.hacksaw.drawing import DRAW_PAD, draw, joints
-from mechnum.mechanisms.hacksaw.equations import (DEAD_POINT_COS, acceleration_residual,
-                                                  jacobian, position_jacobian,
-                                                  position_residual, rate_jacobian, residual,
-                                                  velocity_residual)
-from mechnum.mechanisms.hacksaw.exact import closed_form, solve_rates
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, FORMS, NAMES, REPORT_SEED, STUDY,
-                                              STUDY_SEED, TOL, TRAJECTORY_SEED, Geometry,
-                                              first_revolution_time, motor)
-from mechnum.mechanisms.hacksaw.solvers import (METHODS, PREDICTORS, SweepResult,
-                                                solve_consecutive, solve_simultaneous, sweep)
+from mechnum.mechanisms.hacksaw.equations import (
+                                                  DEAD_POINT_COS,
+                                                  acceleration_residual,
+                                                  jacobian,
+                                                  position_jacobian,
+                                                  position_residual,
+                                                  rate_jacobian,
+                                                  residual,
+                                                  velocity_residual,
+)
+from mechnum.mechanisms.hacksaw.exact import (
+                                                  POSITION_RTOL,
+                                                  SingularPoints,
+                                                  closed_form,
+                                                  forward,
+                                                  singular_points,
+                                                  solve_rates,
+)
+from mechnum.mechanisms.hacksaw.kernels import MODES
+from mechnum.mechanisms.hacksaw.model import (
+                                                  ALPHA_MAX,
+                                                  FORMS,
+                                                  NAMES,
+                                                  REPORT_SEED,
+                                                  STUDY,
+                                                  STUDY_SEED,
+                                                  TOL,
+                                                  TRAJECTORY_SEED,
+                                                  Geometry,
+                                                  first_revolution_time,
+                                                  motor,
+)
+from mechnum.mechanisms.hacksaw.solvers import (
+                                                  MAX_POINTS,
+                                                  METHODS,
+                                                  PREDICTORS,
+                                                  SweepResult,
+                                                  solve_consecutive,
+                                                  solve_simultaneous,
+                                                  sweep,
+)
 from mechnum.mechanisms.hacksaw.study import reproduce
 
 __all__ = [
@@ -70,9 +107,11 @@ __all__ = [
     "DEAD_POINT_COS", "position_residual", "position_jacobian", "rate_jacobian",
     "velocity_residual", "acceleration_residual", "residual", "jacobian",
     # exact
-    "closed_form", "solve_rates",
+    "MODES", "POSITION_RTOL", "closed_form", "forward", "solve_rates", "SingularPoints",
+    "singular_points",
     # solvers
-    "METHODS", "PREDICTORS", "solve_consecutive", "solve_simultaneous", "SweepResult", "sweep",
+    "METHODS", "PREDICTORS", "MAX_POINTS", "solve_consecutive", "solve_simultaneous",
+    "SweepResult", "sweep",
     # drawing
     "DRAW_PAD", "joints", "draw",
     # study

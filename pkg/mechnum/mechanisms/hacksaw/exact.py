@@ -1,57 +1,57 @@
-"""The kinematics without iteration: the closed form, and the rate stages as linear solves.
+"""The kinematics without iteration: the closed form, its two assembly modes, the rate stages as
+linear solves, and the singular points.
 
 :func:`~mechnum.mechanisms.hacksaw.closed_form` is the study's list of formulas, corrected;
+:func:`~mechnum.mechanisms.hacksaw.forward` gives both assembly modes at once;
 :func:`~mechnum.mechanisms.hacksaw.solve_rates` solves the velocity and acceleration stages,
-which are linear in their unknowns, as two linear solves.
+which are linear in their unknowns, as two linear solves; and
+:func:`~mechnum.mechanisms.hacksaw.singular_points` gives the crank angles where the
+mechanism is singular.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum.errors import UnreachablePoseError
-from mechnum.mechanisms.hacksaw.equations import (_acceleration, _crank, _dead_points,
-                                                  _loop_jacobian, _trig, _velocity)
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, STUDY, _check, _finite, _motor_state,
-                                              motor)
+from mechnum import _deprecated
+from mechnum.mechanisms.hacksaw import kernels
+from mechnum.mechanisms.hacksaw.model import (
+    ALPHA_MAX,
+    STUDY,
+    Geometry,
+    checked,
+    checked_motor,
+    finite,
+    motor,
+)
 
-
-def _closed_form(th2, w2, a2, g):
-    s2, c2 = np.sin(th2), np.cos(th2)
-    ratio = (g.r1y - g.r2 * s2) / g.r3
-    if np.any(np.abs(ratio) > 1):
-        bad = np.flatnonzero(np.abs(np.ravel(ratio)) > 1)[0]
-        raise UnreachablePoseError(
-            f"unreachable pose: |r1y - r2 sin(theta2)| / r3 = {abs(np.ravel(ratio)[bad]):.6g} > 1 "
-            f"at theta2 = {np.ravel(th2 + 0 * ratio)[bad]:.6g} rad")
-    t3 = np.pi - np.arcsin(ratio)
-    s3, c3 = np.sin(t3), np.cos(t3)
-    _dead_points(c3, th2)
-    xr = g.r2 * c2 + g.r3 * c3  # r1 cos(theta1)
-    t1 = np.arctan2(g.r1y, np.abs(xr))  # acot(xr / r1y) in (-pi/2, pi/2], accurate for tiny r1y
-    t1 = np.where(xr < 0, -t1, t1)
-    s1, c1 = np.sin(t1), np.cos(t1)
-    r1 = g.r1y / s1
-    # the rows c and x solved for the two unknowns of r1 (determinant r1): no tan(theta1)
-    w3 = -w2 * g.r2 * c2 / (g.r3 * c3)
-    p = w2 * g.r2 * s2 + w3 * g.r3 * s3  # r1 omega1 sin(theta1) - Vr cos(theta1)
-    vr, w1 = -c1 * p, s1 * p / r1
-    a3 = (g.r2 * (s2 * w2**2 - a2 * c2) + g.r3 * s3 * w3**2) / (g.r3 * c3)
-    u = g.r2 * (c2 * w2**2 + a2 * s2) + g.r3 * (c3 * w3**2 + a3 * s3)
-    ar, a1 = r1 * w1**2 - c1 * u, (s1 * u - 2 * vr * w1) / r1
-    return np.stack(np.broadcast_arrays(r1, t1, t3, vr, w1, w3, ar, a1, a3), axis=-1)
+# Positions that close the position constraints to 1e-8 of the mechanism's size are a
+# configuration (a Newton solution stopped at the study's step of 1e-6 closes them to about
+# 1e-12); rates computed at positions that miss by more would be the rates of no configuration.
+POSITION_RTOL = 1e-8
 
 
-def closed_form(t=None, geometry=STUDY, *, motor_state=None, alpha_max=ALPHA_MAX):
-    """The exact kinematics: all nine unknowns at times ``t`` (or at given motor states).
+def _old_closed_form(t=None, geometry=STUDY, **options):
+    return (geometry, t), options
+
+
+@_deprecated.old_form(_old_closed_form, old="closed_form(t, geometry)",
+                      new="closed_form(mech, t)", is_new=_deprecated.mech_at(0, Geometry))
+def closed_form(mech: Geometry, t: ArrayLike | None = None, *,
+                motor_state: tuple | None = None, alpha_max: float = ALPHA_MAX) -> np.ndarray:
+    """The exact kinematics in the study's assembly mode at times ``t`` (or at motor states).
 
     The study's list of formulas, corrected (its ``r1`` and ``omega3`` are wrong), with
     ``theta1 = acot(x / r1y)`` computed by ``arctan2`` (accurate for a tiny ``r1y``) and the
     rates of ``r1`` solved without ``tan(theta1)`` (no removable 0/0 at ``theta1 = pi/2``).
+    Mode 0 of :func:`forward`.
 
     Parameters
     ----------
+    mech : Geometry
     t : array_like, optional
         Times in seconds; the motor state comes from :func:`motor`.
-    geometry : Geometry, optional
     motor_state : tuple of array_like, optional
         ``(theta2, omega2, alpha2)`` instead of ``t``.
     alpha_max : float, optional
@@ -73,47 +73,76 @@ def closed_form(t=None, geometry=STUDY, *, motor_state=None, alpha_max=ALPHA_MAX
 
     Examples
     --------
-    >>> np.round(closed_form(0.0)[:3], 6)
+    >>> np.round(closed_form(STUDY, 0.0)[:3], 6)
     array([-0.099672, -0.468422,  2.873694])
     """
     if (t is None) == (motor_state is None):
         raise ValueError("give either t or motor_state")
-    _check(geometry)
-    th2, w2, a2 = motor(t, alpha_max) if motor_state is None else _motor_state(motor_state)
+    checked(mech)
+    th2, w2, a2 = motor(t, alpha_max) if motor_state is None else checked_motor(motor_state)
     with np.errstate(over="ignore", invalid="ignore"):
-        x = _closed_form(th2, w2, a2, geometry)
-    return _finite(x, "the closed-form kinematics")
+        x = kernels.closed_form(mech, th2, w2, a2)
+    return finite(x, "the closed-form kinematics")
 
 
-def _linear_rates(q, th2, w2, a2, g, crank=None):
-    """The velocity and acceleration stages, linear in their unknowns, as two linear solves
-    (each one exact Newton step from zero: the residual at zero is minus the right side);
-    ``crank``, the ``_crank(th2)`` if known. Raises at a dead point."""
-    trig = _trig(q)
-    _dead_points(trig[3], th2)
-    crank = _crank(th2) if crank is None else crank
-    J = _loop_jacobian(q, g, trig=trig)  # rows (c, x, y); the velocity rows are (x', y', c')
-    zero = np.zeros(np.broadcast_shapes(q.shape, np.shape(w2) + (3,)))
-    rhs = -_velocity(zero, q, crank, w2, g, trig)[..., [2, 0, 1]]
-    v = np.linalg.solve(J, rhs[..., None])[..., 0]
-    rhs = -_acceleration(zero, v, q, crank, w2, a2, g, trig)
-    return v, np.linalg.solve(J, rhs[..., None])[..., 0]
+def forward(mech: Geometry, motor_state: tuple) -> np.ndarray:
+    """Every assembly mode of the saw at the motor states: the forward problem, in closed form.
+
+    For a crank angle the coupler meets the guide at two points: mode 0, the study's, with
+    the coupler pointing back (``cos(theta3) < 0``, the slider left of the crank pin), and
+    mode 1, pointing forward. Both exist, or neither (``|r1y - r2 sin(theta2)| > r3``); they
+    meet at the dead points (:func:`singular_points`).
+
+    Parameters
+    ----------
+    mech : Geometry
+    motor_state : tuple of array_like
+        ``(theta2, omega2, alpha2)``, arrays that broadcast.
+
+    Returns
+    -------
+    ndarray, shape: the broadcast shape ``+ (2, 9)``
+        The nine unknowns of mode 0 and of mode 1.
+
+    Raises
+    ------
+    ValueError, UnreachablePoseError, SingularJacobianError
+        As :func:`closed_form`.
+
+    Examples
+    --------
+    >>> both = forward(STUDY, (0.0, 0.0, 0.0))
+    >>> np.round(both[:, :3], 4).tolist()    # r1, theta1, theta3 of each mode
+    [[-0.0997, -0.4684, 2.8737], [0.2431, 0.1862, 0.2679]]
+    """
+    checked(mech)
+    th2, w2, a2 = checked_motor(motor_state)
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = np.stack([kernels.closed_form(mech, th2, w2, a2, mode) for mode in kernels.MODES],
+                     axis=-2)
+    return finite(x, "the closed-form kinematics")
 
 
-def solve_rates(q, motor_state, geometry=STUDY):
+@_deprecated.mech_moved(Geometry, to=2, default=STUDY)
+def solve_rates(mech: Geometry, q: ArrayLike,
+                motor_state: tuple) -> tuple[np.ndarray, np.ndarray]:
     """Velocities and accelerations at the positions ``q``: two linear solves, no iteration.
 
     The velocity and acceleration constraints are linear in their unknowns, with the matrix
     :func:`rate_jacobian` (rows permuted: :func:`position_jacobian`), so each stage is one
-    linear solve; Newton would take one exact step from any seed, then a confirming step.
+    linear solve; Newton would take one exact step from any seed, then a confirming step. The
+    matrix's structure solves it without pivoting: two of its rows differ in the column of
+    ``theta3`` only, which gives ``omega3`` (``alpha3``) at once, and the two others are then a
+    rotation by ``theta1``.
 
     Parameters
     ----------
+    mech : Geometry
     q : array_like, shape (..., 3)
-        Positions ``(r1, theta1, theta3)`` that satisfy the position constraints.
+        Positions ``(r1, theta1, theta3)`` that satisfy the position constraints (to
+        :data:`POSITION_RTOL` of the largest link).
     motor_state : tuple of array_like
         ``(theta2, omega2, alpha2)``, broadcasting against ``q.shape[:-1]``.
-    geometry : Geometry, optional
 
     Returns
     -------
@@ -122,19 +151,102 @@ def solve_rates(q, motor_state, geometry=STUDY):
 
     Raises
     ------
+    ValueError
+        If an input is ill-shaped or not finite, or ``q`` misses the position constraints.
     SingularJacobianError
         At a dead point, ``|cos(theta3)| < DEAD_POINT_COS``.
 
     Examples
     --------
-    >>> x = closed_form(1.0)
-    >>> v, a = solve_rates(x[:3], motor(1.0))
+    >>> x = closed_form(STUDY, 1.0)
+    >>> v, a = solve_rates(STUDY, x[:3], motor(1.0))
     >>> bool(np.allclose(np.concatenate([v, a]), x[3:], rtol=1e-13, atol=1e-13))
     True
     """
-    th2, w2, a2 = _motor_state(motor_state)
-    q, th2, w2, a2 = _check(geometry, [("q", q, 3)],
-                            [("theta2", th2), ("omega2", w2), ("alpha2", a2)])
+    th2, w2, a2 = checked_motor(motor_state)
+    q, th2, w2, a2 = checked(mech, [("q", q, 3)], [("theta2", th2), ("omega2", w2),
+                                                   ("alpha2", a2)])
     with np.errstate(over="ignore", invalid="ignore"):
-        v, a = _linear_rates(q, th2, w2, a2, geometry)
-    return _finite(v, "the velocities"), _finite(a, "the accelerations")
+        miss = np.abs(kernels.loop(mech, q, kernels.crank(th2))).max(initial=0.0)
+        size = max(mech.r1y, mech.r2, mech.r3)
+        if not miss <= POSITION_RTOL * size:
+            raise ValueError(f"q must satisfy the position constraints at theta2 (to "
+                             f"{POSITION_RTOL:g} of {size:g} m), they miss by {miss:.3g} m")
+        v, a = kernels.linear_rates(mech, q, th2, w2, a2)
+    return finite(v, "the velocities"), finite(a, "the accelerations")
+
+
+@dataclass(frozen=True)
+class SingularPoints:
+    """The crank angles where the saw is singular (radians in ``[0, 2 pi)``, increasing).
+
+    Attributes
+    ----------
+    dead : ndarray, shape (k,)
+        Dead points: the coupler perpendicular to the guide (``cos(theta3) = 0``), where the
+        two assembly modes meet and the rate equations are singular (the forward problem's
+        singularity). They exist only for a short coupler, ``r3 <= r1y + r2``; there the crank
+        cannot turn round.
+    limits : ndarray, shape (2, k)
+        For each assembly mode, the limit positions: the crank and the coupler aligned, where
+        the slider stops and turns back (the inverse problem's singularity, the ends of the
+        stroke), extended (``|OB| = r2 + r3``) and folded (``|OB| = |r3 - r2|``) where each
+        exists.
+    """
+
+    dead: np.ndarray
+    limits: np.ndarray
+
+
+def singular_points(mech: Geometry) -> SingularPoints:
+    """The crank angles of the dead points and of the limit positions, in closed form.
+
+    A dead point has ``r1y - r2 sin(theta2) = +-r3``. At a limit position the slider pin ``B``
+    lies on the line of the crank, at ``|OB| = r2 + r3`` or ``|r3 - r2|`` from the crank's
+    pivot and at height ``r1y``: ``B = (+-sqrt(|OB|^2 - r1y^2), r1y)``, the crank along ``OB``
+    (extended, or folded with ``r3 < r2``) or against it (folded, ``r3 > r2``); the sign of
+    ``B``'s abscissa against the crank pin's gives the mode.
+
+    Parameters
+    ----------
+    mech : Geometry
+
+    Returns
+    -------
+    SingularPoints
+
+    Raises
+    ------
+    ValueError
+        If ``mech`` is not a Geometry.
+
+    Examples
+    --------
+    >>> points = singular_points(STUDY)
+    >>> points.dead.size, np.degrees(points.limits).round(2).tolist()
+    (0, [[169.42, 331.73], [10.58, 208.27]])
+    """
+    g = mech
+    checked(g)
+    dead = []
+    for side in (1.0, -1.0):  # r1y - r2 sin(theta2) = side r3
+        s = (g.r1y - side * g.r3) / g.r2
+        if abs(s) <= 1:
+            dead += [np.arcsin(s), np.pi - np.arcsin(s)]
+    limits = [[], []]
+    for reach, folded in ((g.r2 + g.r3, False), (abs(g.r3 - g.r2), True)):
+        if reach < g.r1y:
+            continue
+        for right, x_b in enumerate((-np.sqrt(reach ** 2 - g.r1y ** 2),
+                                     np.sqrt(reach ** 2 - g.r1y ** 2))):
+            along = np.arctan2(g.r1y, x_b)  # the direction of B from the crank's pivot
+            turned = folded and g.r3 < g.r2  # the coupler points back along OB (theta3 + pi)
+            theta2 = along + np.pi if folded and g.r3 > g.r2 else along
+            limits[1 - right if turned else right].append(theta2)  # mode 1: cos(theta3) > 0
+    limits = np.array([_angles(m) for m in limits]).reshape(2, -1)
+    return SingularPoints(np.unique(_angles(dead)), limits)
+
+
+def _angles(values):
+    """Angles in ``[0, 2 pi)``, sorted."""
+    return np.sort(np.mod(np.asarray(values, dtype=float), 2 * np.pi))

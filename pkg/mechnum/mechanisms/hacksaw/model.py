@@ -3,16 +3,19 @@
 The nine unknowns are ``NAMES``, in that order;
 :class:`~mechnum.mechanisms.hacksaw.Geometry` holds the link lengths (``STUDY``: the study's),
 and :func:`~mechnum.mechanisms.hacksaw.motor` gives the study's jerk-limited start of the motor.
-The study's seeds and tolerance are here too. Every public function of the package checks its
-input with ``_check`` (the evaluators of the equations through the decorator ``_public``), so
-that the solvers can call the unchecked kernels inside Newton's loop.
+The study's seeds and tolerance are here too, and the input checks that every public function
+of the package shares (:func:`checked`, :func:`checked_motor`, :func:`finite`, and the decorator
+:func:`evaluator` of the equations), so that the solvers can call the unchecked kernels
+(:mod:`~mechnum.mechanisms.hacksaw.kernels`) inside Newton's loop.
 """
 
 import functools
 import inspect
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError
@@ -31,7 +34,8 @@ FORMS = ("loop", "eliminated")
 
 @dataclass(frozen=True)
 class Geometry:
-    """Link lengths of the saw, in metres (defaults: the study's).
+    """The saw: its link lengths, in metres (defaults: the study's); the mechanism, the first
+    argument of every function of the package.
 
     Raises
     ------
@@ -64,12 +68,20 @@ class Geometry:
 STUDY = Geometry()
 
 
-def _check(geometry=STUDY, states=(), motor=()):
-    """Check a geometry, states ``(name, value, width)`` of shape ``(..., width)`` and motor
+def checked(mech: object, states=(), motor=()) -> list:
+    """Check the mechanism, states ``(name, value, width)`` of shape ``(..., width)`` and motor
     quantities ``(name, value)``; return the arrays, once their batch shapes are known to
-    broadcast together."""
-    if not isinstance(geometry, Geometry):
-        raise ValueError(f"geometry must be a hacksaw.Geometry, got {geometry!r}")
+    broadcast together.
+
+    Examples
+    --------
+    >>> checked(None)
+    Traceback (most recent call last):
+    ...
+    ValueError: mech must be a hacksaw.Geometry, got None
+    """
+    if not isinstance(mech, Geometry):
+        raise ValueError(f"mech must be a hacksaw.Geometry, got {mech!r:.80}")
     arrays, batches = [], []
     for name, value, width in states:
         a = _validate.array(value, name)
@@ -88,7 +100,7 @@ def _check(geometry=STUDY, states=(), motor=()):
     return arrays
 
 
-def _finite(out, what):
+def finite(out: np.ndarray, what: str) -> np.ndarray:
     """``out``, if finite; inputs that are finite may still overflow the formulas."""
     if not np.all(np.isfinite(out)):
         raise ValueError(f"{what} is not finite for these inputs: they are too large "
@@ -96,16 +108,17 @@ def _finite(out, what):
     return out
 
 
-def _motor_state(motor_state):
+def checked_motor(motor_state: object) -> list:
     """``(theta2, omega2, alpha2)``, checked: three finite real arrays that broadcast."""
     try:
         th2, w2, a2 = motor_state
     except (TypeError, ValueError):
-        raise ValueError(f"motor_state must be (theta2, omega2, alpha2), got {motor_state!r}")
-    return _check(motor=(("theta2", th2), ("omega2", w2), ("alpha2", a2)))
+        raise ValueError(f"motor_state must be (theta2, omega2, alpha2), "
+                         f"got {motor_state!r:.80}") from None
+    return checked(STUDY, motor=(("theta2", th2), ("omega2", w2), ("alpha2", a2)))
 
 
-def first_revolution_time(alpha_max=ALPHA_MAX):
+def first_revolution_time(alpha_max: float = ALPHA_MAX) -> float:
     """Time ``T`` of the motor's first revolution, from ``theta2(T) = alpha_max T**2 / 3 = 2 pi``.
 
     Raises
@@ -145,7 +158,7 @@ def _motor(t, alpha_max):
     return theta, omega, alpha
 
 
-def motor(t, alpha_max=ALPHA_MAX):
+def motor(t: ArrayLike, alpha_max: float = ALPHA_MAX) -> tuple[np.ndarray, ...]:
     """Angle, speed and acceleration of the motor at times ``t`` (the study's profile).
 
     Parameters
@@ -182,28 +195,28 @@ def motor(t, alpha_max=ALPHA_MAX):
     return out
 
 
-def _public(*states, motor=()):
-    """Check the input and output of a public evaluator of the equations: the geometry, the
+def evaluator(*states, motor=()) -> Callable[[Callable], Callable]:
+    """Check the input and output of a public evaluator of the equations: the mechanism, the
     ``form`` if there is one, the ``states`` (``(name, width)``: arrays of shape
     ``(..., width)``) and the ``motor`` quantities (names), that their batch shapes broadcast,
-    and that the result is finite. (The solvers call the private kernels directly: inside
-    Newton's loop the checks would only cost time.)"""
-    def decorate(evaluator):
-        signature = inspect.signature(evaluator)
+    and that the result is finite. (The solvers call the kernels directly: inside Newton's
+    loop the checks would only cost time.)"""
+    def decorate(function):
+        signature = inspect.signature(function)
 
-        @functools.wraps(evaluator)
+        @functools.wraps(function)
         def public(*args, **kwargs):
             bound = signature.bind(*args, **kwargs)
             bound.apply_defaults()
             given = bound.arguments
-            checked = _check(given["geometry"], [(n, given[n], w) for n, w in states],
+            values = checked(given["mech"], [(n, given[n], w) for n, w in states],
                              [(n, given[n]) for n in motor])
-            given.update(zip([n for n, _ in states] + list(motor), checked))
+            given.update(zip([n for n, _ in states] + list(motor), values))
             if "form" in given:
                 _validate.choice(given["form"], FORMS, "form")
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                out = evaluator(*bound.args)
-            return _finite(out, f"the {evaluator.__name__.replace('_', ' ')}")
+                out = function(*bound.args, **bound.kwargs)
+            return finite(out, f"the {function.__name__.replace('_', ' ')}")
 
         return public
     return decorate

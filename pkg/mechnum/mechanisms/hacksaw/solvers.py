@@ -3,24 +3,40 @@
 :func:`~mechnum.mechanisms.hacksaw.solve_consecutive` solves position, velocity and
 acceleration in turn (three 3x3 systems), :func:`~mechnum.mechanisms.hacksaw.solve_simultaneous`
 the nine equations at once, and :func:`~mechnum.mechanisms.hacksaw.sweep` a whole trajectory,
-point after point as the study does, or all its points at once.
+point after point as the study does, or all its points at once. A sweep follows one assembly
+mode: a point whose solution lands in the other mode (or in the other sign of ``r1``) is a
+branch jump, which the loops repair from the previous point's solution, or report.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate
-from mechnum.mechanisms.hacksaw.equations import (_RATE_ROWS, _acceleration, _crank,
-                                                  _dead_points, _jacobian, _loop, _loop_jacobian,
-                                                  _residual, _shared_trig, _velocity)
-from mechnum.mechanisms.hacksaw.exact import _linear_rates
-from mechnum.mechanisms.hacksaw.model import (ALPHA_MAX, FORMS, STUDY, TOL, TRAJECTORY_SEED,
-                                              _check, _motor_state, motor)
+from mechnum import _deprecated, _validate
+from mechnum.errors import ConvergenceError
+from mechnum.mechanisms.hacksaw import kernels
+from mechnum.mechanisms.hacksaw.model import (
+    ALPHA_MAX,
+    FORMS,
+    STUDY,
+    TOL,
+    TRAJECTORY_SEED,
+    Geometry,
+    checked,
+    checked_motor,
+    motor,
+)
 from mechnum.newton import solve, solve_batch
 
 METHODS = ("consecutive", "simultaneous", "batched")
 PREDICTORS = ("previous", "velocity")
+MAX_POINTS = 1_000_000
+"""The most points of a sweep (a point costs some 10 kB in the batched sweep's Jacobians)."""
+# Newton's stopping rule of the study: the Euclidean norm of the step (absolute), below ``tol``.
+_RULE = {"criterion": "step", "norm": 2, "relative": False}
+# The old forms took the geometry later, with the study's as default.
+_MOVED = {"mech_type": Geometry, "name": "geometry", "default": STUDY}
 
 
 def _seed(seed, batch=False):
@@ -32,22 +48,31 @@ def _seed(seed, batch=False):
     return seed
 
 
-def _consecutive(th2, w2, a2, seed, g, tol, form="loop"):
+def _branch(x):
+    """The signs that name a state's branch: of ``r1`` and of ``cos(theta3)`` (the mode)."""
+    return np.stack([np.sign(x[..., 0]), np.sign(np.cos(x[..., 2]))], axis=-1)
+
+
+def _consecutive(g, th2, w2, a2, seed, tol, form="loop"):
     """The study's consecutive scheme, on checked input (the kernel of solve_consecutive)."""
-    newton, crank, trig = (solve if seed.ndim == 1 else solve_batch), _crank(th2), _shared_trig()
-    pos = newton(lambda q: _loop(q, crank, g, form, trig(q)), seed[..., 0:3],
-                 lambda q: _loop_jacobian(q, g, form, trig(q)), tol=tol)
+    newton = solve if seed.ndim == 1 else solve_batch
+    crank, sines = kernels.crank(th2), kernels.shared_trig()
+    pos = newton(lambda q: kernels.loop(g, q, crank, form, sines(q)), seed[..., 0:3],
+                 lambda q: kernels.loop_jacobian(g, q, form, sines(q)), tol=tol, **_RULE)
     q = pos.x
-    _dead_points(np.cos(q[..., 2]), th2)
-    ja = _loop_jacobian(q, g)  # of the acceleration rows; the velocity rows permute it
-    jv = ja[..., _RATE_ROWS, :]
-    vel = newton(lambda v: _velocity(v, q, crank, w2, g), seed[..., 3:6], lambda v: jv, tol=tol)
-    acc = newton(lambda a: _acceleration(a, vel.x, q, crank, w2, a2, g), seed[..., 6:9],
-                 lambda a: ja, tol=tol)
+    kernels.dead_points(np.cos(q[..., 2]), th2)
+    ja = kernels.loop_jacobian(g, q)  # of the acceleration rows; the velocity rows permute it
+    jv = ja[..., kernels.RATE_ROWS, :]
+    vel = newton(lambda v: kernels.velocity(g, v, q, crank, w2), seed[..., 3:6], lambda v: jv,
+                 tol=tol, **_RULE)
+    acc = newton(lambda a: kernels.acceleration(g, a, vel.x, q, crank, w2, a2), seed[..., 6:9],
+                 lambda a: ja, tol=tol, **_RULE)
     return pos, vel, acc
 
 
-def solve_consecutive(motor_state, seed, geometry=STUDY, *, tol=TOL, form="loop"):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def solve_consecutive(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
+                      tol: float = TOL, form: str = "loop") -> tuple:
     """Solve position, then velocity, then acceleration, each by Newton from ``seed``.
 
     The study's consecutive scheme: three 3x3 Newton solves, each stopped by the step criterion
@@ -57,11 +82,11 @@ def solve_consecutive(motor_state, seed, geometry=STUDY, *, tol=TOL, form="loop"
 
     Parameters
     ----------
+    mech : Geometry
     motor_state : tuple of float or of ndarray
         ``(theta2, omega2, alpha2)``.
     seed : array_like, shape (9,) or (n, 9)
         Initial guess of the nine unknowns.
-    geometry : Geometry, optional
     tol : float, optional
         Tolerance on the Euclidean norm of each Newton step (the study's rule).
     form : {"loop", "eliminated"}, optional
@@ -81,34 +106,36 @@ def solve_consecutive(motor_state, seed, geometry=STUDY, *, tol=TOL, form="loop"
     Examples
     --------
     >>> from mechnum.mechanisms.hacksaw import STUDY_SEED
-    >>> stages = solve_consecutive((0.0, 0.0, 0.0), STUDY_SEED)
+    >>> stages = solve_consecutive(STUDY, (0.0, 0.0, 0.0), STUDY_SEED)
     >>> [r.iterations for r in stages]
     [4, 2, 2]
     """
-    th2, w2, a2 = _motor_state(motor_state)
+    th2, w2, a2 = checked_motor(motor_state)
     seed = _seed(seed, batch=True)
-    _check(geometry, [("seed", seed, 9)], [("theta2", th2), ("omega2", w2), ("alpha2", a2)])
+    checked(mech, [("seed", seed, 9)], [("theta2", th2), ("omega2", w2), ("alpha2", a2)])
     form = _validate.choice(form, FORMS, "form")
-    return _consecutive(th2, w2, a2, seed, geometry, _validate.tolerance(tol), form)
+    return _consecutive(mech, th2, w2, a2, seed, _validate.tolerance(tol), form)
 
 
-def _simultaneous(th2, w2, a2, seed, g, tol):
-    crank, trig = _crank(th2), _shared_trig()
-    res = solve(lambda x: _residual(x, crank, w2, a2, g, trig(x)), seed,
-                lambda x: _jacobian(x, g, trig(x)), tol=tol)
-    _dead_points(np.cos(res.x[2]), th2)
+def _simultaneous(g, th2, w2, a2, seed, tol):
+    crank, sines = kernels.crank(th2), kernels.shared_trig()
+    res = solve(lambda x: kernels.residual(g, x, crank, w2, a2, sines(x)), seed,
+                lambda x: kernels.jacobian(g, x, sines(x)), tol=tol, **_RULE)
+    kernels.dead_points(np.cos(res.x[2]), th2)
     return res
 
 
-def solve_simultaneous(motor_state, seed, geometry=STUDY, *, tol=TOL):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def solve_simultaneous(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
+                       tol: float = TOL) -> object:
     """Solve the nine equations of one point at once, by Newton on the 9x9 system.
 
     Parameters
     ----------
+    mech : Geometry
     motor_state : tuple of float
         ``(theta2, omega2, alpha2)``.
     seed : array_like, shape (9,)
-    geometry : Geometry, optional
     tol : float, optional
         Tolerance on the Euclidean norm of the Newton step.
 
@@ -124,15 +151,15 @@ def solve_simultaneous(motor_state, seed, geometry=STUDY, *, tol=TOL):
     Examples
     --------
     >>> from mechnum.mechanisms.hacksaw import STUDY_SEED
-    >>> res = solve_simultaneous((0.0, 0.0, 0.0), STUDY_SEED)
+    >>> res = solve_simultaneous(STUDY, (0.0, 0.0, 0.0), STUDY_SEED)
     >>> res.iterations, np.round(res.x[:3], 6).tolist()
     (5, [-0.099672, -0.468422, 2.873694])
     """
-    th2, w2, a2 = _motor_state(motor_state)
+    th2, w2, a2 = checked_motor(motor_state)
     if th2.ndim or w2.ndim or a2.ndim:
         raise ValueError("motor_state must be three scalars: the 9x9 solve is of one point")
-    _check(geometry)
-    return _simultaneous(float(th2), float(w2), float(a2), _seed(seed), geometry,
+    checked(mech)
+    return _simultaneous(mech, float(th2), float(w2), float(a2), _seed(seed),
                          _validate.tolerance(tol))
 
 
@@ -145,23 +172,83 @@ class SweepResult:
     x : ndarray, shape (n, 9)
         The nine unknowns at every time.
     iterations : ndarray of int, shape (n, k)
-        Newton iterations of every solve at every point: ``k = 3`` (position, velocity,
-        acceleration) for ``"consecutive"``; ``k = 1`` for ``"simultaneous"`` (the 9x9 system)
-        and for ``"batched"`` (the position stage; its rate stages are linear solves).
+        Newton iterations of every solve at every point (those of a repaired branch jump
+        included): ``k = 3`` (position, velocity, acceleration) for ``"consecutive"``; ``k = 1``
+        for ``"simultaneous"`` (the 9x9 system) and for ``"batched"`` (the position stage; its
+        rate stages are linear solves).
     """
 
     x: np.ndarray
     iterations: np.ndarray
 
 
-def sweep(t, method, geometry=STUDY, *, seed=TRAJECTORY_SEED, tol=TOL, alpha_max=ALPHA_MAX,
-          predictor="previous"):
+def _batched(g, th2, w2, a2, seed, tol):
+    """All the points at once: the position stage by solve_batch, the rates by linear solves."""
+    crank, sines = kernels.crank(th2), kernels.shared_trig()
+    pos = solve_batch(lambda q: kernels.loop(g, q, crank, sines=sines(q)),
+                      np.broadcast_to(seed[:3], (th2.size, 3)),
+                      lambda q: kernels.loop_jacobian(g, q, sines=sines(q)), tol=tol, **_RULE)
+    jumped = np.any(_branch(pos.x) != _branch(seed), axis=-1)
+    if jumped.any():
+        raise ConvergenceError(
+            f"{jumped.sum()} of {th2.size} points converged to another branch than the "
+            f"seed's (first at theta2 = {th2[jumped][0]:.6g} rad): seed them nearer, or "
+            f"sweep point by point", pos)
+    v, a = kernels.linear_rates(g, pos.x, th2, w2, a2, crank)
+    return SweepResult(np.concatenate([pos.x, v, a], axis=-1), pos.iterations[:, None])
+
+
+def _loops(g, t, th2, w2, a2, seed, tol, method, predictor):
+    """Point after point; a solution on another branch is solved again from the previous
+    point's solution, and raises if it jumps again."""
+    out = np.empty((t.size, 9))
+    iterations = np.zeros((t.size, 3 if method == "consecutive" else 1), dtype=int)
+    previous = seed
+    for i in range(t.size):
+        seeds = [previous]
+        if i and predictor == "velocity":  # first-order Taylor: positions, then velocities
+            step = t[i] - t[i - 1]
+            seeds.insert(0, previous + step * np.concatenate([previous[3:], np.zeros(3)]))
+        for start in seeds:
+            if method == "consecutive":
+                stages = _consecutive(g, th2[i], w2[i], a2[i], start, tol)
+            else:
+                stages = (_simultaneous(g, th2[i], w2[i], a2[i], start, tol),)
+            x = np.concatenate([r.x for r in stages])
+            iterations[i] += [r.iterations for r in stages]
+            if np.all(_branch(x) == _branch(previous)):
+                break
+        else:
+            raise ConvergenceError(
+                f"at t = {t[i]:.6g} s (point {i}) Newton jumped from the branch of the previous "
+                f"point (signs of r1 and cos(theta3): {_branch(previous).tolist()}) to "
+                f"{_branch(x).tolist()}: the steps of t are too coarse", stages[-1])
+        out[i] = previous = x
+    return SweepResult(out, iterations)
+
+
+def _old_sweep(t, method, geometry=STUDY, **options):
+    return (geometry, t, method), options
+
+
+@_deprecated.old_form(_old_sweep, old="sweep(t, method, geometry)", new="sweep(mech, t, method)",
+                      is_new=_deprecated.mech_at(0, Geometry))
+def sweep(mech: Geometry, t: ArrayLike, method: str, *, seed: ArrayLike = TRAJECTORY_SEED,
+          tol: float = TOL, alpha_max: float = ALPHA_MAX,
+          predictor: str = "previous") -> SweepResult:
     """The kinematics over the times ``t`` by Newton, seeded as the study seeds it (or better).
+
+    Every point stays on the seed's branch: the same assembly mode (the sign of
+    ``cos(theta3)``) and the same sign of ``r1``. In the loops, a point whose solution lands on
+    another branch (a coarse step of ``t``, a far prediction) is solved again from the previous
+    point's solution; if that jumps too, or a batched point jumps, :class:`ConvergenceError`
+    says where.
 
     Parameters
     ----------
+    mech : Geometry
     t : array_like, shape (n,)
-        Times in seconds, ``n >= 0``.
+        Times in seconds, ``0 <= n <=`` :data:`MAX_POINTS`.
     method : {"consecutive", "simultaneous", "batched"}
         ``"consecutive"``: three 3x3 Newton solves per point (:func:`solve_consecutive`);
         ``"simultaneous"``: one 9x9 solve per point (:func:`solve_simultaneous`); both go from
@@ -169,7 +256,6 @@ def sweep(t, method, geometry=STUDY, *, seed=TRAJECTORY_SEED, tol=TOL, alpha_max
         all points at once (:func:`mechnum.newton.solve_batch`, every point seeded with
         ``seed``), then the two linear stages as two batched linear solves
         (:func:`solve_rates`).
-    geometry : Geometry, optional
     seed : array_like, shape (9,), optional
         The study's first seed by default.
     tol : float, optional
@@ -191,42 +277,26 @@ def sweep(t, method, geometry=STUDY, *, seed=TRAJECTORY_SEED, tol=TOL, alpha_max
     ValueError
         If an input is invalid (the predictor of a batched sweep included).
     ConvergenceError, SingularJacobianError
-        If Newton fails at some point, or a point is a dead point.
+        If Newton fails at some point or leaves the seed's branch, or a point is a dead point.
 
     Examples
     --------
     >>> from mechnum.mechanisms.hacksaw import closed_form, first_revolution_time
     >>> t = np.linspace(0, 2 * first_revolution_time(), 50)
-    >>> res = sweep(t, "batched")
-    >>> bool(np.abs(res.x - closed_form(t)).max() < 1e-9), res.iterations.shape
+    >>> res = sweep(STUDY, t, "batched")
+    >>> bool(np.abs(res.x - closed_form(STUDY, t)).max() < 1e-9), res.iterations.shape
     (True, (50, 1))
     """
+    checked(mech)
     method = _validate.choice(method, METHODS, "method")
     predictor = _validate.choice(predictor, PREDICTORS, "predictor")
     t = _validate.array(t, "t", ndim=1)
+    _validate.maxiter(t.size, "the number of points of t", minimum=0, maximum=MAX_POINTS)
     seed, tol = _seed(seed), _validate.tolerance(tol)
-    _check(geometry)
     if method == "batched" and predictor != "previous":
         raise ValueError("predictor applies to the per-point loops; the batched sweep seeds "
                          "every point with seed")
     th2, w2, a2 = motor(t, alpha_max)
     if method == "batched":
-        crank, trig = _crank(th2), _shared_trig()
-        pos = solve_batch(lambda q: _loop(q, crank, geometry, trig=trig(q)),
-                          np.tile(seed[:3], (t.size, 1)),
-                          lambda q: _loop_jacobian(q, geometry, trig=trig(q)), tol=tol)
-        v, a = _linear_rates(pos.x, th2, w2, a2, geometry, crank)
-        return SweepResult(np.concatenate([pos.x, v, a], axis=-1), pos.iterations[:, None])
-    out, iterations = np.empty((t.size, 9)), np.empty((t.size, 3 if method == "consecutive"
-                                                       else 1), dtype=int)
-    x = seed
-    for i in range(t.size):
-        if i and predictor == "velocity":
-            x = x + (t[i] - t[i - 1]) * np.concatenate([x[3:], np.zeros(3)])
-        if method == "consecutive":
-            stages = _consecutive(th2[i], w2[i], a2[i], x, geometry, tol)
-        else:
-            stages = (_simultaneous(th2[i], w2[i], a2[i], x, geometry, tol),)
-        x = out[i] = np.concatenate([r.x for r in stages])
-        iterations[i] = [r.iterations for r in stages]
-    return SweepResult(out, iterations)
+        return _batched(mech, th2, w2, a2, seed, tol)
+    return _loops(mech, t, th2, w2, a2, seed, tol, method, predictor)

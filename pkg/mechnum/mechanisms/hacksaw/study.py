@@ -7,11 +7,11 @@
 import numpy as np
 
 from mechnum.mechanisms.hacksaw.exact import closed_form
-from mechnum.mechanisms.hacksaw.model import NAMES, STUDY_SEED, first_revolution_time, motor
+from mechnum.mechanisms.hacksaw.model import NAMES, STUDY, STUDY_SEED, first_revolution_time, motor
 from mechnum.mechanisms.hacksaw.solvers import solve_consecutive, solve_simultaneous, sweep
 
 
-def reproduce():
+def reproduce() -> dict[str, float]:
     """Recompute every number of the study that the registry holds (``book/published_values.csv``).
 
     Returns
@@ -28,11 +28,11 @@ def reproduce():
     T = first_revolution_time()
     speed = float(motor(T)[1])
     rest = (0.0, 0.0, 0.0)
-    pos, vel, acc = solve_consecutive(rest, STUDY_SEED)
-    simultaneous = solve_simultaneous(rest, STUDY_SEED)
+    pos, vel, acc = solve_consecutive(STUDY, rest, STUDY_SEED)
+    simultaneous = solve_simultaneous(STUDY, rest, STUDY_SEED)
     t = np.linspace(0.0, 2 * T, 1000)
-    exact = closed_form(t)
-    by_stage = {m: sweep(t, m).x for m in ("consecutive", "simultaneous")}
+    exact = closed_form(STUDY, t)
+    by_stage = {m: sweep(STUDY, t, m).x for m in ("consecutive", "simultaneous")}
     error = np.abs(by_stage["simultaneous"] - exact).max(axis=0)
     largest = {m: np.linalg.norm(x - exact, axis=1).max() for m, x in by_stage.items()}
     rpm = speed * 60 / (2 * np.pi)

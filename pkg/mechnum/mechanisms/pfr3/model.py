@@ -29,14 +29,22 @@ Residuals are dimensionless: positions over ``L`` (or over ``|b_i|``), forces ov
 moments over ``EI / L``.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError, UnreachablePoseError
-from mechnum.mechanisms.rfr2.model import EI, LENGTH
+from mechnum.mechanisms import thesis
+from mechnum.mechanisms.thesis import EI, LENGTH
 from mechnum.rods import regular
+from mechnum.rods.assembly import Layout, check_modes, check_type
+
+LAYOUT = Layout(rods=3, inputs=3, pose=3)
+"""The unknowns of the full system: the chart (6), the sliders ``lambda`` (3), the pose (3)."""
 
 VERTEX_ANGLES = np.radians([-150.0, -30.0, 90.0])
 """Directions of the platform's pins from its centre (Annex II 4.1, ``PB_loc``), rad."""
@@ -69,13 +77,18 @@ class Mechanism:
         Length (m) and bending stiffness (N m^2) of each rod.
     orientation : {1, -1}
         1: the pins ``B1, B2, B3`` go anticlockwise around the platform; -1: the mirror image.
+    diameter : float
+        Diameter of the rods' circular section (m), for their bending strain only.
+    strain_limit : float
+        The rods' elastic limit in strain (:data:`mechnum.mechanisms.thesis.STRAIN_LIMIT`).
 
     Raises
     ------
     ValueError
         If an attribute is not finite or has the wrong shape.
     GeometryError
-        If ``a``, ``L`` or ``EI`` is not positive, or ``orientation`` is not 1 or -1.
+        If ``a``, ``L``, ``EI``, ``diameter`` or ``strain_limit`` is not positive, or
+        ``orientation`` is not 1 or -1.
 
     Examples
     --------
@@ -92,6 +105,8 @@ class Mechanism:
     L: float = LENGTH
     EI: float = EI
     orientation: int = 1
+    diameter: float = thesis.DIAMETER
+    strain_limit: float = thesis.STRAIN_LIMIT
 
     def __post_init__(self):
         for name, shape in (("origins", (3, 2)), ("guide_angles", (3,)),
@@ -99,12 +114,12 @@ class Mechanism:
             object.__setattr__(self, name, _validate.array(getattr(self, name), name,
                                                            shape=shape))
         object.__setattr__(self, "moment", _validate.scalar(self.moment, "moment"))
-        for name in ("a", "L", "EI"):
+        for name in ("a", "L", "EI", "diameter", "strain_limit"):
             value = _validate.scalar(getattr(self, name), name)
             if value <= 0:
                 raise GeometryError(f"{name} must be positive, got {value!r}")
             object.__setattr__(self, name, value)
-        if self.orientation not in (1, -1):
+        if isinstance(self.orientation, (bool, np.bool_)) or self.orientation not in (1, -1):
             raise GeometryError(f"orientation must be 1 or -1, got {self.orientation!r}")
 
     @property
@@ -121,7 +136,19 @@ class Mechanism:
         (-1, 1)
         """
         return Mechanism(self.origins, self.guide_angles, self.clamp_angles, self.a,
-                         self.force, self.moment, self.L, self.EI, -self.orientation)
+                         self.force, self.moment, self.L, self.EI, -self.orientation,
+                         self.diameter, self.strain_limit)
+
+
+class Names:
+    """The 3PFR's name of a result's inputs (:class:`~mechnum.rods.assembly.Equilibria`,
+    :class:`~mechnum.rods.assembly.Path`, :class:`~mechnum.rods.assembly.Shooting`):
+    ``lambdas``."""
+
+    @property
+    def lambdas(self) -> np.ndarray:
+        """The slider inputs (m)."""
+        return self.inputs
 
 
 TABLE8 = Mechanism(UNIT_CIRCLE, STUDY_GUIDES, np.radians([45.0, 180.0, -60.0]), 0.2,
@@ -144,7 +171,7 @@ SHOOTING_POSE = np.array([0.0, 0.0, np.radians(60.0)])
 """The starting pose of Annex II 4.1, ``(x, y, phi)`` (m, m, rad)."""
 
 
-def clamps(mech, lambdas):
+def clamps(mech: Mechanism, lambdas: ArrayLike):
     """Clamp positions ``C_i = O_i + lambda_i (cos alpha_i, sin alpha_i)``, shape (..., 3, 2).
 
     Examples
@@ -152,7 +179,11 @@ def clamps(mech, lambdas):
     >>> np.round(clamps(TABLE2, TABLE2_LAMBDAS), 4).tolist()[0]
     [-0.766, -0.5]
     """
-    lambdas = np.asarray(lambdas, dtype=float)[..., None]
+    check_type(mech, Mechanism)
+    lambdas = _validate.array(lambdas, "lambdas")
+    if lambdas.shape[-1:] != (3,):
+        raise ValueError(f"lambdas must have a last axis of 3, got shape {lambdas.shape}")
+    lambdas = lambdas[..., None]
     return mech.origins + lambdas * np.stack((np.cos(mech.guide_angles),
                                               np.sin(mech.guide_angles)), axis=-1)
 
@@ -167,7 +198,7 @@ def _rot(phi):
     return np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)
 
 
-def pins(mech, pose):
+def pins(mech: Mechanism, pose: ArrayLike):
     """The pins ``B_i`` of the platform at ``pose = (x, y, phi)``, shape (..., 3, 2).
 
     Examples
@@ -175,23 +206,14 @@ def pins(mech, pose):
     >>> np.round(pins(SHOOTING_EXAMPLE, SHOOTING_POSE), 6).tolist()[2]
     [-0.173205, 0.1]
     """
-    pose = np.asarray(pose, dtype=float)
+    pose = _validate.array(pose, "pose")
+    if pose.shape[-1:] != (3,):
+        raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got shape {pose.shape}")
     r = np.einsum("...ij,kj->...ki", _rot(pose[..., 2]), mech.vertices)
     return pose[..., None, :2] + r
 
 
-def _modes(modes):
-    modes = _validate.array(modes, "modes", shape=(3,))
-    if np.any(modes < 1) or np.any(modes != np.round(modes)):
-        raise ValueError(f"modes must be three integers >= 1, got {modes.tolist()}")
-    return modes
-
-
-def _lambdas(lambdas):
-    return _validate.array(lambdas, "lambdas", shape=(3,))
-
-
-def check_closure(mech, lambdas):
+def check_closure(mech: Mechanism, lambdas: ArrayLike):
     """Raise :class:`GeometryError` if no platform of side ``a`` can be pinned to the rods.
 
     Every pin lies within ``L`` of its clamp, so two clamps ``C_i, C_j`` must satisfy
@@ -205,7 +227,7 @@ def check_closure(mech, lambdas):
     ...
     mechnum.errors.GeometryError: clamps 3 and 1 are 2.608 m apart: a platform of side 0.2 m on rods of length 1 m cannot close (needs -1.8 to 2.2 m)
     """
-    c = clamps(mech, _lambdas(lambdas))
+    c = clamps(mech, _validate.array(lambdas, "lambdas", shape=(3,)))
     for i, j in ((0, 1), (1, 2), (2, 0)):
         gap = float(np.hypot(*(c[j] - c[i])))
         if not mech.a - 2 * mech.L <= gap <= mech.a + 2 * mech.L:
@@ -215,7 +237,7 @@ def check_closure(mech, lambdas):
                 f"{mech.a - 2 * mech.L:.4g} to {mech.a + 2 * mech.L:.4g} m)")
 
 
-def check_reach(mech, pose):
+def check_reach(mech: Mechanism, pose: ArrayLike):
     """Raise :class:`UnreachablePoseError` if a pin of the platform at ``pose`` (..., 3) is
     farther than ``L`` from its guide's line (no slider position reaches it).
 
@@ -229,7 +251,7 @@ def check_reach(mech, pose):
     """
     pose = _validate.array(pose, "pose")
     if pose.shape[-1:] != (3,):
-        raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got {pose.shape}")
+        raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got shape {pose.shape}")
     normal = np.stack((-np.sin(mech.guide_angles), np.cos(mech.guide_angles)), -1)
     distance = np.abs(np.sum((pins(mech, pose) - mech.origins) * normal, axis=-1))
     far = distance > mech.L
@@ -241,14 +263,35 @@ def check_reach(mech, pose):
             f"{mech.L:g} m")
 
 
-def in_chart(z):
+def in_chart(z: ArrayLike):
     """Whether chart points ``(psi1, t1, psi2, t2, psi3, t3)`` (batch, 6) lie in the chart."""
     psi, t = z[:, 0::2], z[:, 1::2]
     return np.all((psi > 0) & (psi < regular.TWO_PI) & (t != 0)
                   & (np.abs(t) <= regular.T_MAX), axis=1)
 
 
-def rods(mech, lambdas, z, modes=(1, 1, 1), jacobian=True):
+def check_chart(z: ArrayLike) -> np.ndarray:
+    """Chart points ``(psi1, t1, psi2, t2, psi3, t3)`` (..., 6) as a float array, checked.
+
+    Examples
+    --------
+    >>> check_chart([1.0, 0.5, 1.0, 0.0, 1.0, 0.5])
+    Traceback (most recent call last):
+    ...
+    ValueError: chart points (psi1, t1, psi2, t2, psi3, t3) need 0 < psi < 2 pi and 0 < |t| <= 0.999168, got [[1.  0.5 1.  0.  1.  0.5]]
+    """
+    z = np.asarray(z, dtype=float)
+    if z.shape[-1:] != (6,):
+        raise ValueError(f"z must have a last axis of 6 (the chart), got shape {z.shape}")
+    outside = ~in_chart(z.reshape(-1, 6))
+    if outside.any():
+        raise ValueError("chart points (psi1, t1, psi2, t2, psi3, t3) need 0 < psi < 2 pi and "
+                         f"0 < |t| <= {regular.T_MAX:.6f}, got {z.reshape(-1, 6)[outside][:2]}")
+    return z
+
+
+def rods(mech: Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1),
+         jacobian: bool = True):
     """The three rods of chart points ``z`` (..., 6), placed at their clamps.
 
     Returns
@@ -267,19 +310,31 @@ def rods(mech, lambdas, z, modes=(1, 1, 1), jacobian=True):
     >>> np.round(force.sum(axis=0), 3).tolist()          # the load, to the printed digits
     [0.0, 0.5]
     """
-    z = np.asarray(z, dtype=float)
-    if not np.all(in_chart(z.reshape(-1, 6))):
-        raise ValueError("chart points (psi1, t1, psi2, t2, psi3, t3) need 0 < psi < 2 pi "
-                         f"and 0 < |t| <= {regular.T_MAX:.6f}, got {_validate._shown(z)}")
+    z = check_chart(z)
+    c = clamps(mech, lambdas)
+    try:
+        np.broadcast_shapes(z.shape[:-1], c.shape[:-2])
+    except ValueError:
+        raise ValueError(f"z of shape {z.shape} and lambdas of shape {c.shape[:-1]} do not "
+                         "broadcast together") from None
     rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
-                               np.asarray(modes, dtype=float), jacobian)
-    tip, force, d_chart, _ = regular.place(rod, clamps(mech, lambdas), mech.clamp_angles)
+                               check_modes(modes, 3), _validate.flag(jacobian, "jacobian"))
+    tip, force, d_chart, _ = regular.place(rod, c, mech.clamp_angles)
     return tip, force, rod.clamp_moment, d_chart
 
 
-def pose_of_tips(mech, tip):
+def pose_of_tips(mech: Mechanism, tip: ArrayLike):
     """The pose ``(x, y, phi)`` of the tips ``(..., 3, 2)``: their centroid and the angle of
-    ``d_1 / b_1`` (exact when the tips form the platform)."""
+    ``d_1 / b_1`` (exact when the tips form the platform).
+
+    Examples
+    --------
+    >>> np.round(pose_of_tips(TABLE8, pins(TABLE8, [0.1, 0.2, 0.3])), 12).tolist()
+    [0.1, 0.2, 0.3]
+    """
+    tip = _validate.array(tip, "tip")
+    if tip.shape[-2:] != (3, 2):
+        raise ValueError(f"tip must have shape (..., 3, 2), got shape {tip.shape}")
     P = tip.mean(axis=-2)
     d = tip[..., 0, :] - P
     b = mech.vertices[0]
@@ -287,7 +342,7 @@ def pose_of_tips(mech, tip):
     return np.concatenate((P, phi[..., None]), axis=-1)
 
 
-def forward_system(mech, lambdas, modes=(1, 1, 1)):
+def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1, 1)):
     """The direct problem in closed form, reduced to the rods: residual and Jacobian, batched.
 
     Six dimensionless equations in the six chart coordinates ``z``: the tips form the platform
@@ -306,7 +361,8 @@ def forward_system(mech, lambdas, modes=(1, 1, 1)):
     >>> fun(z).shape, jac(z).shape, bool(np.abs(fun(z)).max() < 2e-3)   # 4 printed decimals
     ((1, 6), (1, 6, 6), True)
     """
-    lambdas, modes = _lambdas(lambdas), _modes(modes)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    modes = check_modes(modes, 3)
     b = mech.vertices @ [1.0, 1j]
     inverse = 1.0 / b
     f = mech.EI / mech.L ** 2
@@ -346,7 +402,7 @@ def forward_system(mech, lambdas, modes=(1, 1, 1)):
     return fun, jac
 
 
-def full_system(mech, modes=(1, 1, 1)):
+def full_system(mech: Mechanism, modes: ArrayLike = (1, 1, 1)):
     """The nine equilibrium equations in the rods, the sliders and the pose, with derivatives.
 
     ``G = ((tip_i - B_i) / L, (n1 + n2 + n3 - F) L**2 / EI, (sum (B_i - P) x n_i - M) L / EI)``.
@@ -366,7 +422,7 @@ def full_system(mech, modes=(1, 1, 1)):
     >>> G.shape, D.shape, bool(np.abs(G).max() < 2e-3)
     ((9,), (9, 12), True)
     """
-    modes = _modes(modes)
+    modes = check_modes(modes, 3)
     L, f = mech.L, mech.EI / mech.L ** 2
     guide = np.stack((np.cos(mech.guide_angles), np.sin(mech.guide_angles)), -1)
 
@@ -394,7 +450,7 @@ def full_system(mech, modes=(1, 1, 1)):
     return system
 
 
-def chart_from_thesis(solutions):
+def chart_from_thesis(solutions: ArrayLike):
     """The chart ``(psi1, t1, psi2, t2, psi3, t3)`` of the study's ``(psi_i, k_rel_i)``.
 
     Examples
@@ -411,7 +467,7 @@ def chart_from_thesis(solutions):
     return out
 
 
-def thesis_from_chart(z):
+def thesis_from_chart(z: ArrayLike):
     """The study's ``(psi_i, k_rel_i)`` of chart points ``z`` (..., 6)."""
     z = np.asarray(z, dtype=float)
     out = z.copy()

@@ -12,51 +12,42 @@ in the rods' charts ``z``, the sliders ``lambda`` and the pose ``(x, y, phi)``:
 
 These are the study's ``J_FK`` and ``J_IK`` (the Jacobians of its (110) in (112) and (111)),
 whose zeros do not depend on how the rods are parametrised. Continuation follows one
-equilibrium along a path (:func:`mechnum.newton.solve_path`), by the closed form or by shooting.
+equilibrium along a path (:func:`mechnum.rods.assembly.follow`), by the closed form or by
+shooting; a point reached on another branch (across a fold) is a "branch-jump", never a
+converged point.
 """
 
+from __future__ import annotations
+
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate, newton
+from mechnum import _validate
 from mechnum.errors import ConvergenceError
 from mechnum.mechanisms.pfr3 import model, shooting
-from mechnum.mechanisms.rfr2.shooting import STUDY_NODES, _memoised
+from mechnum.mechanisms.thesis import STUDY_NODES
+from mechnum.rods import assembly
+from mechnum.rods.shooting import SHOOTING_TOL
 
-_Z, _LAMBDA, _POSE = list(range(6)), [6, 7, 8], [9, 10, 11]
-_FK, _IK = _Z + _POSE, _Z + _LAMBDA
-# Newton's tolerance and most iterations per step of closed-form continuation: from a good
-# prediction a few iterations reach round-off; more means the branch is lost.
-PATH_TOL = 1e-12
-PATH_MAXITER = 10
+METHODS = ("elliptic", "shooting")
 
 
-@dataclass(frozen=True)
-class Path:
-    """One equilibrium followed along a path; NaN where continuation failed.
+@dataclass(frozen=True, kw_only=True)
+class Path(assembly.Path, model.Names):
+    """One equilibrium followed along a path, or over a grid; NaN where it is not followed.
 
-    Attributes
-    ----------
-    lambdas, pose : ndarray, shape (..., 3)
-        Slider inputs (m) and platform pose ``(x, y, phi)`` at every point.
-    chart : ndarray, shape (..., 6)
-        The rods ``(psi_i, t_i)``.
-    converged : ndarray of bool
-    det_fk, det_ik : ndarray
-        Determinants of the direct and inverse problems (dimensionless, closed form; with
-        shooting, the study's 12 x 12 Jacobians of (109) in (112) and (111), scaled).
+    The fields of :class:`mechnum.rods.assembly.Path` (``inputs`` the sliders, m; ``pose`` the
+    platform ``(x, y, phi)``), with the 3PFR's name ``lambdas``. Closed form: the modes are
+    fixed; shooting finds them, and the determinants are the study's 12 x 12 Jacobians of (109)
+    in (112) and (111), scaled; with a rigid end the rods have no chart (NaN).
     """
 
-    lambdas: np.ndarray
-    pose: np.ndarray
-    chart: np.ndarray
-    converged: np.ndarray
-    det_fk: np.ndarray
-    det_ik: np.ndarray
 
-
-def jacobians(mech, lambdas, z, modes=(1, 1, 1)):
+def jacobians(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1)):
     """``det_fk``, ``det_ik`` and ``d pose / d lambda`` of closed-form equilibria.
 
     Parameters
@@ -79,66 +70,64 @@ def jacobians(mech, lambdas, z, modes=(1, 1, 1)):
     >>> bool(fk > 0), dpose.shape
     (True, (3, 3))
     """
-    lambdas, z = _validate.array(lambdas, "lambdas"), _validate.array(z, "z")
+    assembly.check_type(mech, model.Mechanism)
     tip = model.rods(mech, lambdas, z, modes, jacobian=False)[0]
     D = model.full_system(mech, modes)(z, lambdas, model.pose_of_tips(mech, tip))[1]
-    A, B = D[..., _FK], D[..., _IK]
-    dpose = -np.linalg.solve(A, D[..., _LAMBDA])[..., 6:, :]
-    return np.linalg.det(A), np.linalg.det(B), dpose
+    return assembly.determinants(D, model.LAYOUT)
 
 
-def _finish(mech, modes, z, lambdas, pose, converged):
-    ok = converged[..., None]
-    z, lambdas, pose = (np.where(ok, a, np.nan) for a in (z, lambdas, pose))
-    nan = np.where(converged, 1.0, np.nan)
-    if converged.any():
-        fk, ik, _ = jacobians(mech, np.where(ok, lambdas, 0.0), np.where(
-            ok, z, [1.0, 0.5] * 3), modes)
-    else:
-        fk = ik = np.zeros(converged.shape)
-    return Path(lambdas, pose, z, converged, fk * nan, ik * nan)
+def _closed_form(mech, modes, trace, params, along):
+    """The :class:`Path` of a closed-form trace: ``x = (z, lambdas)`` along the pose, or
+    ``(z, pose)`` along the sliders."""
+    return assembly.closed_form_path(model.full_system(mech, modes), model.LAYOUT, modes, trace,
+                                     params, along, Path)
 
 
-def _closed_form(mech, modes, unknown):
-    """``fun(u, p)``, ``jac(u, p)`` of the closed form for continuation: ``u = (z, lambda)`` at
-    a given pose ``p`` (inverse), or ``u = (z, pose)`` at given sliders ``p`` (direct)."""
-    full = model.full_system(mech, modes)
-    cols = _IK if unknown == "lambdas" else _FK
+def _shooting_path(mech, trace, params, unknown, nodes, rigid_end):
+    """The :class:`Path` of a shooting trace ``x`` (..., 12) along ``params`` (..., 3): the pose
+    or the sliders, the study's two Jacobians, and the rods' charts from their clamp states
+    (NaN with a rigid end: its rods are no clamped-pinned elasticas)."""
+    system = shooting.shooting_system
 
-    @_memoised
-    def system(u, p):
-        return full(u[:, :6], u[:, 6:], p) if unknown == "lambdas" else full(u[:, :6], p,
-                                                                            u[:, 6:])
+    def evaluate(x, known):
+        m0, n, lam, P = system(mech, nodes, unknown, rigid_end)[2](x, known)
+        per_rod = np.concatenate((m0[..., None], n), axis=-1)
+        X_fk = np.concatenate((per_rod.reshape(-1, 9), P), axis=-1)
+        X_ik = np.concatenate((per_rod, lam[..., None]), axis=-1).reshape(-1, 12)
+        A = system(mech, nodes, "pose", rigid_end)[1](X_fk, lam)
+        B = system(mech, nodes, "lambdas", rigid_end)[1](X_ik, P)
+        z, modes = shooting.chart_from_clamps(mech, m0, n)
+        if rigid_end:
+            z, modes = np.full_like(z, np.nan), np.zeros_like(modes)
+        return (lam, P, z, modes) + assembly.jacobians(A, B, B[:, :, [3, 7, 11]], slice(9, 12))
 
-    return (lambda u, p: system(u, p)[0]), (lambda u, p: system(u, p)[1][..., cols])
-
-
-def _shooting_path(mech, x, converged, known, unknown, nodes, rigid_end):
-    """A :class:`Path` from shooting solutions ``x`` (..., 12) along ``known`` (..., 3): the
-    pose or the sliders, the study's two Jacobians, and the rods' charts from their clamp
-    states (NaN with a rigid end: its rods are no clamped-pinned elasticas)."""
-    shape, ok = converged.shape, converged.ravel()
-    x, known = x.reshape(-1, 12), np.broadcast_to(known, shape + (3,)).reshape(-1, 3)
-    _, fk_jac, fk_split = shooting._system(mech, nodes, "pose", rigid_end)
-    _, ik_jac, ik_split = shooting._system(mech, nodes, "lambdas", rigid_end)
-    X = np.where(ok[:, None], x, 0.0)
-    m0, n, lambdas, pose = (fk_split if unknown == "pose" else ik_split)(X, known)
-    per_rod = np.concatenate((m0[..., None], n), axis=-1)
-    X_fk = np.concatenate((per_rod.reshape(-1, 9), pose), axis=-1)
-    X_ik = np.concatenate((per_rod, lambdas[..., None]), axis=-1).reshape(-1, 12)
-    nan = np.where(ok, 1.0, np.nan)
-    det_fk = np.linalg.det(fk_jac(X_fk, lambdas)) * nan
-    det_ik = np.linalg.det(ik_jac(X_ik, pose)) * nan
-    chart = np.full((len(ok), 6), np.nan)
-    if ok.any() and not rigid_end:
-        chart[ok] = shooting.chart_from_clamps(mech, m0[ok], n[ok])[0]
-    return Path((lambdas * nan[:, None]).reshape(shape + (3,)),
-                (pose * nan[:, None]).reshape(shape + (3,)), chart.reshape(shape + (6,)),
-                converged, det_fk.reshape(shape), det_ik.reshape(shape))
+    return assembly.path_of(trace, params, model.LAYOUT, evaluate, Path)
 
 
-def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
-                 nodes=STUDY_NODES, rigid_end=0.0):
+def _path_inputs(mech, modes, method, nodes, rigid_end):
+    assembly.check_type(mech, model.Mechanism)
+    _validate.choice(method, METHODS, "method")
+    return (assembly.check_modes(modes, 3),
+            _validate.maxiter(nodes, "nodes", minimum=2, maximum=assembly.MAX_NODES),
+            shooting.check_rigid_end(mech, rigid_end))
+
+
+def _inverse_trace(mech, modes, method, nodes, rigid_end, resume):
+    """``trace(poses, u0)`` of the inverse problem by ``method``, and ``u0(lambdas, z)``."""
+    if method == "shooting":
+        fun, jac, _ = shooting.shooting_system(mech, nodes, "lambdas", rigid_end)
+        return ((lambda p, u: assembly.follow(fun, jac, p, u, tol=SHOOTING_TOL, resume=resume)),
+                lambda lam, z: shooting.shooting_guess(mech, lam, z, modes, unknown="lambdas"))
+    fun, jac = assembly.continuation_system(model.full_system(mech, modes), model.LAYOUT, "pose")
+    return ((lambda p, u: assembly.follow(
+        fun, jac, p, u, tol=assembly.PATH_TOL, maxiter=assembly.PATH_MAXITER, resume=resume,
+        domain=lambda v: model.in_chart(v[:, :6]), chart=6)),
+        lambda lam, z: np.concatenate((z, lam)))
+
+
+def inverse_path(mech: model.Mechanism, poses: ArrayLike, lambdas: ArrayLike, z: ArrayLike,
+                 modes: ArrayLike = (1, 1, 1), *, method: str = "elliptic",
+                 nodes: int = STUDY_NODES, rigid_end: float = 0.0) -> Path:
     """Follow an equilibrium while the platform moves through ``poses``: the inverse problem by
     continuation (the study's 11.4.1.1).
 
@@ -147,14 +136,16 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
     mech, modes
         As in :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`.
     poses : array_like, shape (n, 3)
-        Platform poses ``(x, y, phi)``, close to each other.
+        Platform poses ``(x, y, phi)``, close to each other (``n`` may be 0; at most
+        :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
     lambdas, z : array_like, shapes (3,) and (6,)
         An equilibrium at (or near) ``poses[0]``: its sliders and rods.
     method : {"elliptic", "shooting"}, optional
         The closed form (fixed modes), or RK4 shooting in the study's unknowns (111) as the
         study does (modes free: a rod whose clamp moment passes through zero changes mode).
     nodes, rigid_end : optional
-        RK4 nodes per rod and the rigid segment at each pin (shooting only).
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`) and the rigid
+        segment at each pin, ``0 <= rigid_end < L`` (shooting only).
 
     Returns
     -------
@@ -175,33 +166,29 @@ def inverse_path(mech, poses, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
     >>> bool(fast.converged.all()), bool(np.abs(study.lambdas - fast.lambdas).max() < 1e-5)
     (True, True)
     """
-    _validate.choice(method, ("elliptic", "shooting"), "method")
-    modes, lambdas = model._modes(modes), model._lambdas(lambdas)
-    z0 = _validate.array(z, "z", shape=(6,))
-    poses = _validate.array(poses, "poses", shape=(None, 3))
+    modes, nodes, rigid_end = _path_inputs(mech, modes, method, nodes, rigid_end)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    z0 = model.check_chart(_validate.array(z, "z", shape=(6,)))
+    poses = assembly.points(poses, "poses", 3)
     model.check_reach(mech, poses)
+    trace, start = _inverse_trace(mech, modes, method, nodes, rigid_end, True)
+    result = trace(poses, start(lambdas, z0))
     if method == "shooting":
-        fun, jac, _ = shooting._system(mech, _validate.maxiter(nodes, "nodes", minimum=2),
-                                       "lambdas", rigid_end)
-        X0 = shooting.shooting_guess(mech, lambdas, z0, modes, unknown="lambdas")
-        res = newton.solve_path(fun, poses, X0, jac, tol=shooting.SHOOTING_TOL)
-        return _shooting_path(mech, res.x, res.converged, poses, "lambdas", nodes, rigid_end)
-    fun, jac = _closed_form(mech, modes, "lambdas")
-    res = newton.solve_path(fun, poses, np.concatenate((z0, lambdas)), jac, tol=PATH_TOL,
-                            maxiter=PATH_MAXITER, domain=lambda u: model.in_chart(u[:, :6]))
-    converged = _on_branch(z0, res.x[:, :6], res.converged)
-    return _finish(mech, modes, res.x[:, :6], res.x[:, 6:], poses, converged)
+        return _shooting_path(mech, result, poses, "lambdas", nodes, rigid_end)
+    return _closed_form(mech, modes, result, poses, "pose")
 
 
-def forward_path(mech, lambdas, z, modes=(1, 1, 1), *, method="elliptic", nodes=STUDY_NODES,
-                 rigid_end=0.0, resume=True):
+def forward_path(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                 modes: ArrayLike = (1, 1, 1), *, method: str = "elliptic",
+                 nodes: int = STUDY_NODES, rigid_end: float = 0.0, resume: bool = True) -> Path:
     """Follow an equilibrium while the sliders move through ``lambdas``: the direct problem by
     continuation (the study's 11.4.1.2).
 
     Parameters
     ----------
     lambdas : array_like, shape (n, 3) or, closed form only, (n, batch, 3)
-        Slider inputs (m), close to each other; with a batch axis, ``batch`` paths at once.
+        Slider inputs (m), close to each other; with a batch axis, ``batch`` paths at once
+        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points in all).
     z : array_like, shape (6,) or (batch, 6)
         Equilibria at ``lambdas[0]``.
     method, nodes, rigid_end
@@ -221,77 +208,63 @@ def forward_path(mech, lambdas, z, modes=(1, 1, 1), *, method="elliptic", nodes=
     >>> bool(path.converged.all()), np.round(path.pose[-1], 3).tolist()
     (True, [0.077, 0.035, 1.48])
     """
-    _validate.choice(method, ("elliptic", "shooting"), "method")
-    modes = model._modes(modes)
-    z0 = _validate.array(z, "z")
-    lambdas = _validate.array(lambdas, "lambdas")
+    modes, nodes, rigid_end = _path_inputs(mech, modes, method, nodes, rigid_end)
+    resume = _validate.flag(resume, "resume")
+    lambdas = assembly.points(lambdas, "lambdas", 3, batch=method == "elliptic")
+    z0 = model.check_chart(_validate.array(z, "z", shape=(6,) if lambdas.ndim == 2 else
+                                           (lambdas.shape[1], 6)))
+    width = 12 if method == "shooting" else 9
+    if not len(lambdas):                    # an empty path: nothing to follow
+        empty = assembly.follow(None, None, lambdas, np.zeros(z0.shape[:-1] + (width,)),
+                                tol=assembly.PATH_TOL)
+        return (_shooting_path(mech, empty, lambdas, "pose", nodes, rigid_end)
+                if method == "shooting" else _closed_form(mech, modes, empty, lambdas, "inputs"))
     if method == "shooting":
-        lambdas = _validate.array(lambdas, "lambdas", shape=(None, 3))
-        fun, jac, _ = shooting._system(mech, _validate.maxiter(nodes, "nodes", minimum=2),
-                                       "pose", rigid_end)
-        X0 = shooting.shooting_guess(mech, lambdas[0], _validate.array(z, "z", shape=(6,)),
-                                     modes)
-        res = newton.solve_path(fun, lambdas, X0, jac, tol=shooting.SHOOTING_TOL, resume=resume)
-        return _shooting_path(mech, res.x, res.converged, lambdas, "pose", nodes, rigid_end)
-    fun, jac = _closed_form(mech, modes, "pose")
+        fun, jac, _ = shooting.shooting_system(mech, nodes, "pose", rigid_end)
+        X0 = shooting.shooting_guess(mech, lambdas[0], z0, modes)
+        result = assembly.follow(fun, jac, lambdas, X0, tol=SHOOTING_TOL, resume=resume)
+        return _shooting_path(mech, result, lambdas, "pose", nodes, rigid_end)
+    fun, jac = assembly.continuation_system(model.full_system(mech, modes), model.LAYOUT,
+                                            "inputs")
     tip = model.rods(mech, lambdas[0], z0, modes, jacobian=False)[0]
     u0 = np.concatenate((z0, model.pose_of_tips(mech, tip)), axis=-1)
-    res = newton.solve_path(fun, lambdas, u0, jac, tol=PATH_TOL, maxiter=PATH_MAXITER,
-                            domain=lambda u: model.in_chart(u[:, :6]), resume=resume)
-    converged = _on_branch(z0, res.x[..., :6], res.converged)
-    return _finish(mech, modes, res.x[..., :6], lambdas, res.x[..., 6:], converged)
+    result = assembly.follow(fun, jac, lambdas, u0, tol=assembly.PATH_TOL,
+                             maxiter=assembly.PATH_MAXITER, resume=resume, chart=6,
+                             domain=lambda u: model.in_chart(u[:, :6]))
+    return _closed_form(mech, modes, result, lambdas, "inputs")
 
 
-def _on_branch(z0, z, converged):
-    """``converged``, but False from the first point where a rod's ``t`` changed sign (the
-    chart is discontinuous at ``t = 0``: Newton has jumped to another branch)."""
-    same = np.all(np.sign(z[..., 1::2]) == np.sign(np.asarray(z0)[..., 1::2]), axis=-1)
-    return converged & (np.cumsum(converged & ~same, axis=0) == 0)
-
-
-def _outwards(n, start):
-    """The indices from ``start`` to the end and back to 0, as two paths of one length (the
-    shorter padded with its last index: a step of length zero, solved at once), and their
-    lengths."""
-    up, down = np.arange(start, n), np.arange(start, -1, -1)
-    steps = max(len(up), len(down))
-    padded = [np.pad(i, (0, steps - len(i)), mode="edge") for i in (up, down)]
-    return np.stack(padded, axis=1), (len(up), len(down))
-
-
-def _both_ways(fun, jac, params, u0, keep, controls):
-    """Continuation from ``u0`` (batch, m) along ``params`` (steps, 2, batch, 3), both ways at
-    once; the solutions (steps, 2, batch, m), NaN where continuation stopped."""
-    steps, _, batch, _ = params.shape
-    u0 = np.concatenate((u0, u0))
-    res = newton.solve_path(fun, params.reshape(steps, 2 * batch, 3), u0, jac, resume=False,
-                            **controls)
-    ok = keep(u0, res.x, res.converged)
-    return np.where(ok[..., None], res.x, np.nan).reshape(steps, 2, batch, -1)
-
-
-def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="elliptic",
-                nodes=STUDY_NODES):
+def inverse_map(mech: model.Mechanism, x: ArrayLike, y: ArrayLike, phi: float, pose: ArrayLike,
+                lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (1, 1, 1), *,
+                method: str = "elliptic", nodes: int = STUDY_NODES) -> Path:
     """An equilibrium followed over the grid ``x`` by ``y`` of platform centres at the angle
     ``phi``: the inverse problem over the plane (the study's Ilustraciones 35 and 36).
 
     The equilibrium (at ``pose``, with sliders ``lambdas`` and rods ``z``) is first moved to
     the grid point nearest to it at the angle ``phi``, then followed along ``y`` both ways, then
-    every ``y`` at once along ``x`` both ways. Continuation stops (the map has NaN) where the
-    branch folds back (``det_ik`` through zero: the edge of its workspace), and, with the closed
-    form, where it leaves the chart: a rod whose clamp moment vanishes (its mode changes) or
-    whose force turns through its clamped tangent (``psi`` through 0). Shooting (the study's
-    unknowns (111)) has no chart, and stops at folds only.
+    every ``y`` at once along ``x`` both ways (:func:`mechnum.rods.assembly.follow_grid`).
+    Continuation stops (the map has NaN) where the branch folds back (``det_ik`` through zero:
+    the edge of its workspace), and, with the closed form, where it leaves the chart: a rod
+    whose clamp moment vanishes (its mode changes) or whose force turns through its clamped
+    tangent (``psi`` through 0). Shooting (the study's unknowns (111)) has no chart, and stops
+    at folds only.
 
     Parameters
     ----------
+    x, y : array_like, shapes (nx,) and (ny,)
+        The grid of centres (m), ``nx ny`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`.
     method : {"elliptic", "shooting"}, optional
         The closed form, or RK4 shooting with ``nodes`` nodes per rod.
 
     Returns
     -------
     Path
-        Arrays of shape ``(len(x), len(y), ...)``.
+        Arrays of shape ``(nx, ny, ...)``; ``params`` the grid's poses.
+
+    Raises
+    ------
+    ConvergenceError
+        If the equilibrium cannot be moved to the grid.
 
     Examples
     --------
@@ -301,63 +274,41 @@ def inverse_map(mech, x, y, phi, pose, lambdas, z, modes=(1, 1, 1), *, method="e
     >>> grid.lambdas.shape, bool(grid.converged.all())
     ((3, 2, 3), True)
     """
-    _validate.choice(method, ("elliptic", "shooting"), "method")
-    modes = model._modes(modes)
-    x, y = _validate.array(x, "x", ndim=1), _validate.array(y, "y", ndim=1)
+    modes, nodes, _ = _path_inputs(mech, modes, method, nodes, 0.0)
+    x, y = assembly.grid_axes(x, y)
     pose = _validate.array(pose, "pose", shape=(3,))
     phi = _validate.scalar(phi, "phi")
-    i0, j0 = np.argmin(np.abs(x - pose[0])), np.argmin(np.abs(y - pose[1]))
-    start = inverse_path(mech, np.linspace(pose, [x[i0], y[j0], phi], 9), lambdas, z, modes)
-    if not start.converged[-1]:
-        raise ConvergenceError(f"the equilibrium could not be moved from the pose "
-                               f"{pose.tolist()} to the grid at phi = {phi:g}", start)
     grid = np.stack(np.meshgrid(x, y, indexing="ij") + (np.full((len(x), len(y)), phi),), -1)
-    if method == "elliptic":
-        fun, jac = _closed_form(mech, modes, "lambdas")
-        u0 = np.concatenate((start.chart[-1], start.lambdas[-1]))
-        controls = dict(tol=PATH_TOL, maxiter=PATH_MAXITER,
-                        domain=lambda u: model.in_chart(u[:, :6]))
-
-        def keep(u0, u, ok):
-            return _on_branch(u0[..., :6], u[..., :6], ok)
-    else:
-        nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-        fun, jac, _ = shooting._system(mech, nodes, "lambdas", 0.0)
-        u0 = shooting.shooting_guess(mech, start.lambdas[-1], start.chart[-1], modes,
-                                     unknown="lambdas")
-        controls = dict(tol=shooting.SHOOTING_TOL)
-
-        def keep(u0, u, ok):
-            return ok
-    column = np.full((len(y), len(u0)), np.nan)
-    js, lengths = _outwards(len(y), j0)
-    both = _both_ways(fun, jac, grid[i0, js][:, :, None], u0[None], keep, controls)
-    for way, n in enumerate(lengths):
-        column[js[:n, way]] = both[:n, way, 0]
-    alive = np.flatnonzero(~np.isnan(column[:, 0]))
-    u = np.full(grid.shape[:2] + (len(u0),), np.nan)
-    i_s, lengths = _outwards(len(x), i0)
-    both = _both_ways(fun, jac, grid[i_s][:, :, alive], column[alive], keep, controls)
-    for way, n in enumerate(lengths):
-        u[i_s[:n, way, None], alive] = both[:n, way]
-    converged = ~np.isnan(u[..., 0])
+    trace, start = _inverse_trace(mech, modes, method, nodes, 0.0, False)
+    if not grid.size:
+        empty = assembly.follow_grid(trace, grid, (0, 0), np.zeros(12 if method == "shooting"
+                                                                   else 9))
+        return (_shooting_path(mech, empty, grid, "lambdas", nodes, 0.0) if method ==
+                "shooting" else _closed_form(mech, modes, empty, grid, "pose"))
+    first = (int(np.argmin(np.abs(x - pose[0]))), int(np.argmin(np.abs(y - pose[1]))))
+    move = inverse_path(mech, np.linspace(pose, grid[first], 9), lambdas, z, modes)
+    if not move.converged[-1]:
+        raise ConvergenceError(f"the equilibrium could not be moved from the pose "
+                               f"{pose.tolist()} to the grid at phi = {phi:g}", move)
+    result = assembly.follow_grid(trace, grid, first, start(move.lambdas[-1], move.chart[-1]))
     if method == "shooting":
-        return _shooting_path(mech, u, converged, grid, "lambdas", nodes, 0.0)
-    return _finish(mech, modes, u[..., :6], u[..., 6:], grid, converged)
+        return _shooting_path(mech, result, grid, "lambdas", nodes, 0.0)
+    return _closed_form(mech, modes, result, grid, "pose")
 
 
-def workspace_edge(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, step=0.04,
-                   reach=1.0, levels=6, nodes=STUDY_NODES):
+def workspace(mech: model.Mechanism, pose: ArrayLike, lambdas: ArrayLike, z: ArrayLike,
+              modes: ArrayLike = (1, 1, 1), *, directions: int = 24, step: float = 0.04,
+              reach: float = 1.0, levels: int = 6, nodes: int = STUDY_NODES) -> Path:
     """Where the inverse problem's branch ends on rays from the platform's centre, at its fixed
     angle: the edge of the workspace that the equilibrium reaches (by shooting, modes free).
 
-    All rays are followed at once (:func:`mechnum.newton.solve_path`), from the equilibrium
-    at ``pose`` (sliders ``lambdas``, rods ``z``), in steps of ``step`` up to ``reach`` from
-    the centre; from each ray's last solution on, the ray is followed again in steps four
-    times shorter, ``levels`` times, so the edge is located to ``step / 4**levels`` (a step
-    fails near a fold when the solution changes too fast for it). Where the branch folds
-    (``det_ik`` through zero) the last points approach the fold, and their ``det_ik`` falls
-    towards zero; a ray may also end at ``reach``.
+    All rays are followed at once (:func:`mechnum.rods.assembly.workspace_edge`), from the
+    equilibrium at ``pose`` (sliders ``lambdas``, rods ``z``), in steps of ``step`` up to
+    ``reach`` from the centre; from each ray's last solution on, the ray is followed again in
+    steps four times shorter, ``levels`` times, so the edge is located to ``step /
+    4**levels`` (a step fails near a fold when the solution changes too fast for it). Where
+    the branch folds (``det_ik`` through zero) the last points approach the fold, and their
+    ``det_ik`` falls towards zero; a ray may also end at ``reach``.
 
     Parameters
     ----------
@@ -367,9 +318,11 @@ def workspace_edge(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, st
         The centre and the platform's (fixed) angle.
     lambdas, z : array_like, shapes (3,) and (6,)
         An equilibrium at ``pose``.
-    directions, step, reach, levels, nodes : optional
-        Rays at equal angles, the first step (m), the largest distance (m), refinements and
-        RK4 nodes per rod.
+    directions, step, reach, levels : optional
+        As in :func:`mechnum.rods.assembly.workspace_edge` (rays, first step and largest
+        distance in m, refinements), each bounded there.
+    nodes : int, optional
+        RK4 nodes per rod, at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
@@ -380,67 +333,49 @@ def workspace_edge(mech, pose, lambdas, z, modes=(1, 1, 1), *, directions=24, st
     --------
     >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
     >>> pose = shooting.shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)[9:]
-    >>> edge = workspace_edge(model.TABLE8, pose, model.TABLE8_LAMBDAS, z, directions=4,
-    ...                       step=0.05, reach=0.1, levels=1)
+    >>> edge = workspace(model.TABLE8, pose, model.TABLE8_LAMBDAS, z, directions=4,
+    ...                  step=0.05, reach=0.1, levels=1)
     >>> edge.pose.shape, bool(edge.converged.all())
     ((4, 3), True)
     """
+    modes, nodes, _ = _path_inputs(mech, modes, "shooting", nodes, 0.0)
     pose = _validate.array(pose, "pose", shape=(3,))
-    directions = _validate.maxiter(directions, "directions", minimum=1)
-    levels = _validate.maxiter(levels, "levels", minimum=0)
-    step, reach = _validate.positive(step, "step"), _validate.positive(reach, "reach")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-    angle = 2.0 * np.pi * np.arange(directions) / directions
-    ray = np.column_stack((np.cos(angle), np.sin(angle)))
-    fun, jac, _ = shooting._system(mech, nodes, "lambdas", 0.0)
-    u = np.tile(shooting.shooting_guess(mech, lambdas, z, modes, unknown="lambdas"),
-                (directions, 1))
-    r, h = np.zeros(directions), step
-    for level in range(levels + 1):
-        # each level starts at its rays' last solutions (the centre first), and goes on for
-        # three steps of the level before (a step of the secant prediction needs two)
-        steps = np.arange(int(np.ceil(reach / h)) + 1) if level == 0 else np.arange(13)
-        radii = np.minimum(r + h * steps[:, None], reach)                     # (steps, rays)
-        known = np.concatenate((pose[:2] + radii[..., None] * ray,
-                                np.full(radii.shape + (1,), pose[2])), axis=-1)
-        res = newton.solve_path(fun, known, u, jac, tol=shooting.SHOOTING_TOL, resume=False)
-        done = res.converged.sum(axis=0)                 # steps before the first failure
-        moved = np.flatnonzero(done > 0)
-        u[moved] = res.x[done[moved] - 1, moved]
-        r[moved] = radii[done[moved] - 1, moved]
-        if level == 0:
-            converged = done > 0                         # the centre's equilibrium solved
-        h /= 4.0
-    edge = np.column_stack((pose[:2] + r[:, None] * ray, np.full(directions, pose[2])))
-    return _shooting_path(mech, u, converged, edge, "lambdas", nodes, 0.0)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    z0 = model.check_chart(_validate.array(z, "z", shape=(6,)))
+    trace, start = _inverse_trace(mech, modes, "shooting", nodes, 0.0, False)
+    edge, u, status, nfev, njev = assembly.workspace_edge(
+        trace, pose, start(lambdas, z0), directions=directions, step=step, reach=reach,
+        levels=levels)
+    last = assembly.Trace(u, status, np.zeros(len(u), dtype=int), nfev, njev)
+    return _shooting_path(mech, last, edge, "lambdas", nodes, 0.0)
 
 
-def singular_points(x, y, values):
-    """Where a map over the grid ``x`` by ``y`` changes sign: points on its zero curve.
+def workspace_edge(*args, **kwargs) -> Path:
+    """Deprecated name of :func:`workspace` (the protocol's verb), for one release."""
+    warnings.warn("pfr3.workspace_edge is deprecated: use pfr3.workspace", DeprecationWarning,
+                  stacklevel=2)
+    return workspace(*args, **kwargs)
 
-    Each grid edge whose ends have opposite signs gives one point, by linear interpolation
-    (edges touching NaN give none): the singularity curves ``det = 0`` of a map of
-    :func:`inverse_map`, to the grid's resolution.
 
-    Returns
-    -------
-    ndarray, shape (k, 2)
+def singular_points(mech: model.Mechanism, grid: Path, which: str = "det_ik") -> np.ndarray:
+    """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`inverse_map` changes sign: on
+    the singularity curves, in the platform's centre ``(x, y)`` (m), to the grid's resolution
+    (:func:`mechnum.rods.assembly.zero_crossings`). The former call ``singular_points(x, y,
+    values)`` still works, with a DeprecationWarning.
 
     Examples
     --------
-    >>> g = np.linspace(-1.0, 1.0, 21)
-    >>> X, Y = np.meshgrid(g, g, indexing="ij")
-    >>> pts = singular_points(g, g, X ** 2 + Y ** 2 - 0.25)
-    >>> bool(np.allclose(np.hypot(*pts.T), 0.5, atol=0.02)), len(pts)
-    (True, 32)
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> x = np.linspace(-0.6, 0.6, 13)
+    >>> grid = inverse_map(model.TABLE8, x, x, 1.2027, [0.0165, 0.0206, 1.2027],
+    ...                    model.TABLE8_LAMBDAS, z)
+    >>> singular_points(model.TABLE8, grid).shape[1]
+    2
     """
-    x, y = _validate.array(x, "x", ndim=1), _validate.array(y, "y", ndim=1)
-    v = _validate.array(values, "values", shape=(len(x), len(y)), finite=False)
-    X, Y = np.meshgrid(x, y, indexing="ij")
-    points = []
-    for a, b, Pa, Pb in ((v[:-1], v[1:], (X[:-1], Y[:-1]), (X[1:], Y[1:])),
-                         (v[:, :-1], v[:, 1:], (X[:, :-1], Y[:, :-1]), (X[:, 1:], Y[:, 1:]))):
-        cut = (a * b < 0) & np.isfinite(a) & np.isfinite(b)
-        w = a[cut] / (a[cut] - b[cut])
-        points.append(np.column_stack([p[cut] + w * (q[cut] - p[cut]) for p, q in zip(Pa, Pb)]))
-    return np.concatenate(points)
+    if not isinstance(mech, model.Mechanism):
+        warnings.warn("pfr3.singular_points(x, y, values) is deprecated: use "
+                      "pfr3.singular_points(mech, grid, which) or "
+                      "mechnum.rods.assembly.zero_crossings(x, y, values)", DeprecationWarning,
+                      stacklevel=2)
+        return assembly.zero_crossings(mech, grid, which)
+    return assembly.singular_points(grid, which)

@@ -4,8 +4,7 @@ import numpy as np
 
 from mechnum.mechanisms.pfr3 import model, shooting, study
 from mechnum.mechanisms.pfr3.equilibria import forward_elliptic
-from mechnum.mechanisms.rfr2.model import YOUNG
-from mechnum.mechanisms.rfr2.shooting import STUDY_NODES
+from mechnum.mechanisms.thesis import EI, STUDY_NODES, YOUNG
 
 NAMES = ("psi1", "k_rel1", "psi2", "k_rel2", "psi3", "k_rel3")
 
@@ -14,7 +13,7 @@ def _cell(n_psi, tolerances):
     return f"n_psi = {n_psi}, tol_L = {tolerances[0]:g}, tol_M = {tolerances[1]:g}"
 
 
-def table2_cells():
+def table2_cells() -> list:
     """``(name, count, time)`` of every cell of Tabla 2 that prints a count."""
     cells = []
     for i, n_psi in enumerate(study.TABLE2_NPSI):
@@ -62,7 +61,7 @@ def reproduce(table8=None, table2=None, table2_mirrored=None):
     for i in range(3):
         values[f"clamp angle theta{i + 1} (fitted to Table 8)"] = float(angles[i])
     values["platform side a (fitted to Table 8)"] = fit["a"]
-    values["Young's modulus (fitted to Table 8, 1.5 mm rod)"] = fit["EI"] / model.EI * YOUNG / 1e9
+    values["Young's modulus (fitted to Table 8, 1.5 mm rod)"] = fit["EI"] / EI * YOUNG / 1e9
     printed = model.chart_from_thesis(study.TABLE8_PUBLISHED[0])
     tip, force, _, _ = model.rods(model.TABLE8, lambdas, printed, jacobian=False)
     values["load F_x (n1 + n2 + n3 at the printed solution 1)"] = float(force.sum(axis=0)[0])
@@ -80,10 +79,10 @@ def reproduce(table8=None, table2=None, table2_mirrored=None):
     # the study's convergence tests, met by the package
     X = shooting.shooting_guess(model.TABLE8, lambdas, eq.chart[matched])
     shot = shooting.forward_shooting(model.TABLE8, lambdas, X, nodes=STUDY_NODES)
-    fun = shooting._system(model.TABLE8, STUDY_NODES, "pose", 0.0)[0]
-    scale = np.array([model.EI, 1.0, 1.0] * 3 + [model.EI] * 3)
+    fun = shooting.shooting_system(model.TABLE8, STUDY_NODES, "pose")[0]
+    scale = np.array([EI, 1.0, 1.0] * 3 + [EI] * 3)
     values["shooting residual at convergence, N = 41 (N m, m, N)"] = float(np.abs(
-        fun(shot.newton.x, np.broadcast_to(lambdas, (2, 3))) * scale).max())
+        fun(shot.x, np.broadcast_to(lambdas, (2, 3))) * scale).max())
     values["elliptic residual (114) at convergence (m, N, N m)"] = float(np.abs(
         study.thesis_residual(model.TABLE8, lambdas, eq.solutions[matched])).max())
     # Tabla 2: the roots of the study's system (real and mirror assemblies) within its reach

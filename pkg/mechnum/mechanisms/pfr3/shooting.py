@@ -14,52 +14,40 @@ The study's shooting programs (Annex II 4.1 to 4.3) end each rod with a rigid se
 program have none (``rigid_end = 0``, the default).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate, newton, rods
+from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
-from mechnum.mechanisms.rfr2.shooting import STUDY_NODES, _memoised
-from mechnum.rods import regular
+from mechnum.mechanisms.thesis import STUDY_NODES
+from mechnum.rods import assembly, tip_jacobian
+from mechnum.rods.shooting import SHOOTING_TOL
 
-# Shooting converges when the dimensionless residual is below this: round-off of the O(1)
-# positions and forces is ~1e-15; 1e-12 leaves a margin of a thousand.
-SHOOTING_TOL = 1e-12
+UNKNOWNS = ("pose", "lambdas")
+"""The two sets of shooting unknowns: the study's (112) with the pose, (111) with the sliders."""
 STUDY_RIGID_END = 0.10
 """The rigid segment at the pinned end of the study's shooting programs (``d``, m)."""
 
 
-@dataclass(frozen=True)
-class Shooting:
+@dataclass(frozen=True, kw_only=True)
+class Shooting(assembly.Shooting, model.Names):
     """Equilibria found by RK4 shooting (:func:`forward_shooting`, :func:`inverse_shooting`).
 
-    Attributes
-    ----------
-    lambdas, pose : ndarray, shape (batch, 3)
-        Slider inputs (m) and platform pose ``(x, y, phi)`` (m, m, rad).
-    clamp_moments : ndarray, shape (batch, 3)
-    forces : ndarray, shape (batch, 3, 2)
-        Force on each rod at its tip (N).
-    jacobian : ndarray, shape (batch, 12, 12)
-        The scaled Jacobian of (109) in the unknowns: the study's ``J_IK`` (in (111)) or
-        ``J_FK`` (in (112)).
-    newton : mechnum.newton.BatchNewtonResult
-        The iteration; read ``newton.status``.
+    The fields of :class:`mechnum.rods.assembly.Shooting` (``inputs`` the sliders, m, ``pose``
+    the platform ``(x, y, phi)``, both (batch, 3)), with the 3PFR's name ``lambdas``;
+    ``jacobian`` (batch, 12, 12) is the scaled Jacobian of (109) in the unknowns: the study's
+    ``J_IK`` (in (111)) or ``J_FK`` (in (112)).
     """
-
-    lambdas: np.ndarray
-    pose: np.ndarray
-    clamp_moments: np.ndarray
-    forces: np.ndarray
-    jacobian: np.ndarray
-    newton: newton.BatchNewtonResult
 
 
 def _pins(mech, m0, force, lambdas, nodes, rigid_end):
     """States ``(x, y, theta, m)`` at the pins (batch, 3, 4) and their derivatives with respect
     to ``(m0, n_x, n_y)`` (batch, 3, 4, 3)."""
-    tip, D = rods.tip_jacobian(mech.EI, mech.L, m0, force, theta0=mech.clamp_angles,
+    tip, D = tip_jacobian(mech.EI, mech.L, m0, force, theta0=mech.clamp_angles,
                                origin=model.clamps(mech, lambdas), nodes=nodes)
     if rigid_end:
         c, s = np.cos(tip[..., 2]), np.sin(tip[..., 2])
@@ -80,10 +68,53 @@ def _pins(mech, m0, force, lambdas, nodes, rigid_end):
     return tip, D
 
 
-def _system(mech, nodes, unknown, rigid_end):
-    """Residual (109) and its Jacobian, ``fun(X, known)`` and ``jac(X, known)``, batched, for
-    ``unknown`` "lambdas" ((111), ``known`` the pose) or "pose" ((112), ``known`` the sliders);
-    both from one RK4 sweep, remembered between the two calls."""
+def check_rigid_end(mech: model.Mechanism, rigid_end: float) -> float:
+    """The rigid segment at each pin, checked: ``0 <= rigid_end < L`` (m).
+
+    Examples
+    --------
+    >>> check_rigid_end(model.TABLE8, -0.1)
+    Traceback (most recent call last):
+    ...
+    ValueError: rigid_end must lie in [0, L) = [0, 1) m, got -0.1
+    """
+    value = _validate.scalar(rigid_end, "rigid_end")
+    if not 0.0 <= value < mech.L:
+        raise ValueError(f"rigid_end must lie in [0, L) = [0, {mech.L:g}) m, got {value!r}")
+    return value
+
+
+def shooting_system(mech: model.Mechanism, nodes: int, unknown: str, rigid_end: float = 0.0):
+    """Residual (109) and its Jacobian for a batch of unknowns ``X`` (batch, 12).
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    nodes : int
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
+    unknown : {"pose", "lambdas"}
+        The study's (112), ``known`` the sliders (batch, 3), or its (111), ``known`` the pose.
+    rigid_end : float, optional
+        The rigid segment at each pin (m), ``0 <= rigid_end < L``.
+
+    Returns
+    -------
+    fun, jac, split : callable
+        ``fun(X, known) -> (batch, 12)`` (scaled), ``jac(X, known) -> (batch, 12, 12)``, both
+        from one RK4 sweep, and ``split(X, known) -> (m0, n, lambdas, pose)``.
+
+    Examples
+    --------
+    >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> fun, jac, _ = shooting_system(model.TABLE8, 801, "pose")
+    >>> X = shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)[None]
+    >>> bool(np.abs(fun(X, model.TABLE8_LAMBDAS[None])).max() < 2e-3)   # 4 printed decimals
+    True
+    """
+    assembly.check_type(mech, model.Mechanism)
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=assembly.MAX_NODES)
+    _validate.choice(unknown, UNKNOWNS, "unknown")
+    rigid_end = check_rigid_end(mech, rigid_end)
     moment, length, force = mech.EI / mech.L, mech.L, mech.EI / mech.L ** 2
     scale = np.array([moment, length, length] * 3 + [force, force, moment])
     guide = np.stack((np.cos(mech.guide_angles), np.sin(mech.guide_angles)), -1)
@@ -96,7 +127,7 @@ def _system(mech, nodes, unknown, rigid_end):
         per_rod = X[:, :9].reshape(-1, 3, 3)
         return per_rod[..., 0], per_rod[..., 1:], known, X[:, 9:]
 
-    @_memoised
+    @assembly.memoised
     def sweep(X, known):
         m0, n, lambdas, pose = split(X, known)
         pin, D = _pins(mech, m0, n, lambdas, nodes, rigid_end)
@@ -136,23 +167,19 @@ def _system(mech, nodes, unknown, rigid_end):
 
 
 def _shooting(mech, unknown, known, guess, nodes, tol, maxiter, rigid_end):
-    X0 = np.atleast_2d(_validate.array(guess, "guess"))
-    if X0.shape[1] != 12:
-        raise ValueError(f"guess must have a last axis of 12 (the study's unknowns), "
-                         f"got shape {np.shape(guess)}")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-    rigid_end = _validate.scalar(rigid_end, "rigid_end", nonnegative=True)
-    known = np.broadcast_to(known, (len(X0), 3))
-    fun, jac, split = _system(mech, nodes, unknown, rigid_end)
-    res = newton.solve_batch(lambda X: fun(X, known), X0, lambda X: jac(X, known), tol=tol,
-                             maxiter=maxiter, criterion="residual", damping=True,
-                             raise_on_failure=False)
+    known = _validate.array(known, "lambdas" if unknown == "pose" else "pose", ndim=(1, 2))
+    if known.shape[-1] != 3:
+        raise ValueError(f"{'lambdas' if unknown == 'pose' else 'pose'} must have shape (3,) or "
+                         f"(batch, 3), got {known.shape}")
+    fun, jac, split = shooting_system(mech, nodes, unknown, rigid_end)
+    res, known = assembly.shoot(fun, jac, guess, known, width=12, tol=tol, maxiter=maxiter)
     m0, n, lambdas, pose = split(res.x, known)
-    return Shooting(np.array(lambdas), np.array(pose), m0, n, jac(res.x, known), res)
+    return assembly.shooting_result(res, lambdas, pose, m0, n, jac(res.x, known), Shooting)
 
 
-def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
-                     rigid_end=0.0):
+def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
+                     rigid_end: float = 0.0):
     """The direct problem by RK4 shooting: the study's (109) in its unknowns (112).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, m0_3, n3_x, n3_y, x, y, phi)``: damped Newton
@@ -168,11 +195,13 @@ def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TO
     guess : array_like, shape (12,) or (batch, 12)
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
-        RK4 nodes per rod (the study's 41; the error falls as ``nodes**-4``).
+        RK4 nodes per rod (the study's 41; the error falls as ``nodes**-4``), at most
+        :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
     tol, maxiter : optional
-        Newton's tolerance on the scaled residual, most iterations.
+        Newton's tolerance on the scaled residual, most iterations (at most 10,000).
     rigid_end : float, optional
-        Length of a rigid segment at each pinned end (m): the study's programs have 0.1.
+        Length of a rigid segment at each pinned end (m), ``0 <= rigid_end < L``: the study's
+        programs have 0.1.
 
     Returns
     -------
@@ -183,15 +212,15 @@ def forward_shooting(mech, lambdas, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TO
     >>> z = model.chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
     >>> X = shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)
     >>> sol = forward_shooting(model.TABLE8, model.TABLE8_LAMBDAS, X, nodes=801)
-    >>> np.round(sol.pose, 4).tolist(), sol.newton.status.tolist()
+    >>> np.round(sol.pose, 4).tolist(), sol.status.tolist()
     ([[0.0165, 0.0206, 1.2027]], ['converged'])
     """
-    return _shooting(mech, "pose", _validate.array(lambdas, "lambdas"), guess, nodes, tol,
-                     maxiter, rigid_end)
+    return _shooting(mech, "pose", lambdas, guess, nodes, tol, maxiter, rigid_end)
 
 
-def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50,
-                     rigid_end=0.0):
+def inverse_shooting(mech: model.Mechanism, pose: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
+                     rigid_end: float = 0.0):
     """The inverse problem by RK4 shooting: the study's (109) in its unknowns (111).
 
     ``X = (m0_1, n1_x, n1_y, lambda_1, ..., m0_3, n3_x, n3_y, lambda_3)`` for a given pose
@@ -207,11 +236,10 @@ def inverse_shooting(mech, pose, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, 
     [[0.0, -0.0, -0.0]]
     """
     model.check_reach(mech, pose)
-    return _shooting(mech, "lambdas", _validate.array(pose, "pose"), guess, nodes, tol,
-                     maxiter, rigid_end)
+    return _shooting(mech, "lambdas", pose, guess, nodes, tol, maxiter, rigid_end)
 
 
-def chart_from_clamps(mech, clamp_moments, forces):
+def chart_from_clamps(mech: model.Mechanism, clamp_moments: ArrayLike, forces: ArrayLike):
     """The chart and modes of rods known by their clamp moments and tip forces (shooting).
 
     Parameters
@@ -236,20 +264,17 @@ def chart_from_clamps(mech, clamp_moments, forces):
     >>> bool(np.allclose(back, z, atol=1e-12)), modes.tolist()
     (True, [1, 1, 1])
     """
+    assembly.check_type(mech, model.Mechanism)
     m0 = _validate.array(clamp_moments, "clamp_moments")
     forces = _validate.array(forces, "forces")
-    c, s = np.cos(mech.clamp_angles), np.sin(mech.clamp_angles)
-    local = np.stack((c * forces[..., 0] + s * forces[..., 1],
-                      -s * forces[..., 0] + c * forces[..., 1]), axis=-1)
-    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
-    inside = (k_rel != 0) & (np.abs(k_rel) < 1)      # a rod straight to rounding has no chart
-    z = np.full(psi.shape[:-1] + (6,), np.nan)
-    z[..., 0::2] = psi
-    z[..., 1::2][inside] = regular.t_from_k_rel(psi[inside], k_rel[inside])
-    return z, np.where(np.isnan(modes), 0, modes).astype(int)
+    if m0.shape[-1:] != (3,) or forces.shape != m0.shape + (2,):
+        raise ValueError(f"clamp_moments must have shape (..., 3) and forces (..., 3, 2), got "
+                         f"{m0.shape} and {forces.shape}")
+    return assembly.chart_from_clamps(mech.EI, mech.L, mech.clamp_angles, m0, forces)
 
 
-def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
+def shooting_guess(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                   modes: ArrayLike = (1, 1, 1), *, unknown: str = "pose"):
     """The study's shooting unknowns of closed-form equilibria: (112), or (111) with
     ``unknown="lambdas"``.
 
@@ -259,9 +284,10 @@ def shooting_guess(mech, lambdas, z, modes=(1, 1, 1), *, unknown="pose"):
     >>> np.round(shooting_guess(model.TABLE8, model.TABLE8_LAMBDAS, z)[9:], 4).tolist()
     [0.0165, 0.0206, 1.2028]
     """
-    _validate.choice(unknown, ("pose", "lambdas"), "unknown")
-    lambdas = model._lambdas(lambdas)
-    tip, force, moment, _ = model.rods(mech, lambdas, z, model._modes(modes), jacobian=False)
+    _validate.choice(unknown, UNKNOWNS, "unknown")
+    assembly.check_type(mech, model.Mechanism)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    tip, force, moment, _ = model.rods(mech, lambdas, z, modes, jacobian=False)
     per_rod = np.concatenate((moment[..., None], force), axis=-1)       # (..., 3, 3)
     if unknown == "lambdas":
         per_rod = np.concatenate((per_rod, np.broadcast_to(lambdas, moment.shape)[..., None]),

@@ -11,11 +11,15 @@
   represent.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mechnum import _validate
 from mechnum.mechanisms.pfr3 import model
+from mechnum.mechanisms.thesis import EI
 from mechnum.rods import regular
 
 TABLE8_PUBLISHED = np.array([[5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952],
@@ -41,7 +45,8 @@ STUDY_GAP = 1e-12
 steps ``k_rel`` by ``1e-12`` and aborts (NaN) when that leaves ``|k_rel| < 1``."""
 
 
-def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
+def thesis_residual(mech: model.Mechanism, lambdas: ArrayLike, solutions: ArrayLike,
+                    modes: ArrayLike = (1, 1, 1)):
     """The study's refinement residual at solutions ``(psi_i, k_rel_i)`` (Annex II 4.5,
     ``Residue``; its (114) with the force balance of its code).
 
@@ -61,15 +66,16 @@ def thesis_residual(mech, lambdas, solutions, modes=(1, 1, 1)):
     1.679
     """
     z = model.chart_from_thesis(solutions)
-    tip, force, _, _ = model.rods(mech, model._lambdas(lambdas), z, model._modes(modes),
-                                  jacobian=False)
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    tip, force, _, _ = model.rods(mech, lambdas, z, modes, jacobian=False)
     sides = np.linalg.norm(np.roll(tip, -1, axis=-2) - tip, axis=-1) - mech.a
     r = tip - tip.mean(axis=-2, keepdims=True)
     moment = -model.cross(r, force).sum(axis=-1) + mech.moment
     return np.concatenate((sides, mech.force - force.sum(axis=-2), moment[..., None]), axis=-1)
 
 
-def orientation(mech, lambdas, z, modes=(1, 1, 1)):
+def orientation(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
+                modes: ArrayLike = (1, 1, 1)):
     """+1 where the tips ``B1, B2, B3`` of equilibria ``z`` (..., 6) go anticlockwise, -1 where
     clockwise: the sign of ``(B2 - B1) x (B3 - B1)``.
 
@@ -79,12 +85,13 @@ def orientation(mech, lambdas, z, modes=(1, 1, 1)):
     ...     TABLE8_PUBLISHED)).tolist()
     [1.0, 1.0]
     """
-    tip = model.rods(mech, model._lambdas(lambdas), np.asarray(z, float), model._modes(modes),
-                     jacobian=False)[0]
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    tip = model.rods(mech, lambdas, z, modes, jacobian=False)[0]
     return np.sign(model.cross(tip[..., 1, :] - tip[..., 0, :], tip[..., 2, :] - tip[..., 0, :]))
 
 
-def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=(0.0, 0.5)):
+def recover_inputs(solutions: ArrayLike, clamp_angles: ArrayLike, *,
+                   origins: ArrayLike = model.UNIT_CIRCLE, force: ArrayLike = (0.0, 0.5)):
     """The clamp angles, platform side and bending stiffness that printed solutions determine.
 
     Each printed solution fixes the three rods' shapes and forces in their clamp frames; with
@@ -123,23 +130,33 @@ def recover_inputs(solutions, clamp_angles, *, origins=model.UNIT_CIRCLE, force=
         fun, _ = model.forward_system(mech, np.zeros(3))
         return fun(model.chart_from_thesis(s)).ravel()
 
-    fit = least_squares(residuals, np.concatenate((start, [0.3, model.EI])),
-                        bounds=([-np.inf] * 3 + [1e-3, 1e-3 * model.EI], np.inf),
-                        x_scale=[1.0, 1.0, 1.0, 0.1, model.EI], xtol=1e-15, ftol=1e-15,
+    fit = least_squares(residuals, np.concatenate((start, [0.3, EI])),
+                        bounds=([-np.inf] * 3 + [1e-3, 1e-3 * EI], np.inf),
+                        x_scale=[1.0, 1.0, 1.0, 0.1, EI], xtol=1e-15, ftol=1e-15,
                         gtol=1e-15)
     return {"clamp_angles": fit.x[:3], "a": float(fit.x[3]), "EI": float(fit.x[4]),
             "residual": float(np.abs(fit.fun).max())}
 
 
-def digit_matches(exact, printed, decimals=4):
+def digit_matches(exact: ArrayLike, printed: ArrayLike, decimals: int = 4):
     """How many printed numbers are the truncation, and how many the rounding, of ``exact``.
 
     Examples
     --------
     >>> digit_matches([5.005957, 2.69081], [5.0059, 2.6908])
     (2, 1)
+
+    Raises
+    ------
+    ValueError
+        If the two are not finite arrays of one shape, or ``decimals`` not an integer in
+        ``[0, 15]`` (a double holds no more).
     """
-    exact, printed = np.asarray(exact, float), np.asarray(printed, float)
+    exact, printed = _validate.array(exact, "exact"), _validate.array(printed, "printed")
+    if exact.shape != printed.shape:
+        raise ValueError(f"exact and printed must have one shape, got {exact.shape} and "
+                         f"{printed.shape}")
+    decimals = _validate.maxiter(decimals, "decimals", minimum=0, maximum=15)
     scale = 10.0 ** decimals
     truncated = np.trunc(exact * scale) / scale
     rounded = np.round(exact * scale) / scale
@@ -148,7 +165,7 @@ def digit_matches(exact, printed, decimals=4):
             int(np.sum(np.abs(rounded - printed) < tiny)))
 
 
-def within_study_reach(z):
+def within_study_reach(z: ArrayLike):
     """Which equilibria (chart points ``z``, shape (..., 6)) the study's refinement can hold:
     every rod with ``1 - |k_rel| > STUDY_GAP`` (computed without cancellation).
 

@@ -302,7 +302,7 @@ ANNEX_I = {
 _TERM = re.compile(r"^(?:(\d+)\*)?([A-Za-z]\w*(?:\^\d+)?(?:\*[A-Za-z]\w*(?:\^\d+)?)*)$")
 
 
-def parse_terms(text):
+def parse_terms(text: str) -> list[tuple[int, dict[str, int]]]:
     """The terms of a sum of monomials written ``- 2*K1^2*Q5 + Q6^2 ...``.
 
     Returns
@@ -320,6 +320,8 @@ def parse_terms(text):
     >>> parse_terms("- K1^2*L^2*Q5^2 + 2*K1*K2*Q6")
     [(-1, {'K1': 2, 'L': 2, 'Q5': 2}), (2, {'K1': 1, 'K2': 1, 'Q6': 1})]
     """
+    if not isinstance(text, str):
+        raise ValueError(f"text must be a str, got {text!r:.80}")
     terms = []
     for sign, body in re.findall(r"([+-]?)\s*([^+-]+)", text):
         match = _TERM.match(body.strip())
@@ -334,7 +336,7 @@ def parse_terms(text):
     return terms
 
 
-def annex_i_terms():
+def annex_i_terms() -> dict[int, list[tuple[int, dict[str, int]]]]:
     """Annex I's printed coefficients, parsed: ``{k: [(coefficient, {symbol: power}), ...]}``.
 
     Examples

@@ -1,17 +1,19 @@
 """The 3PRR's geometry: its dimensions, its vertices, its loop equations and their Jacobians.
 
-Everything here is a function of a pose ``(x, y, psi)`` and of the inputs ``lambdas``, vectorised
-over any leading axes; the inverse and direct problems are built on it.
+Everything here is a function of the mechanism (:class:`Geometry`, first), of poses
+``(x, y, psi)`` and of inputs ``lambdas``, vectorised over any leading axes; the inverse and
+direct problems are built on it. Each function checks its input, then calls its kernel
+(:mod:`~mechnum.mechanisms.prr3.kernels`).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate
+from mechnum import _deprecated, _validate
 from mechnum.errors import GeometryError
-
-_ROOT3 = np.sqrt(3.0)
+from mechnum.mechanisms.prr3 import kernels
 
 # Lengths are squared (radicands and loop residuals are in m^2) and the direct problem's
 # polynomial has degree 8 in them: outside 1e-100 to 1e100 m these overflow or underflow
@@ -28,7 +30,7 @@ SINGULAR_DET = 1e-6
 
 @dataclass(frozen=True)
 class Geometry:
-    """Dimensions of the 3PRR mechanism, in metres.
+    """The 3PRR mechanism: its dimensions, in metres (the first argument of every function).
 
     Attributes
     ----------
@@ -86,7 +88,22 @@ class Geometry:
                                 f"than a factor {MAX_ASPECT:g}: the poses cannot be resolved")
 
 
-def vectors(value, name):
+def check(mech: object) -> "Geometry":
+    """``mech`` if it is a :class:`Geometry`; else :class:`ValueError` naming it.
+
+    Examples
+    --------
+    >>> check(None)
+    Traceback (most recent call last):
+    ...
+    ValueError: mech must be a prr3.Geometry, got None
+    """
+    if not isinstance(mech, Geometry):
+        raise ValueError(f"mech must be a prr3.Geometry, got {mech!r:.80}")
+    return mech
+
+
+def vectors(value: ArrayLike, name: str) -> np.ndarray:
     """``value`` as a finite float array of shape ``(..., 3)`` (a pose or an input), checked."""
     out = _validate.array(value, name)
     if out.ndim == 0 or out.shape[-1] != 3:
@@ -94,14 +111,29 @@ def vectors(value, name):
     return out
 
 
-def vertices(poses, geometry):
+def pairs(poses: ArrayLike, lambdas: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Poses and inputs of shape ``(..., 3)`` whose batch shapes broadcast, checked."""
+    poses, lambdas = vectors(poses, "poses"), vectors(lambdas, "lambdas")
+    try:
+        np.broadcast_shapes(poses.shape, lambdas.shape)
+    except ValueError:
+        raise ValueError(f"poses and lambdas must broadcast together, got shapes {poses.shape} "
+                         f"and {lambdas.shape}") from None
+    return poses, lambdas
+
+
+_MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came last
+
+
+@_deprecated.mech_moved(to=1, **_MOVED)
+def vertices(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     """The platform vertices ``P1, P2, P3`` of poses ``(x, y, psi)``.
 
     Parameters
     ----------
+    mech : Geometry
     poses : array_like, shape (..., 3)
         ``(x, y, psi)`` in metres and radians.
-    geometry : Geometry
 
     Returns
     -------
@@ -111,30 +143,20 @@ def vertices(poses, geometry):
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> vertices([0.6, 0.4, 0.0], g).round(4).tolist()
+    >>> vertices(g, [0.6, 0.4, 0.0]).round(4).tolist()
     [[0.6, 0.4], [1.6, 0.4], [1.1, 1.266]]
     """
-    return _vertices(vectors(poses, "poses"), geometry)
+    return kernels.vertices(check(mech), vectors(poses, "poses"))
 
 
-def _vertices(poses, geometry):
-    x, y = poses[..., 0], poses[..., 1]
-    c, s = geometry.a * np.cos(poses[..., 2]), geometry.a * np.sin(poses[..., 2])
-    out = np.empty(poses.shape[:-1] + (3, 2))
-    out[..., 0, 0], out[..., 0, 1] = x, y
-    out[..., 1, 0], out[..., 1, 1] = x + c, y + s
-    # (cos, sin)(psi + pi/3) by the rotation formulas: no second pair of trigonometric calls
-    out[..., 2, 0], out[..., 2, 1] = x + (c - _ROOT3 * s) / 2, y + (s + _ROOT3 * c) / 2
-    return out
-
-
-def sliders(lambdas, geometry):
+@_deprecated.mech_moved(to=1, **_MOVED)
+def sliders(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
     """The slider points ``C1, C2, C3`` of inputs ``lambdas``.
 
     Parameters
     ----------
+    mech : Geometry
     lambdas : array_like, shape (..., 3)
-    geometry : Geometry
 
     Returns
     -------
@@ -144,21 +166,14 @@ def sliders(lambdas, geometry):
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> sliders([1.0, 0.5, 0.25], g).tolist()
+    >>> sliders(g, [1.0, 0.5, 0.25]).tolist()
     [[1.0, 0.0], [2.5, 0.0], [1.5, 1.75]]
     """
-    return _sliders(vectors(lambdas, "lambdas"), geometry)
+    return kernels.sliders(check(mech), vectors(lambdas, "lambdas"))
 
 
-def _sliders(lam, geometry):
-    out = np.zeros(lam.shape[:-1] + (3, 2))
-    out[..., 0, 0] = lam[..., 0]
-    out[..., 1, 0] = geometry.B2 - lam[..., 1]
-    out[..., 2, 0], out[..., 2, 1] = geometry.B3, geometry.H3 - lam[..., 2]
-    return out
-
-
-def radicands(poses, geometry):
+@_deprecated.mech_moved(to=1, **_MOVED)
+def radicands(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     """The radicands of the inverse problem, one per leg (equations 62 to 64 of the study).
 
     Leg ``i`` can be assembled when its radicand is ``>= 0``; it is tangent to its guide (an
@@ -166,8 +181,8 @@ def radicands(poses, geometry):
 
     Parameters
     ----------
+    mech : Geometry
     poses : array_like, shape (..., 3)
-    geometry : Geometry
 
     Returns
     -------
@@ -178,62 +193,61 @@ def radicands(poses, geometry):
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> radicands([0.6, 0.4, 0.0], g).round(4).tolist()
+    >>> radicands(g, [0.6, 0.4, 0.0]).round(4).tolist()
     [0.84, 0.84, 0.84]
     """
-    v = _vertices(vectors(poses, "poses"), geometry)
-    distance = np.stack([v[..., 0, 1], v[..., 1, 1], geometry.B3 - v[..., 2, 0]], axis=-1)
+    v = kernels.vertices(check(mech), vectors(poses, "poses"))
+    distance = np.stack([v[..., 0, 1], v[..., 1, 1], mech.B3 - v[..., 2, 0]], axis=-1)
     with np.errstate(over="ignore"):
-        return (geometry.L - distance) * (geometry.L + distance)
+        return (mech.L - distance) * (mech.L + distance)
 
 
-def bars(poses, lambdas, geometry):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def bars(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """The bar vectors ``P_i - C_i``, shape ``(..., 3, 2)``; poses and inputs broadcast.
 
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> bars([0.6, 0.4, 0.0], [1.0, 0.5, 0.25], g)[0].tolist()
+    >>> bars(g, [0.6, 0.4, 0.0], [1.0, 0.5, 0.25])[0].tolist()
     [-0.4, 0.4]
     """
-    return _bars(vectors(poses, "poses"), vectors(lambdas, "lambdas"), geometry)
+    return kernels.bars(check(mech), *pairs(poses, lambdas))
 
 
-def _bars(poses, lambdas, geometry):
-    return _vertices(poses, geometry) - _sliders(lambdas, geometry)
-
-
-def loop_residuals(poses, lambdas, geometry):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def loop_residuals(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """The loop-closure equations ``|P_i - C_i|^2 - L^2``, zero when the mechanism is assembled.
 
     Parameters
     ----------
+    mech : Geometry
     poses : array_like, shape (..., 3)
         ``(x, y, psi)``.
     lambdas : array_like, shape (..., 3)
         The inputs; broadcast against ``poses``.
-    geometry : Geometry
 
     Returns
     -------
     ndarray, shape (..., 3)
         In m^2.
 
+    Raises
+    ------
+    ValueError
+        If an argument is not finite, has no last axis of 3, or the two do not broadcast.
+
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> loop_residuals([0.6, 0.4, 0.0], [0.6, 0.5, 0.25], g).round(4).tolist()
+    >>> loop_residuals(g, [0.6, 0.4, 0.0], [0.6, 0.5, 0.25]).round(4).tolist()
     [-0.84, -0.03, -0.6058]
     """
-    return _loop_residuals(vectors(poses, "poses"), vectors(lambdas, "lambdas"), geometry)
+    return kernels.loop_residuals(check(mech), *pairs(poses, lambdas))
 
 
-def _loop_residuals(poses, lambdas, geometry):
-    with np.errstate(over="ignore", invalid="ignore"):
-        return np.sum(_bars(poses, lambdas, geometry) ** 2, axis=-1) - geometry.L ** 2
-
-
-def direct_jacobian(poses, lambdas, geometry):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def direct_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """Jacobian of :func:`loop_residuals` with respect to the pose ``(x, y, psi)``.
 
     It is singular at the direct (type II) singularities, where the platform gains a degree of
@@ -241,8 +255,8 @@ def direct_jacobian(poses, lambdas, geometry):
 
     Parameters
     ----------
+    mech : Geometry
     poses, lambdas : array_like, shape (..., 3)
-    geometry : Geometry
 
     Returns
     -------
@@ -254,22 +268,15 @@ def direct_jacobian(poses, lambdas, geometry):
     >>> from mechnum.newton import fd_jacobian
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
     >>> pose, lam = np.array([0.6, 0.4, 0.3]), np.array([1.5, 0.5, 0.2])
-    >>> J = direct_jacobian(pose, lam, g)
-    >>> bool(np.allclose(J, fd_jacobian(lambda p: loop_residuals(p, lam, g), pose), atol=1e-6))
+    >>> J = direct_jacobian(g, pose, lam)
+    >>> bool(np.allclose(J, fd_jacobian(lambda p: loop_residuals(g, p, lam), pose), atol=1e-6))
     True
     """
-    return _direct_jacobian(vectors(poses, "poses"), vectors(lambdas, "lambdas"), geometry)
+    return kernels.direct_jacobian(check(mech), *pairs(poses, lambdas))
 
 
-def _direct_jacobian(poses, lambdas, geometry):
-    u = _bars(poses, lambdas, geometry)
-    v = _vertices(poses, geometry)
-    lever = v - v[..., :1, :]  # P_i - P: its derivative with respect to psi is its normal
-    dpsi = np.sum(u * np.stack([-lever[..., 1], lever[..., 0]], axis=-1), axis=-1)
-    return 2 * np.concatenate([u, dpsi[..., None]], axis=-1)
-
-
-def inverse_jacobian(poses, lambdas, geometry):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def inverse_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """Jacobian of :func:`loop_residuals` with respect to the inputs: diagonal.
 
     Input ``i`` moves only slider ``i``, so ``dF_i/dlambda_i`` is twice the bar's component along
@@ -278,8 +285,8 @@ def inverse_jacobian(poses, lambdas, geometry):
 
     Parameters
     ----------
+    mech : Geometry
     poses, lambdas : array_like, shape (..., 3)
-    geometry : Geometry
 
     Returns
     -------
@@ -291,16 +298,18 @@ def inverse_jacobian(poses, lambdas, geometry):
     >>> from mechnum.newton import fd_jacobian
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
     >>> pose, lam = np.array([0.6, 0.4, 0.3]), np.array([1.5, 0.5, 0.2])
-    >>> J = inverse_jacobian(pose, lam, g)
-    >>> bool(np.allclose(J, fd_jacobian(lambda l: loop_residuals(pose, l, g), lam), atol=1e-6))
+    >>> J = inverse_jacobian(g, pose, lam)
+    >>> bool(np.allclose(J, fd_jacobian(lambda l: loop_residuals(g, pose, l), lam), atol=1e-6))
     True
     """
-    u = _bars(vectors(poses, "poses"), vectors(lambdas, "lambdas"), geometry)
+    u = kernels.bars(check(mech), *pairs(poses, lambdas))
     along = np.stack([-u[..., 0, 0], u[..., 1, 0], u[..., 2, 1]], axis=-1)
     return 2 * along[..., None] * np.eye(3)
 
 
-def jacobian_dets(poses, lambdas, geometry):
+@_deprecated.mech_moved(to=2, **_MOVED)
+def jacobian_dets(mech: Geometry, poses: ArrayLike,
+                  lambdas: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Dimensionless determinants of the inverse and the direct Jacobian.
 
     Each bar vector is divided by ``L`` and the column of ``psi`` by ``a``, so the entries are
@@ -310,8 +319,8 @@ def jacobian_dets(poses, lambdas, geometry):
 
     Parameters
     ----------
+    mech : Geometry
     poses, lambdas : array_like, shape (..., 3)
-    geometry : Geometry
 
     Returns
     -------
@@ -320,64 +329,8 @@ def jacobian_dets(poses, lambdas, geometry):
     Examples
     --------
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> [round(float(d), 4) for d in jacobian_dets([0.6, 0.4, 0.0], [1.516515, 0.483485,
-    ...                                           -0.182541], g)]
+    >>> [round(float(d), 4) for d in jacobian_dets(g, [0.6, 0.4, 0.0], [1.516515, 0.483485,
+    ...                                            -0.182541])]
     [0.7699, -0.4]
     """
-    return _jacobian_dets(vectors(poses, "poses"), vectors(lambdas, "lambdas"), geometry)
-
-
-def _jacobian_dets(poses, lambdas, geometry):
-    scale = 2 * geometry.L
-    u = _bars(poses, lambdas, geometry)
-    inverse = -u[..., 0, 0] * u[..., 1, 0] * u[..., 2, 1] / geometry.L ** 3
-    direct = _direct_jacobian(poses, lambdas, geometry) / scale
-    direct[..., 2] /= geometry.a
-    return inverse, np.linalg.det(direct)
-
-
-def draw(ax, pose, lambdas, geometry, *, color="tab:blue", alpha=1.0, guides=True):
-    """Draw one configuration: the guides, the bars ``C_i P_i``, the sliders and the platform.
-
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes
-    pose, lambdas : array_like, shape (3,)
-        The platform's pose and the inputs that assemble it.
-    geometry : Geometry
-    color : str, optional
-        Colour of the bars and sliders.
-    alpha : float, optional
-        Opacity (to overlay several assembly modes).
-    guides : bool, optional
-        Whether to draw the fixed guides and the motors' origins.
-
-    Returns
-    -------
-    list of matplotlib artists
-
-    Examples
-    --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> import matplotlib.pyplot as plt
-    >>> fig, ax = plt.subplots()
-    >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> len(draw(ax, [0.6, 0.4, 0.0], [1.516515, 0.483485, -0.182541], g)) > 0
-    True
-    >>> plt.close(fig)
-    """
-    v, c = vertices(pose, geometry), sliders(lambdas, geometry)
-    if v.shape != (3, 2) or c.shape != (3, 2):
-        raise ValueError("draw takes one pose and one input, each of shape (3,)")
-    artists = []
-    if guides:
-        artists += [ax.axhline(0.0, color="0.75", lw=1), ax.axvline(geometry.B3, color="0.75",
-                                                                    lw=1)]
-        artists += ax.plot([0, geometry.B2, geometry.B3], [0, 0, geometry.H3], "k^", ms=5)
-    artists += ax.fill(v[:, 0], v[:, 1], color="tab:orange", alpha=0.6 * alpha)
-    for ci, pi in zip(c, v):
-        artists += ax.plot([ci[0], pi[0]], [ci[1], pi[1]], "-", color=color, lw=2, alpha=alpha)
-    artists += ax.plot(c[:, 0], c[:, 1], "s", color=color, ms=6, alpha=alpha)
-    ax.set_aspect("equal")
-    return artists
+    return kernels.jacobian_dets(check(mech), *pairs(poses, lambdas))

@@ -3,9 +3,13 @@
 from itertools import product
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate
-from mechnum.mechanisms.prr3.geometry import radicands, vectors, vertices
+from mechnum import _deprecated, _validate
+from mechnum.mechanisms.prr3 import kernels
+from mechnum.mechanisms.prr3.geometry import Geometry, check, radicands, vectors
+
+_MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came later
 
 # A radicand within 1e-12 L^2 of zero is a tangent leg: the two values of its input then
 # differ by 2 sqrt(1e-12) L = 2e-6 L, the study's own merging distance (1e-6 L) in size,
@@ -22,7 +26,9 @@ def _tangent_roots(rad, tol, L):
         return np.where(np.abs(rad) <= band, 0.0, np.where(rad < -band, np.nan, np.sqrt(rad)))
 
 
-def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
+@_deprecated.mech_moved(to=1, **_MOVED)
+def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORDER, *,
+                  tol: float = TANGENT_TOL) -> np.ndarray:
     """The inputs of one working mode (one branch of each leg), vectorised over poses.
 
     ``lambda1 = x_P + s1 r1``, ``lambda2 = B2 - x_P2 + s2 r2``, ``lambda3 = H3 - y_P3 + s3 r3``
@@ -32,8 +38,8 @@ def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
 
     Parameters
     ----------
+    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     poses : array_like, shape (..., 3)
-    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     signs : array_like of +-1, shape (3,)
         The branch of each leg.
     tol : float, optional
@@ -54,7 +60,7 @@ def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
     --------
     >>> from mechnum.mechanisms.prr3 import Geometry
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> branch_inputs([[0.6, 0.4, 0.0], [0.6, 1.4, 0.0]], g).round(4).tolist()
+    >>> branch_inputs(g, [[0.6, 0.4, 0.0], [0.6, 1.4, 0.0]]).round(4).tolist()
     [[1.5165, 0.4835, -0.1825], [nan, nan, -1.1825]]
     """
     signs = _validate.array(signs, "signs", shape=(3,))
@@ -62,13 +68,14 @@ def branch_inputs(poses, geometry, signs=STUDY_ORDER, *, tol=TANGENT_TOL):
         raise ValueError(f"signs must be three values +1 or -1, got {signs.tolist()}")
     tol = _validate.tolerance(tol)
     poses = vectors(poses, "poses")
-    root = _tangent_roots(radicands(poses, geometry), tol, geometry.L)
-    v = vertices(poses, geometry)
-    centre = np.stack([v[..., 0, 0], geometry.B2 - v[..., 1, 0], geometry.H3 - v[..., 2, 1]], -1)
+    root = _tangent_roots(radicands(mech, poses), tol, mech.L)
+    v = kernels.vertices(mech, poses)
+    centre = np.stack([v[..., 0, 0], mech.B2 - v[..., 1, 0], mech.H3 - v[..., 2, 1]], -1)
     return centre + signs * root
 
 
-def inverse(pose, geometry, *, tol=TANGENT_TOL):
+@_deprecated.mech_moved(to=1, **_MOVED)
+def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.ndarray:
     """All the inputs ``(lambda1, lambda2, lambda3)`` that assemble the mechanism in ``pose``.
 
     Each leg gives two values of its input (line-circle intersection, equations 53, 57, 61 of the
@@ -79,9 +86,9 @@ def inverse(pose, geometry, *, tol=TANGENT_TOL):
 
     Parameters
     ----------
+    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     pose : array_like, shape (3,)
         ``(x, y, psi)`` in metres and radians.
-    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     tol : float, optional
         Relative tolerance of tangency (:data:`TANGENT_TOL`).
 
@@ -99,30 +106,32 @@ def inverse(pose, geometry, *, tol=TANGENT_TOL):
     --------
     >>> from mechnum.mechanisms.prr3 import Geometry
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> inverse([0.6, 0.4, 0.0], g)[:2].round(5).tolist()
+    >>> inverse(g, [0.6, 0.4, 0.0])[:2].round(5).tolist()
     [[1.51652, 0.48348, -0.18254], [1.51652, 0.48348, 1.65049]]
-    >>> inverse([0.6, 1.4, 0.0], g).shape
+    >>> inverse(g, [0.6, 1.4, 0.0]).shape
     (0, 3)
     """
     pose = _validate.array(pose, "pose", shape=(3,))
     tol = _validate.tolerance(tol)
-    first = branch_inputs(pose, geometry, STUDY_ORDER, tol=tol)
+    first = branch_inputs(mech, pose, STUDY_ORDER, tol=tol)
     if np.any(np.isnan(first)):
         return np.empty((0, 3))
-    second = branch_inputs(pose, geometry, np.negative(STUDY_ORDER), tol=tol)
+    second = branch_inputs(mech, pose, np.negative(STUDY_ORDER), tol=tol)
     values = [(f,) if f == s else (f, s) for f, s in zip(first, second)]  # equal: tangent
     return np.array(list(product(*values)))
 
 
-def workspace(x, y, psi, geometry, *, tol=TANGENT_TOL):
+@_deprecated.mech_moved(to=3, **_MOVED)
+def workspace(mech: Geometry, x: ArrayLike, y: ArrayLike, psi: ArrayLike, *,
+              tol: float = TANGENT_TOL) -> np.ndarray:
     """Reachability of every pose of a grid: can the inverse problem be solved there?
 
     Parameters
     ----------
+    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     x, y, psi : array_like
         Coordinates (m) and orientation (rad) of the poses; broadcast against each other (use
         :func:`numpy.meshgrid` with ``indexing="ij"`` for a full grid). Empty arrays are valid.
-    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     tol : float, optional
         A radicand down to ``-tol * L**2`` counts as zero (a tangent leg is reachable).
 
@@ -142,9 +151,10 @@ def workspace(x, y, psi, geometry, *, tol=TANGENT_TOL):
     >>> import numpy as np
     >>> from mechnum.mechanisms.prr3 import Geometry
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> workspace(np.array([0.6, 0.6]), np.array([0.4, 1.2]), 0.0, g).tolist()
+    >>> workspace(g, np.array([0.6, 0.6]), np.array([0.4, 1.2]), 0.0).tolist()
     [True, False]
     """
+    check(mech)
     arrays = [_validate.array(v, name) for v, name in ((x, "x"), (y, "y"), (psi, "psi"))]
     tol = _validate.tolerance(tol)
     try:
@@ -152,4 +162,4 @@ def workspace(x, y, psi, geometry, *, tol=TANGENT_TOL):
     except ValueError:
         raise ValueError("x, y and psi must broadcast together, got shapes "
                          f"{[a.shape for a in arrays]}") from None
-    return np.all(radicands(poses, geometry) >= -tol * geometry.L ** 2, axis=-1)
+    return np.all(radicands(mech, poses) >= -tol * mech.L ** 2, axis=-1)

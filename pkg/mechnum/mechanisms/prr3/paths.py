@@ -10,9 +10,10 @@ surface in input space (Innocenti and Parenti-Castelli, 1998).
 """
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate
-from mechnum.mechanisms.prr3.geometry import jacobian_dets, radicands, vectors
+from mechnum import _deprecated, _validate
+from mechnum.mechanisms.prr3.geometry import Geometry, check, jacobian_dets, radicands, vectors
 from mechnum.mechanisms.prr3.inverse import branch_inputs
 
 # Passes of neighbour averaging that turn the voxel staircase into a smooth path (each pass
@@ -21,13 +22,16 @@ _SMOOTHING = 30
 # Each segment between two voxel centres of the path is checked at this many points: the
 # determinant and the radicands are smooth, and a voxel is small against their variation.
 _CHECKS_PER_STEP = 8
+MAX_VOXELS = 2_000_000
+"""The most voxels of a search (6 times the default grid's): each holds a pose, its inputs and
+determinant, some 200 bytes, so 2e6 voxels take about 400 MB."""
 
 
-def _region(poses, geometry, signs, sign):
+def _region(mech, poses, signs, sign):
     """Voxels where every leg reaches its guide and ``det J`` has the sign ``sign``."""
-    lam = branch_inputs(poses, geometry, signs)
-    reach = np.all(radicands(poses, geometry) > 0, axis=-1)
-    det = jacobian_dets(poses, np.where(np.isnan(lam), 0.0, lam), geometry)[1]
+    lam = branch_inputs(mech, poses, signs)
+    reach = np.all(radicands(mech, poses) > 0, axis=-1)
+    det = jacobian_dets(mech, poses, np.where(np.isnan(lam), 0.0, lam))[1]
     return reach & (np.sign(det) == sign)
 
 
@@ -65,7 +69,10 @@ def _bfs(region, start, end):
     return where[chain[::-1]]
 
 
-def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90)):
+@_deprecated.mech_moved(Geometry, to=2)
+def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: ArrayLike, *,
+                     bounds: ArrayLike, shape: tuple[int, int, int] = (70, 50, 90)
+                     ) -> np.ndarray | None:
     """A path of poses from ``start`` to ``end`` that crosses no singularity, or None.
 
     Both poses must belong to the working mode ``signs`` and have the same sign of the direct
@@ -78,15 +85,15 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
 
     Parameters
     ----------
+    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
     start, end : array_like, shape (3,)
         Poses ``(x, y, psi)``.
-    geometry : ~mechnum.mechanisms.prr3.geometry.Geometry
     signs : array_like of +-1, shape (3,)
         The working mode (:func:`branch_inputs`).
     bounds : array_like, shape (2, 2)
         ``[[x_min, x_max], [y_min, y_max]]`` of the search, metres.
     shape : tuple of 3 int, optional
-        Voxels along ``x``, ``y`` and ``psi``.
+        Voxels along ``x``, ``y`` and ``psi``, at least 2 each and :data:`MAX_VOXELS` in all.
 
     Returns
     -------
@@ -106,20 +113,24 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     >>> from mechnum.mechanisms.prr3 import EXAMPLES
     >>> g = EXAMPLES["Table 5"][0]
     >>> a, b = np.array([2.2, 0.5, 3.0]), np.array([2.3, 0.5, 3.2])
-    >>> path = mode_change_path(a, b, g, (1, 1, 1), bounds=[[1.5, 3.5], [0.0, 1.0]],
+    >>> path = mode_change_path(g, a, b, (1, 1, 1), bounds=[[1.5, 3.5], [0.0, 1.0]],
     ...                         shape=(20, 10, 36))
     >>> bool(np.allclose(path[0], a) and np.allclose(path[-1], b))
     True
     """
+    check(mech)
     start = _validate.array(start, "start", shape=(3,))
     end = _validate.array(end, "end", shape=(3,))
     signs = _validate.array(signs, "signs", shape=(3,))
     bounds = _validate.array(bounds, "bounds", shape=(2, 2))
-    shape = tuple(_validate.maxiter(n, "shape", minimum=2) for n in shape)
+    shape = tuple(_validate.maxiter(n, "shape", minimum=2, maximum=MAX_VOXELS) for n in shape)
     if len(shape) != 3:
         raise ValueError(f"shape must hold 3 voxel counts, got {shape}")
-    dets = jacobian_dets(np.stack([start, end]), branch_inputs(np.stack([start, end]), geometry,
-                                                                signs), geometry)[1]
+    if np.prod(shape) > MAX_VOXELS:
+        raise ValueError(f"shape must hold at most {MAX_VOXELS} voxels (a bound on the work), "
+                         f"got {shape}")
+    ends = np.stack([start, end])
+    dets = jacobian_dets(mech, ends, branch_inputs(mech, ends, signs))[1]
     if not np.all(np.isfinite(dets)) or dets[0] * dets[1] <= 0:
         raise ValueError(f"start and end must have direct-Jacobian determinants of one sign "
                          f"in working mode {signs.tolist()}, got {dets.tolist()}")
@@ -129,7 +140,7 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     axes = [np.linspace(*bounds[0], shape[0]), np.linspace(*bounds[1], shape[1]),
             np.linspace(0, 2 * np.pi, shape[2], endpoint=False)]
     grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
-    region = _region(grid, geometry, signs, np.sign(dets[0]))
+    region = _region(mech, grid, signs, np.sign(dets[0]))
 
     def voxel(pose):
         steps = [np.abs(axes[0] - pose[0]).argmin(), np.abs(axes[1] - pose[1]).argmin(),
@@ -144,7 +155,7 @@ def mode_change_path(start, end, geometry, signs, *, bounds, shape=(70, 50, 90))
     path[:, 2] = np.unwrap(path[:, 2])
     path[-1, 2] = path[-2, 2] + np.mod(end[2] - path[-2, 2] + np.pi, 2 * np.pi) - np.pi
     for candidate in (_smoothed(path), path):  # the smooth path if it passes the check
-        if _certified(candidate, geometry, signs, np.sign(dets[0])):
+        if _certified(mech, candidate, signs, np.sign(dets[0])):
             return candidate
     return None
 
@@ -158,10 +169,10 @@ def _smoothed(path):
     return out
 
 
-def _certified(path, geometry, signs, sign):
+def _certified(mech, path, signs, sign):
     """Whether every point of ``path``, and :data:`_CHECKS_PER_STEP` points between each two,
     lies where the legs reach their guides and ``det J`` has the sign ``sign``."""
     steps = np.linspace(0, 1, _CHECKS_PER_STEP, endpoint=False)[:, None]
     fine = np.concatenate([a + steps * (b - a) for a, b in zip(path[:-1], path[1:])]
                           + [path[-1:]])
-    return bool(np.all(_region(vectors(fine, "path"), geometry, signs, sign)))
+    return bool(np.all(_region(mech, vectors(fine, "path"), signs, sign)))

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mechnum.mechanisms.prr3.direct import direct
+from mechnum.mechanisms.prr3.direct import forward
 from mechnum.mechanisms.prr3.elimination import polynomial
 from mechnum.mechanisms.prr3.geometry import Geometry
 from mechnum.mechanisms.prr3.inverse import inverse
@@ -19,7 +19,7 @@ EXAMPLES = {
 WORKSPACE_GEOMETRY = Geometry(L=1, a=1, B2=3, B3=2, H3=2)
 
 
-def reproduce():
+def reproduce() -> dict[str, float]:
     """Every number of the registry rows of chapter ``04_rigid_3prr``, computed by this package.
 
     Tables 3 and 4 (inverse problem): the two values of each input (``+``: the branch adding the
@@ -42,21 +42,21 @@ def reproduce():
     values = {}
     for table in ("Table 3", "Table 4"):
         geometry, pose = EXAMPLES[table]
-        lam = inverse(pose, geometry)
+        lam = inverse(geometry, pose)
         values[f"{table} number of solutions"] = float(len(lam))
         for i in range(3):  # the + branch (adding the square root) gives the larger value
             values[f"{table} lambda{i + 1} (+)"] = float(lam[:, i].max())
             values[f"{table} lambda{i + 1} (-)"] = float(lam[:, i].min())
     for table in ("Table 5", "Table 6"):
         geometry, lam = EXAMPLES[table]
-        poses = direct(lam, geometry).poses
+        poses = forward(geometry, lam).poses
         values[f"{table} number of solutions"] = float(len(poses))
         study_order = (poses[poses[:, 2] > np.pi][0], poses[poses[:, 2] < np.pi][0])
         for number, pose in enumerate(study_order, start=1):
             for name, value in zip(("x", "y", "psi"), (pose[0], pose[1], np.degrees(pose[2]))):
                 values[f"{table} solution {number} {name}"] = float(value)
     geometry, lam = EXAMPLES["Table 6"]
-    roots = np.roots(polynomial(lam, geometry)[::-1])
+    roots = np.roots(polynomial(geometry, lam)[::-1])
     values["Annex I roots that can be real"] = float(np.sum(np.abs(np.abs(roots.imag) - 1)
                                                         + np.abs(roots.real) > 1e-6))
     return values

@@ -1,128 +1,104 @@
-"""One equilibrium followed along a path, by continuation: the study's trajectories.
+"""One equilibrium followed along a path, by continuation: the study's trajectories, maps and the
+workspace.
 
 :func:`~mechnum.mechanisms.rfr2.inverse_path` follows it while the end effector moves (the
 study's 11.3.1.1), :func:`~mechnum.mechanisms.rfr2.forward_path` while the motors turn
 (11.3.1.2), by RK4 shooting as the study does or in closed form;
-:func:`~mechnum.mechanisms.rfr2.forward_map` follows it over a grid of motor angles. Each
-returns a :class:`~mechnum.mechanisms.rfr2.Path`, with the determinants of
-:func:`~mechnum.mechanisms.rfr2.jacobians` at every point.
+:func:`~mechnum.mechanisms.rfr2.forward_map` follows it over a grid of motor angles, and
+:func:`~mechnum.mechanisms.rfr2.workspace` along rays of the end effector to where its branch
+ends. Each returns a :class:`~mechnum.mechanisms.rfr2.Path`, with the determinants of
+:func:`~mechnum.mechanisms.rfr2.jacobians` at every point; a point reached on another branch
+(across a fold) is a "branch-jump", never a converged point (:func:`mechnum.rods.assembly.follow`).
 """
+
+from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate, newton, rods
-from mechnum.mechanisms.rfr2.model import (TABLE7, TABLE7_THETA, _chart, _in_chart, _modes, _rods,
-                                           _theta)
-from mechnum.mechanisms.rfr2.shooting import (SHOOTING_TOL, STUDY_NODES, _memoised,
-                                              _shooting_system, shooting_guess)
-from mechnum.mechanisms.rfr2.singularities import _FK, _IK, Jacobians, _full, jacobians
+from mechnum import _validate
+from mechnum.errors import ConvergenceError
+from mechnum.mechanisms.rfr2.model import (
+    LAYOUT,
+    Mechanism,
+    Names,
+    broadcast,
+    full_system,
+    in_chart,
+    rods,
+)
+from mechnum.mechanisms.rfr2.shooting import shooting_guess, shooting_system
+from mechnum.mechanisms.rfr2.singularities import Jacobians
+from mechnum.mechanisms.thesis import STUDY_NODES
+from mechnum.rods import assembly
+from mechnum.rods.shooting import SHOOTING_TOL
+
+METHODS = ("shooting", "elliptic")
 
 
-@dataclass(frozen=True)
-class Path:
+@dataclass(frozen=True, kw_only=True)
+class Path(assembly.Path, Names):
     """One equilibrium followed along a path (:func:`inverse_path`, :func:`forward_path`,
-    :func:`forward_map`); NaN where continuation failed.
+    :func:`forward_map`, :func:`workspace`); NaN where it is not followed.
 
-    Attributes
-    ----------
-    theta, P : ndarray, shape (..., 2)
-        Motor angles (rad) and end effector (m) at every point.
-    chart : ndarray, shape (..., 4)
-        The rods, ``(psi1, t1, psi2, t2)``.
-    modes : ndarray, shape (..., 2)
-        The rods' buckling modes (fixed in closed form; shooting finds them, and a rod whose
-        clamp moment passes through zero changes mode).
-    converged : ndarray of bool
-        Where Newton converged.
-    jacobians : Jacobians
-        At every point: of the closed form (6 x 6, dimensionless), or with shooting the
-        study's 8 x 8 of (98), with respect to (102) and to (99).
+    The fields of :class:`mechnum.rods.assembly.Path` (``inputs`` the motor angles, ``pose`` the
+    end effector), with the 2RFR's names ``theta``, ``P`` and ``jacobians``. Closed form: the
+    modes are fixed; shooting finds them (a rod whose clamp moment passes through zero changes
+    mode), and the determinants are the study's 8 x 8 of (98), in (102) and (99).
     """
 
-    theta: np.ndarray
-    P: np.ndarray
-    chart: np.ndarray
-    modes: np.ndarray
-    converged: np.ndarray
-    jacobians: Jacobians
+    @property
+    def jacobians(self) -> Jacobians:
+        """``det_fk``, ``det_ik`` and ``dP_dtheta`` at every point."""
+        return Jacobians(self.det_fk, self.det_ik, self.dpose_dinputs)
 
 
-def _full_system(mech, modes, unknown):
-    """The closed form's residual ``G`` and its Jacobian, ``fun(u, p)`` and ``jac(u, p)``, for
-    continuation: in the end effector ``p`` with ``u = (chart, theta)`` when
-    ``unknown == "theta"``, in the motor angles ``p`` with ``u = (chart, P)`` when
-    ``unknown == "P"``. Both come from one evaluation of the rods, remembered between the
-    two calls."""
-    if unknown == "theta":
-        system, columns = _memoised(lambda u, p: _full(mech, modes, u[:, :4], u[:, 4:], p)), _IK
-    else:
-        system, columns = _memoised(lambda u, p: _full(mech, modes, u[:, :4], p, u[:, 4:])), _FK
-
-    def fun(u, p):
-        return system(u, p)[0]
-
-    def jac(u, p):
-        return system(u, p)[1][..., columns]
-
-    return fun, jac
+def _closed_form(mech, modes, trace, params, along):
+    """The :class:`Path` of a closed-form trace: ``x = (chart, theta)`` along the pose, or
+    ``(chart, P)`` along the inputs."""
+    return assembly.closed_form_path(full_system(mech, modes), LAYOUT, modes, trace, params,
+                                     along, Path)
 
 
-def _on_branch(z0, chart, converged):
-    """``converged``, but False from the first point where a rod's ``t`` changed sign: the
-    chart is discontinuous at ``t = 0`` (the rod's clamp moment or force vanishes there), so
-    Newton has jumped to another branch."""
-    same = np.all(np.sign(chart[..., 1::2]) == np.sign(np.asarray(z0)[..., 1::2]), axis=-1)
-    return converged & (np.cumsum(converged & ~same, axis=0) == 0)
+def _shooting(mech, nodes, trace, params, unknown):
+    """The :class:`Path` of a shooting trace ``x`` (..., 8) along ``params`` (the motor angles
+    when ``unknown == "P"``, the end effector when ``"theta"``)."""
+    def evaluate(x, known):
+        m0, n, theta, P = shooting_system(mech, nodes, unknown)[2](x, known)
+        X_fk = np.concatenate((m0[:, :1], n[:, 0], m0[:, 1:], n[:, 1], P), axis=-1)
+        X_ik = np.concatenate((m0[:, :1], n[:, 0], theta[:, :1], m0[:, 1:], n[:, 1],
+                               theta[:, 1:]), axis=-1)
+        A = shooting_system(mech, nodes, "P")[1](X_fk, theta)
+        B = shooting_system(mech, nodes, "theta")[1](X_ik, P)
+        chart, modes = assembly.chart_from_clamps(mech.EI, mech.L, theta, m0, n)
+        return (theta, P, chart, modes) + assembly.jacobians(A, B, B[:, :, [3, 7]],
+                                                             slice(6, 8))
+
+    return assembly.path_of(trace, params, LAYOUT, evaluate, Path)
 
 
-def _finish(mech, modes, chart, theta, P, converged):
-    ok = converged[..., None]
-    chart, theta, P = (np.where(ok, a, np.nan) for a in (chart, theta, P))
-    J = jacobians(mech, np.where(ok, theta, TABLE7_THETA), np.where(
-        ok, chart, [1.0, 0.5, 1.0, 0.5]), modes)
-    nan = np.where(converged, 1.0, np.nan)
-    return Path(theta, P, chart, np.broadcast_to(modes, P.shape).astype(int), converged,
-                Jacobians(J.det_fk * nan, J.det_ik * nan, J.dP_dtheta * nan[..., None, None]))
+def _path_inputs(mech, modes, method, nodes):
+    assembly.check_type(mech, Mechanism)
+    _validate.choice(method, METHODS, "method")
+    return (assembly.check_modes(modes, 2),
+            _validate.maxiter(nodes, "nodes", minimum=2, maximum=assembly.MAX_NODES))
 
 
-def _shooting_path(mech, nodes, x, converged, known, unknown):
-    """A :class:`Path` from shooting solutions ``x`` (steps, 8) along ``known``."""
-    ok = converged
-    fk, fk_jac, fk_split = _shooting_system(mech, nodes, "P")
-    ik, ik_jac, ik_split = _shooting_system(mech, nodes, "theta")
-    X = np.where(ok[:, None], x, shooting_guess(TABLE7, TABLE7_THETA, [1.0, 0.5, 1.0, 0.5],
-                                                unknown=unknown))
-    m0, n, theta, P = (fk_split if unknown == "P" else ik_split)(X, known)
-    X_fk = np.concatenate((m0[:, :1], n[:, 0], m0[:, 1:], n[:, 1], P), axis=-1)
-    X_ik = np.concatenate((m0[:, :1], n[:, 0], theta[:, :1], m0[:, 1:], n[:, 1], theta[:, 1:]),
-                          axis=-1)
-    A, B = fk_jac(X_fk, theta), ik_jac(X_ik, P)
-    dP = -np.linalg.solve(A, B[:, :, [3, 7]])[:, 6:8]
-    c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
-    local = np.stack((c[..., 0] * n[..., 0] + s[..., 0] * n[..., 1],
-                      -s[..., 0] * n[..., 0] + c[..., 0] * n[..., 1]), axis=-1)
-    psi, k_rel, modes, _ = rods.elliptic_parameters(mech.EI, mech.L, m0, local)
-    chart = _chart(psi, k_rel)
-    nan = np.where(ok, 1.0, np.nan)
-    return Path(theta * nan[:, None], P * nan[:, None], chart * nan[:, None],
-                np.where(ok[:, None], modes, 0).astype(int), ok,
-                Jacobians(np.linalg.det(A) * nan, np.linalg.det(B) * nan,
-                          dP * nan[:, None, None]))
-
-
-def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
-                 nodes=STUDY_NODES):
+def inverse_path(mech: Mechanism, points: ArrayLike, theta: ArrayLike, chart: ArrayLike,
+                 modes: ArrayLike = (1, 1), *, method: str = "shooting",
+                 nodes: int = STUDY_NODES) -> Path:
     """Follow an equilibrium while the end effector moves through ``points``: the inverse
     problem by continuation (the study's 11.3.1.1).
 
     Parameters
     ----------
     mech, modes
-        As in :func:`forward_elliptic`.
+        As in :func:`~mechnum.mechanisms.rfr2.forward_elliptic`.
     points : array_like, shape (n, 2)
-        End-effector positions (m), close to each other.
+        End-effector positions (m), close to each other (``n`` may be 0; at most
+        :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
     theta, chart : array_like, shapes (2,) and (4,)
         An equilibrium at (or near) ``points[0]``: its motor angles and rods.
     method : {"shooting", "elliptic"}, optional
@@ -130,15 +106,17 @@ def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
         on the way (when its clamp moment passes through zero); or the closed form, faster,
         whose modes are fixed, so that the path stops where a rod's clamp moment vanishes.
     nodes : int, optional
-        RK4 nodes per rod (shooting).
+        RK4 nodes per rod (shooting), at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
 
     Returns
     -------
     Path
+        ``status`` per point: "converged" on the branch of the start only.
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic, straight_path
+    >>> from mechnum.mechanisms.rfr2 import (TABLE7, TABLE7_THETA, forward_elliptic,
+    ...                                      straight_path)
     >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
     >>> line = eq.P[2] + straight_path(0.1, np.pi, 10)
     >>> fast = inverse_path(TABLE7, line, TABLE7_THETA, eq.chart[2], method="elliptic")
@@ -148,32 +126,33 @@ def inverse_path(mech, points, theta, chart, modes=(1, 1), *, method="shooting",
     >>> bool(np.abs(study.theta - fast.theta).max() < 1e-4)
     True
     """
-    _validate.choice(method, ("shooting", "elliptic"), "method")
-    modes, z0 = _modes(modes), _validate.array(chart, "chart", shape=(4,))
-    points = _validate.array(points, "points", shape=(None, 2))
+    modes, nodes = _path_inputs(mech, modes, method, nodes)
+    theta, z0 = broadcast(_validate.array(theta, "theta", shape=(2,)),
+                          _validate.array(chart, "chart", shape=(4,)))
+    points = assembly.points(points, "points", 2)
     if method == "shooting":
-        fun, jac, _ = _shooting_system(mech, _validate.maxiter(nodes, "nodes", minimum=2),
-                                       "theta")
+        fun, jac, _ = shooting_system(mech, nodes, "theta")
         X0 = shooting_guess(mech, theta, z0, modes, unknown="theta")
-        res = newton.solve_path(fun, points, X0, jac, tol=SHOOTING_TOL)
-        return _shooting_path(mech, nodes, res.x, res.converged, points, "theta")
-    fun, jac = _full_system(mech, modes, "theta")
-    u0 = np.concatenate((z0, _theta(theta)))
-    res = newton.solve_path(fun, points, u0, jac, tol=1e-12,
-                            domain=lambda u: _in_chart(u[:, :4]))
-    return _finish(mech, modes, res.x[:, :4], res.x[:, 4:], points,
-                   _on_branch(z0, res.x[:, :4], res.converged))
+        trace = assembly.follow(fun, jac, points, X0, tol=SHOOTING_TOL)
+        return _shooting(mech, nodes, trace, points, "theta")
+    fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "pose")
+    trace = assembly.follow(fun, jac, points, np.concatenate((z0, theta)),
+                            tol=assembly.PATH_TOL, maxiter=assembly.PATH_MAXITER,
+                            domain=lambda u: in_chart(u[:, :4]), chart=4)
+    return _closed_form(mech, modes, trace, points, "pose")
 
 
-def forward_path(mech, thetas, chart, modes=(1, 1), *, method="shooting", nodes=STUDY_NODES,
-                 resume=True):
+def forward_path(mech: Mechanism, thetas: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1),
+                 *, method: str = "shooting", nodes: int = STUDY_NODES,
+                 resume: bool = True) -> Path:
     """Follow an equilibrium while the motors turn through ``thetas``: the direct problem by
     continuation (the study's 11.3.1.2).
 
     Parameters
     ----------
     thetas : array_like, shape (n, 2) or, with ``method="elliptic"``, (n, batch, 2)
-        Motor angles (rad), close to each other; with a batch axis, ``batch`` paths at once.
+        Motor angles (rad), close to each other; with a batch axis, ``batch`` paths at once
+        (``n`` may be 0; at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points in all).
     chart : array_like, shape (4,) or (batch, 4)
         Equilibria at ``thetas[0]``.
     method, nodes
@@ -188,80 +167,164 @@ def forward_path(mech, thetas, chart, modes=(1, 1), *, method="shooting", nodes=
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
     >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
     >>> thetas = TABLE7_THETA + np.linspace(0.0, 0.1, 11)[:, None] * [1.0, 0.0]
     >>> path = forward_path(TABLE7, thetas, eq.chart[2], method="elliptic")
     >>> bool(path.converged.all()), np.round(path.P[-1], 4).tolist()
     (True, [-0.0763, -0.2585])
     """
-    _validate.choice(method, ("shooting", "elliptic"), "method")
-    modes = _modes(modes)
-    z0 = _validate.array(chart, "chart")
-    thetas = _validate.array(thetas, "thetas")
+    modes, nodes = _path_inputs(mech, modes, method, nodes)
+    resume = _validate.flag(resume, "resume")
+    thetas = assembly.points(thetas, "thetas", 2, batch=method == "elliptic")
+    z0 = _validate.array(chart, "chart", shape=(4,) if thetas.ndim == 2 else (None, 4))
+    if thetas.ndim == 3 and len(z0) != thetas.shape[1]:
+        raise ValueError(f"chart must have one row per path, {thetas.shape[1]}, got {len(z0)}")
+    if not len(thetas):                     # an empty path: nothing to follow
+        empty = assembly.follow(None, None, thetas, np.zeros(z0.shape[:-1] + (
+            8 if method == "shooting" else 6,)), tol=assembly.PATH_TOL)
+        return (_shooting(mech, nodes, empty, thetas, "P") if method == "shooting"
+                else _closed_form(mech, modes, empty, thetas, "inputs"))
+    theta0, z0 = broadcast(thetas[0], z0)
     if method == "shooting":
-        fun, jac, _ = _shooting_system(mech, _validate.maxiter(nodes, "nodes", minimum=2),
-                                       "P")
-        X0 = shooting_guess(mech, thetas[0], _validate.array(chart, "chart", shape=(4,)),
-                            modes)
-        res = newton.solve_path(fun, _validate.array(thetas, "thetas", shape=(None, 2)), X0,
-                                jac, tol=SHOOTING_TOL, resume=resume)
-        return _shooting_path(mech, nodes, res.x, res.converged, thetas, "P")
-    fun, jac = _full_system(mech, modes, "P")
-    P0 = _rods(mech, modes, z0, thetas[0])[0][..., 0, :]
-    res = newton.solve_path(fun, thetas, np.concatenate((z0, P0), axis=-1), jac, tol=1e-12,
-                            domain=lambda u: _in_chart(u[:, :4]), resume=resume)
-    return _finish(mech, modes, res.x[..., :4], thetas, res.x[..., 4:],
-                   _on_branch(z0, res.x[..., :4], res.converged))
+        fun, jac, _ = shooting_system(mech, nodes, "P")
+        X0 = shooting_guess(mech, theta0, z0, modes)
+        trace = assembly.follow(fun, jac, thetas, X0, tol=SHOOTING_TOL, resume=resume)
+        return _shooting(mech, nodes, trace, thetas, "P")
+    fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "inputs")
+    P0 = rods(mech, theta0, z0, modes, jacobian=False)[0][..., 0, :]
+    trace = assembly.follow(fun, jac, thetas, np.concatenate((z0, P0), axis=-1),
+                            tol=assembly.PATH_TOL, maxiter=assembly.PATH_MAXITER,
+                            domain=lambda u: in_chart(u[:, :4]), resume=resume, chart=4)
+    return _closed_form(mech, modes, trace, thetas, "inputs")
 
 
-def _outwards(n, start):
-    """The indices ``start, start+1, ..., n-1`` and ``start, start-1, ..., 0``."""
-    return np.arange(start, n), np.arange(start, -1, -1)
-
-
-def forward_map(mech, theta1, theta2, theta, chart, modes=(1, 1)):
+def forward_map(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, theta: ArrayLike,
+                chart: ArrayLike, modes: ArrayLike = (1, 1)) -> Path:
     """An equilibrium followed over the grid ``theta1 x theta2`` of motor angles (rad).
 
     The equilibrium ``(theta, chart)`` is first moved to the nearest grid point, then followed
     along ``theta2`` both ways, then every ``theta2`` at once along ``theta1`` both ways
-    (:func:`mechnum.newton.solve_path`). Where the branch folds back (``det_fk`` through
-    zero: the motors can no longer hold it) continuation stops, and the map has NaN: other
-    equilibria take over there.
+    (:func:`mechnum.rods.assembly.follow_grid`), in closed form. Where the branch folds back
+    (``det_fk`` through zero: the motors can no longer hold it) continuation stops, and the
+    map has NaN: other equilibria take over there.
+
+    Parameters
+    ----------
+    theta1, theta2 : array_like, shape (nx,) and (ny,)
+        The grid (rad), ``nx ny`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`.
+    theta, chart : array_like, shapes (2,) and (4,)
+        An equilibrium.
 
     Returns
     -------
     Path
-        Arrays of shape ``(len(theta1), len(theta2), ...)``.
+        Arrays of shape ``(nx, ny, ...)``; ``params`` the grid.
+
+    Raises
+    ------
+    ConvergenceError
+        If the equilibrium cannot be moved to the grid.
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
     >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
     >>> grid = forward_map(TABLE7, np.radians([36, 38, 40, 42]), np.radians([58, 60, 62]),
     ...                    TABLE7_THETA, eq.chart[2])
     >>> grid.P.shape, bool(grid.converged.all())
     ((4, 3, 2), True)
     """
-    modes = _modes(modes)
-    theta1 = _validate.array(theta1, "theta1", ndim=1)
-    theta2 = _validate.array(theta2, "theta2", ndim=1)
-    theta = _theta(theta)
-    i0, j0 = np.argmin(np.abs(theta1 - theta[0])), np.argmin(np.abs(theta2 - theta[1]))
-    move = np.linspace(theta, [theta1[i0], theta2[j0]], 5)
-    start = forward_path(mech, move, chart, modes, method="elliptic")
+    modes = _path_inputs(mech, modes, "elliptic", STUDY_NODES)[0]
+    theta1, theta2 = assembly.grid_axes(theta1, theta2, ("theta1", "theta2"))
     grid = np.stack(np.meshgrid(theta1, theta2, indexing="ij"), axis=-1)
-    column = np.full((len(theta2), 4), np.nan)
-    for js in _outwards(len(theta2), j0):
-        column[js] = forward_path(mech, grid[i0, js], start.chart[-1], modes,
-                                  method="elliptic", resume=False).chart
-    alive = ~np.isnan(column[:, 0])
-    charts = np.full(grid.shape[:2] + (4,), np.nan)
-    for i_s in _outwards(len(theta1), i0):
-        charts[i_s[:, None], alive] = forward_path(
-            mech, grid[i_s][:, alive], column[alive], modes, method="elliptic",
-            resume=False).chart
-    converged = ~np.isnan(charts[..., 0])
-    P = _rods(mech, modes, np.where(converged[..., None], charts, [1.0, 0.5, 1.0, 0.5]),
-              grid)[0][..., 0, :]
-    return _finish(mech, modes, charts, grid, P, converged)
+    theta, z0 = broadcast(_validate.array(theta, "theta", shape=(2,)),
+                          _validate.array(chart, "chart", shape=(4,)))
+    fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "inputs")
+
+    def trace(params, u0):
+        return assembly.follow(fun, jac, params, u0, tol=assembly.PATH_TOL,
+                               maxiter=assembly.PATH_MAXITER, resume=False, chart=4,
+                               domain=lambda u: in_chart(u[:, :4]))
+
+    if not grid.size:
+        return _closed_form(mech, modes, assembly.follow_grid(trace, grid, (0, 0), np.zeros(6)),
+                            grid, "inputs")
+    start = np.unravel_index(np.argmin(np.abs(grid - theta).max(axis=-1)), grid.shape[:2])
+    move = forward_path(mech, np.linspace(theta, grid[start], 5), z0, modes, method="elliptic")
+    if not move.converged[-1]:
+        raise ConvergenceError(f"the equilibrium could not be moved from theta = "
+                               f"{theta.tolist()} to the grid point {grid[start].tolist()}",
+                               move)
+    return _closed_form(mech, modes, assembly.follow_grid(trace, grid, start, move.x[-1]),
+                        grid, "inputs")
+
+
+def workspace(mech: Mechanism, P: ArrayLike, theta: ArrayLike, chart: ArrayLike,
+              modes: ArrayLike = (1, 1), *, directions: int = 24, step: float = 0.04,
+              reach: float = 1.0, levels: int = 6, nodes: int = STUDY_NODES) -> Path:
+    """Where the inverse problem's branch of an equilibrium ends on rays from its end effector:
+    the edge of the workspace it reaches (by shooting, modes free).
+
+    All rays are followed at once (:func:`mechnum.rods.assembly.workspace_edge`), in steps of
+    ``step`` up to ``reach`` from ``P``, then again from each ray's last solution in steps
+    four times shorter, ``levels`` times, so that the edge is located to ``step /
+    4**levels``. Where the branch folds (``det_ik`` through zero) the last points approach the
+    fold and their ``det_ik`` falls towards zero; a ray may also end at ``reach``.
+
+    Parameters
+    ----------
+    P, theta, chart : array_like, shapes (2,), (2,) and (4,)
+        The end effector, motor angles and rods of an equilibrium (of ``modes``, as in
+        :func:`~mechnum.mechanisms.rfr2.forward_elliptic`).
+    directions, step, reach, levels, nodes : optional
+        The rays, the first step and the largest distance (m) and the refinements of
+        :func:`mechnum.rods.assembly.workspace_edge` (bounded there); the RK4 nodes per rod
+        (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
+
+    Returns
+    -------
+    Path
+        One point per ray, the last equilibrium on it: ``P`` is the edge.
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
+    >>> edge = workspace(TABLE7, eq.P[2], TABLE7_THETA, eq.chart[2], directions=4,
+    ...                  step=0.05, reach=0.1, levels=1)
+    >>> edge.P.shape, bool(edge.converged.all())
+    ((4, 2), True)
+    """
+    modes, nodes = _path_inputs(mech, modes, "shooting", nodes)
+    P = _validate.array(P, "P", shape=(2,))
+    theta, z0 = broadcast(_validate.array(theta, "theta", shape=(2,)),
+                          _validate.array(chart, "chart", shape=(4,)))
+    fun, jac, _ = shooting_system(mech, nodes, "theta")
+
+    def trace(known, u):
+        return assembly.follow(fun, jac, known, u, tol=SHOOTING_TOL, resume=False)
+
+    edge, u, status, nfev, njev = assembly.workspace_edge(
+        trace, P, shooting_guess(mech, theta, z0, modes, unknown="theta"),
+        directions=directions, step=step, reach=reach, levels=levels)
+    last = assembly.Trace(u, status, np.zeros(len(u), dtype=int), nfev, njev)
+    return _shooting(mech, nodes, last, edge, "theta")
+
+
+def singular_points(mech: Mechanism, grid: Path, which: str = "det_ik") -> np.ndarray:
+    """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`forward_map` changes sign:
+    on the singularity curves, in motor angles (rad), to the grid's resolution
+    (:func:`mechnum.rods.assembly.zero_crossings`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
+    >>> g = np.radians(np.linspace(0.0, 180.0, 19))
+    >>> grid = forward_map(TABLE7, g, g, TABLE7_THETA, eq.chart[0])
+    >>> singular_points(TABLE7, grid).shape, singular_points(TABLE7, grid, "det_fk").shape
+    ((22, 2), (0, 2))
+    """
+    assembly.check_type(mech, Mechanism)
+    return assembly.singular_points(grid, which)

@@ -1,26 +1,30 @@
 """The mechanism, and its two rods in closed form in the regular chart.
 
-:class:`~mechnum.mechanisms.rfr2.Mechanism` holds the motors, the load and the rods' length and
-stiffness (:data:`TABLE7`: the study's example). An equilibrium is four numbers, the chart
-``(psi1, t1, psi2, t2)`` of :mod:`mechnum.rods.regular`;
-:func:`~mechnum.mechanisms.rfr2.chart_from_thesis` converts the study's
-``(psi1, k_rel1, psi2, k_rel2)`` to it, and ``_rods`` evaluates both rods of chart points in the
-global frame (tips, forces, clamp moments and their derivatives), the kernel of every
-closed-form function of the package.
+:class:`~mechnum.mechanisms.rfr2.Mechanism` holds the motors, the load and the rods
+(:data:`TABLE7`: the study's example). An equilibrium is four numbers, the chart ``(psi1, t1,
+psi2, t2)`` of :mod:`mechnum.rods.regular`; :func:`~mechnum.mechanisms.rfr2.chart_from_thesis`
+converts the study's ``(psi1, k_rel1, psi2, k_rel2)`` to it, :func:`rods` evaluates both rods of
+chart points in the global frame (tips, forces, clamp moments and their derivatives), the kernel
+of every closed-form function of the package, and :func:`full_system` gives the six equations
+in the rods, the motor angles and the end effector, with their derivatives.
 """
+
+from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import GeometryError
+from mechnum.mechanisms import thesis
+from mechnum.mechanisms.thesis import DIAMETER, EI, LENGTH, YOUNG  # noqa: F401 (rfr2.model's names)
 from mechnum.rods import regular
+from mechnum.rods.assembly import Layout, check_modes, check_type
 
-LENGTH = 1.0                                   # m, both rods (Annex II 3.4)
-YOUNG = 210e9                                  # Pa
-DIAMETER = 1.5e-3                              # m
-EI = YOUNG * 0.25 * np.pi * (0.5 * DIAMETER) ** 4   # N m^2 (I = pi r^4 / 4)
+LAYOUT = Layout(rods=2, inputs=2, pose=2)
+"""The unknowns of the full system: the chart (4), the motor angles ``theta`` (2), ``P`` (2)."""
 
 
 @dataclass(frozen=True)
@@ -37,14 +41,18 @@ class Mechanism:
         Length of each rod (m).
     EI : float
         Bending stiffness of each rod (N m^2).
+    diameter : float
+        Diameter of the rods' circular section (m), for their bending strain only.
+    strain_limit : float
+        The rods' elastic limit in strain (:data:`mechnum.mechanisms.thesis.STRAIN_LIMIT`).
 
     Raises
     ------
     ValueError
         If an attribute is not finite or has the wrong shape.
     GeometryError
-        If ``L`` or ``EI`` is not positive, or the motors are ``2 L`` or more apart (the rods
-        cannot meet).
+        If ``L``, ``EI``, ``diameter`` or ``strain_limit`` is not positive, or the motors are
+        ``2 L`` or more apart (the rods cannot meet).
 
     Examples
     --------
@@ -56,12 +64,14 @@ class Mechanism:
     force: np.ndarray = field(default_factory=lambda: np.zeros(2))
     L: float = LENGTH
     EI: float = EI
+    diameter: float = DIAMETER
+    strain_limit: float = thesis.STRAIN_LIMIT
 
     def __post_init__(self):
         object.__setattr__(self, "origins", _validate.array(self.origins, "origins",
                                                             shape=(2, 2)))
         object.__setattr__(self, "force", _validate.array(self.force, "force", shape=(2,)))
-        for name in ("L", "EI"):
+        for name in ("L", "EI", "diameter", "strain_limit"):
             value = _validate.scalar(getattr(self, name), name)
             if value <= 0:
                 raise GeometryError(f"{name} must be positive, got {value!r}")
@@ -72,6 +82,22 @@ class Mechanism:
                                 f"cannot meet")
 
 
+class Names:
+    """The 2RFR's names of a result's fields (:class:`~mechnum.rods.assembly.Equilibria`,
+    :class:`~mechnum.rods.assembly.Path`, :class:`~mechnum.rods.assembly.Shooting`): ``theta``
+    for its inputs, ``P`` for its pose."""
+
+    @property
+    def theta(self) -> np.ndarray:
+        """The motor angles (rad): the inputs."""
+        return self.inputs
+
+    @property
+    def P(self) -> np.ndarray:
+        """The end effector (m): the pose."""
+        return self.pose
+
+
 TABLE7 = Mechanism(origins=[[-0.3, 0.0], [0.3, 0.0]], force=[0.3, -0.1])
 """The study's example of its Table 7 (13.2.1, Annex II 3.4): motor 2 at ``(0.3, 0)``, where its
 code puts it and where the published solutions belong (the text says ``(0, 0.3)``)."""
@@ -79,38 +105,134 @@ TABLE7_THETA = np.radians([40.0, 60.0])
 """The motor angles of Table 7 (rad)."""
 
 
-def _modes(modes):
-    modes = _validate.array(modes, "modes", shape=(2,))
-    if np.any(modes < 1) or np.any(modes != np.round(modes)):
-        raise ValueError(f"modes must be two integers >= 1, got {modes.tolist()}")
-    return modes
+def in_chart(z: ArrayLike) -> np.ndarray:
+    """Whether chart points ``(psi1, t1, psi2, t2)`` (batch, 4) lie where the chart is defined.
 
-
-def _theta(theta, shape=(2,)):
-    return _validate.array(theta, "theta", shape=shape)
-
-
-def _rods(mech, modes, z, theta):
-    """Both rods of the chart points ``z`` (..., 4) at motor angles ``theta`` (..., 2), global:
-    tips and forces (..., 2 rods, 2), clamp moments (..., 2), and the derivatives of
-    ``(tip, force)`` in the chart (..., 2, 4, 2) and in the motor angle (..., 2, 4)."""
-    z = np.asarray(z, dtype=float)
-    if not np.all(_in_chart(z.reshape(-1, 4))):
-        raise ValueError("chart points (psi1, t1, psi2, t2) need 0 < psi < 2 pi and "
-                         f"0 < |t| <= {regular.T_MAX:.6f}, got {_validate._shown(z)}")
-    rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2], modes, True)
-    tip, force, d_chart, d_angle = regular.place(rod, mech.origins, theta)
-    return tip, force, rod.clamp_moment, d_chart, d_angle
-
-
-def _in_chart(z):
-    """Whether chart points ``(psi1, t1, psi2, t2)`` lie where the chart is defined."""
+    Examples
+    --------
+    >>> in_chart(np.array([[1.0, 0.5, 2.0, -0.5], [1.0, 0.0, 2.0, 0.5]])).tolist()
+    [True, False]
+    """
     psi, t = z[:, 0::2], z[:, 1::2]
     return np.all((psi > 0) & (psi < regular.TWO_PI) & (t != 0)
                   & (np.abs(t) <= regular.T_MAX), axis=1)
 
 
-def chart_from_thesis(solutions):
+def broadcast(theta: ArrayLike, chart: ArrayLike):
+    """Motor angles ``(..., 2)`` and chart points ``(..., 4)``, checked and broadcast together.
+
+    Raises
+    ------
+    ValueError
+        If a shape is wrong, the two do not broadcast, an angle is not finite or a chart point
+        lies outside the chart.
+
+    Examples
+    --------
+    >>> theta, z = broadcast(TABLE7_THETA, [[1.0, 0.5, 2.0, 0.5], [1.0, -0.5, 2.0, 0.5]])
+    >>> theta.shape, z.shape
+    ((2, 2), (2, 4))
+    """
+    z, theta = np.asarray(chart, dtype=float), np.asarray(theta, dtype=float)
+    if z.shape[-1:] != (4,) or theta.shape[-1:] != (2,):
+        raise ValueError(f"chart must have shape (..., 4) and theta (..., 2), got {z.shape} "
+                         f"and {theta.shape}")
+    outside = ~in_chart(z.reshape(-1, 4))
+    if outside.any():
+        raise ValueError("chart points (psi1, t1, psi2, t2) need 0 < psi < 2 pi and "
+                         f"0 < |t| <= {regular.T_MAX:.6f}, got {z.reshape(-1, 4)[outside][:2]}")
+    if not np.isfinite(theta).all():
+        raise ValueError(f"theta must be finite, got {theta.ravel()[:4]}")
+    try:
+        shape = np.broadcast_shapes(z.shape[:-1], theta.shape[:-1])
+    except ValueError:
+        raise ValueError(f"chart of shape {z.shape} and theta of shape {theta.shape} do not "
+                         "broadcast together") from None
+    return np.broadcast_to(theta, shape + (2,)), np.broadcast_to(z, shape + (4,))
+
+
+def rods(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
+         jacobian: bool = True):
+    """Both rods of chart points at motor angles ``theta``, in the global frame.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    theta : array_like, shape (..., 2)
+        Motor angles (rad), broadcast with ``chart``.
+    chart : array_like, shape (..., 4)
+        ``(psi1, t1, psi2, t2)``.
+    modes : (int, int), optional
+    jacobian : bool, optional
+        Also the derivatives in the chart (else ``None``).
+
+    Returns
+    -------
+    tip, force : ndarray, shape (..., 2, 2)
+        Tips (m) and forces on the rods at their tips (N), rod by rod.
+    clamp_moment : ndarray, shape (..., 2)
+        ``m(0)`` of each rod (N m).
+    d_chart : ndarray, shape (..., 2, 4, 2) or None
+        ``d (tip, force) / d (psi_i, t_i)``.
+    d_angle : ndarray, shape (..., 2, 4)
+        ``d (tip, force) / d theta_i``.
+
+    Examples
+    --------
+    >>> z = chart_from_thesis([5.304574, 0.969830, 1.825456, -0.992135])
+    >>> tip, force, moment, _, _ = rods(TABLE7, TABLE7_THETA, z)
+    >>> np.round(tip, 5).tolist(), np.round(force.sum(axis=0), 4).tolist()   # Table 7, sol. 1
+    ([[-0.0811, -0.24587], [-0.0811, -0.24587]], [0.3, -0.1])
+    """
+    check_type(mech, Mechanism)
+    theta, z = broadcast(theta, chart)
+    rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
+                               check_modes(modes, 2), _validate.flag(jacobian, "jacobian"))
+    tip, force, d_chart, d_angle = regular.place(rod, mech.origins, theta)
+    return tip, force, rod.clamp_moment, d_chart, d_angle
+
+
+def full_system(mech: Mechanism, modes: ArrayLike = (1, 1)):
+    """The six equilibrium equations in the rods, the motor angles and ``P``, with derivatives.
+
+    ``G = ((tip1 - P) / L, (tip2 - P) / L, (n1 + n2 - F) L**2 / EI)``.
+
+    Returns
+    -------
+    callable
+        ``system(chart, theta, P) -> (G, D)`` for batches ``chart (..., 4)``, ``theta (...,
+        2)``, ``P (..., 2)``: ``G`` (..., 6) and ``D`` (..., 6, 8), its derivatives in the
+        columns of :data:`LAYOUT`, ``(psi1, t1, psi2, t2, theta1, theta2, x_P, y_P)``.
+
+    Examples
+    --------
+    >>> z = chart_from_thesis([5.304574, 0.969830, 1.825456, -0.992135])
+    >>> G, D = full_system(TABLE7)(z, TABLE7_THETA, [-0.0811, -0.2459])
+    >>> G.shape, D.shape, bool(np.abs(G).max() < 1e-3)   # the printed digits leave 4e-4
+    ((6,), (6, 8), True)
+    """
+    modes = check_modes(modes, 2)
+    L, f = mech.L, mech.EI / mech.L ** 2
+
+    def system(chart, theta, P):
+        tip, force, _, d_chart, d_angle = rods(mech, theta, chart, modes)
+        P = np.asarray(P, dtype=float)
+        G = np.concatenate(((tip[..., 0, :] - P) / L, (tip[..., 1, :] - P) / L,
+                            (force.sum(axis=-2) - mech.force) / f), axis=-1)
+        D = np.zeros(G.shape + (8,))
+        for r in range(2):
+            rows = slice(2 * r, 2 * r + 2)
+            D[..., rows, 2 * r:2 * r + 2] = d_chart[..., r, :2, :] / L
+            D[..., 4:6, 2 * r:2 * r + 2] = d_chart[..., r, 2:, :] / f
+            D[..., rows, 4 + r] = d_angle[..., r, :2] / L
+            D[..., 4:6, 4 + r] = d_angle[..., r, 2:] / f
+            D[..., rows, 6:8] = -np.eye(2) / L
+        return G, D
+
+    return system
+
+
+def chart_from_thesis(solutions: ArrayLike) -> np.ndarray:
     """The chart ``(psi1, t1, psi2, t2)`` of the study's ``(psi1, k_rel1, psi2, k_rel2)``.
 
     Examples
@@ -120,17 +242,25 @@ def chart_from_thesis(solutions):
     [5.304574, 0.880277, 1.825456, -0.906868]
     """
     s = _validate.array(solutions, "solutions")
-    if s.shape[-1] != 4:
+    if s.shape[-1:] != (4,):
         raise ValueError(f"solutions must have a last axis of 4, got shape {s.shape}")
-    return _chart(s[..., 0::2], s[..., 1::2])
+    out = s.copy()
+    out[..., 1::2] = regular.t_from_k_rel(s[..., 0::2], s[..., 1::2])
+    return out
 
 
-def _chart(psi, k_rel):
-    """The chart ``(psi1, t1, psi2, t2)`` of both rods' ``psi`` and ``k_rel`` (..., 2 rods)."""
-    t = regular.t_from_k_rel(psi, k_rel)
-    return np.stack((psi[..., 0], t[..., 0], psi[..., 1], t[..., 1]), axis=-1)
+def thesis_from_chart(chart: ArrayLike) -> np.ndarray:
+    """The study's ``(psi1, k_rel1, psi2, k_rel2)`` of chart points (..., 4).
 
-
-def _clamp_states(mech, theta, chart, modes):
-    tip, force, moment = _rods(mech, _modes(modes), np.asarray(chart, float), _theta(theta))[:3]
-    return tip, force, moment
+    Examples
+    --------
+    >>> np.round(thesis_from_chart([5.304574, 0.880277, 1.825456, -0.906868]), 5).tolist()
+    [5.30457, 0.96983, 1.82546, -0.99213]
+    """
+    z = _validate.array(chart, "chart")
+    if z.shape[-1:] != (4,):
+        raise ValueError(f"chart must have a last axis of 4, got shape {z.shape}")
+    out = z.copy()
+    if z.size:
+        out[..., 1::2] = regular.k_rel_from_t(z[..., 0::2], z[..., 1::2])
+    return out

@@ -5,62 +5,36 @@
 tip moments to zero, both tips to ``P`` and ``n1 + n2`` to ``F`` by damped Newton with
 complex-step Jacobians (:func:`mechnum.rods.shooting.tip_jacobian`);
 :func:`~mechnum.mechanisms.rfr2.shooting_guess` gives their unknowns from a closed-form
-equilibrium.
+equilibrium, and :func:`shooting_system` is the residual and Jacobian they solve.
 """
+
+from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from mechnum import _validate, newton, rods
-from mechnum.mechanisms.rfr2.model import _clamp_states
+from mechnum import _validate
+from mechnum.mechanisms.rfr2.model import Mechanism, Names, rods
+from mechnum.mechanisms.thesis import STUDY_NODES
+from mechnum.rods import assembly, tip_jacobian
+from mechnum.rods.shooting import SHOOTING_TOL
 
-STUDY_NODES = 41                               # RK4 nodes of the study's shooting programs
-# Shooting converges when the dimensionless residual (98) is below this: round-off of the
-# O(1) positions and forces is ~1e-15; 1e-12 leaves a margin of a thousand.
-SHOOTING_TOL = 1e-12
-
-
-def _memoised(compute):
-    """``compute(u, p)`` that remembers its last call: Newton asks for the residual and then
-    for the Jacobian at the same point, and both come from one evaluation of the rods."""
-    last = {}
-
-    def call(u, p):
-        key = (u.tobytes(), np.asarray(p).tobytes())
-        if last.get("key") != key:
-            last["key"], last["value"] = key, compute(u, p)
-        return last["value"]
-
-    return call
+UNKNOWNS = ("P", "theta")
+"""The two sets of shooting unknowns: the study's (102) with ``P``, (99) with ``theta``."""
 
 
-@dataclass(frozen=True)
-class Shooting:
+@dataclass(frozen=True, kw_only=True)
+class Shooting(assembly.Shooting, Names):
     """Equilibria found by RK4 shooting (:func:`forward_shooting`, :func:`inverse_shooting`).
 
-    Attributes
-    ----------
-    theta, P : ndarray, shape (batch, 2)
-        Motor angles (rad) and end effector (m).
-    clamp_moments : ndarray, shape (batch, 2)
-        ``m(0)`` of each rod (N m).
-    forces : ndarray, shape (batch, 2, 2)
-        Force on each rod at its tip (N).
-    jacobian : ndarray, shape (batch, 8, 8)
-        The Jacobian of (98) with respect to the unknowns, at the last iterate (scaled: moments
-        by ``EI / L``, positions by ``L``, forces by ``EI / L**2``): the study's ``J_FK`` (with
-        respect to its (102)) or ``J_IK`` (its (99)).
-    newton : mechnum.newton.BatchNewtonResult
-        The iteration; read ``newton.status`` for the systems that did not converge.
+    The fields of :class:`mechnum.rods.assembly.Shooting` (``inputs`` the motor angles,
+    ``pose`` the end effector, both (batch, 2)), with the 2RFR's names ``theta`` and ``P``;
+    ``jacobian`` (batch, 8, 8) is the Jacobian of (98) with respect to the unknowns at the last
+    iterate (scaled: moments by ``EI / L``, positions by ``L``, forces by ``EI / L**2``): the
+    study's ``J_FK`` (with respect to its (102)) or ``J_IK`` (its (99)).
     """
-
-    theta: np.ndarray
-    P: np.ndarray
-    clamp_moments: np.ndarray
-    forces: np.ndarray
-    jacobian: np.ndarray
-    newton: newton.BatchNewtonResult
 
 
 def _shoot(mech, m0, force, theta, nodes):
@@ -68,7 +42,7 @@ def _shoot(mech, m0, force, theta, nodes):
     respect to ``(m0, n_x, n_y, theta0)``: complex step for the first three, and for the clamp
     angle the rotation identity ``d/dtheta0 = J (tip - O) - d/dn . (J n)`` (turning clamp
     and force together turns the rod), with ``J`` the rotation by a right angle."""
-    tip, J = rods.tip_jacobian(mech.EI, mech.L, m0, force, theta0=theta, origin=mech.origins,
+    tip, J = tip_jacobian(mech.EI, mech.L, m0, force, theta0=theta, origin=mech.origins,
                                nodes=nodes)
     turned = np.stack((-force[..., 1], force[..., 0]), axis=-1)           # J n
     d_theta = -np.einsum("...ij,...j->...i", J[..., 1:], turned)
@@ -77,11 +51,38 @@ def _shoot(mech, m0, force, theta, nodes):
     return tip, np.concatenate((J, d_theta[..., None]), axis=-1)
 
 
-def _shooting_system(mech, nodes, unknown):
-    """Residual (98) and its Jacobian, ``fun(X, known)`` and ``jac(X, known)``, for a batch of
-    unknowns ``X`` (batch, 8): the study's (102) when ``unknown == "P"`` (``known`` the motor
-    angles, (batch, 2)), (99) when ``unknown == "theta"`` (``known`` the end effector). Both
-    come from one RK4 sweep (complex step), remembered between the two calls."""
+def shooting_system(mech: Mechanism, nodes: int, unknown: str):
+    """Residual (98) and its Jacobian for a batch of unknowns ``X`` (batch, 8).
+
+    Parameters
+    ----------
+    mech : Mechanism
+    nodes : int
+        RK4 nodes per rod (at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`).
+    unknown : {"P", "theta"}
+        The study's (102), ``X = (m0_1, n1, m0_2, n2, P)`` with ``known`` the motor angles
+        (batch, 2), or its (99), ``X = (m0_1, n1, theta1, m0_2, n2, theta2)`` with ``known`` the
+        end effector.
+
+    Returns
+    -------
+    fun, jac, split : callable
+        ``fun(X, known) -> (batch, 8)`` (scaled: moments by ``EI / L``, positions by ``L``,
+        forces by ``EI / L**2``), ``jac(X, known) -> (batch, 8, 8)``, both from one RK4 sweep
+        (complex step), and ``split(X, known) -> (m0, n, theta, P)``.
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
+    >>> fun, jac, _ = shooting_system(TABLE7, 801, "P")
+    >>> X = shooting_guess(TABLE7, TABLE7_THETA, eq.chart)
+    >>> bool(np.abs(fun(X, np.broadcast_to(TABLE7_THETA, (3, 2)))).max() < 1e-8)  # RK4's error
+    True
+    """
+    assembly.check_type(mech, Mechanism)
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=assembly.MAX_NODES)
+    _validate.choice(unknown, UNKNOWNS, "unknown")
     moment, length, force = mech.EI / mech.L, mech.L, mech.EI / mech.L ** 2
     row_scale = np.array([moment, length, length] * 2 + [force, force])
 
@@ -91,11 +92,10 @@ def _shooting_system(mech, nodes, unknown):
             return X[:, [0, 4]], X[:, [1, 2, 5, 6]].reshape(-1, 2, 2), X[:, [3, 7]], known
         return X[:, [0, 3]], X[:, [1, 2, 4, 5]].reshape(-1, 2, 2), known, X[:, 6:8]
 
+    @assembly.memoised
     def sweep(X, known):
         m0, n, theta, P = split(X, known)
         return _shoot(mech, m0, n, theta, nodes), n, P
-
-    sweep = _memoised(sweep)
 
     def fun(X, known):
         (tip, _), n, P = sweep(X, known)
@@ -119,22 +119,14 @@ def _shooting_system(mech, nodes, unknown):
 
 
 def _shooting(mech, unknown, known, guess, nodes, tol, maxiter):
-    guess = _validate.array(guess, "guess")
-    X0 = np.atleast_2d(guess)
-    if X0.shape[1] != 8:
-        raise ValueError(f"guess must have a last axis of 8 (the study's unknowns), "
-                         f"got shape {guess.shape}")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2)
-    known = np.broadcast_to(known, (len(X0), 2))
-    fun, jac, split = _shooting_system(mech, nodes, unknown)
-    res = newton.solve_batch(lambda X: fun(X, known), X0, lambda X: jac(X, known), tol=tol,
-                             maxiter=maxiter, criterion="residual", damping=True,
-                             raise_on_failure=False)
+    fun, jac, split = shooting_system(mech, nodes, unknown)
+    res, known = assembly.shoot(fun, jac, guess, known, width=8, tol=tol, maxiter=maxiter)
     m0, n, theta, P = split(res.x, known)
-    return Shooting(np.array(theta), np.array(P), m0, n, jac(res.x, known), res)
+    return assembly.shooting_result(res, theta, P, m0, n, jac(res.x, known), Shooting)
 
 
-def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50):
+def forward_shooting(mech: Mechanism, theta: ArrayLike, guess: ArrayLike, *,
+                     nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50):
     """The direct problem by RK4 shooting: the study's (98) in its unknowns (102).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
@@ -146,17 +138,20 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
     ----------
     mech : Mechanism
     theta : array_like, shape (2,) or (batch, 2)
-        Motor angles (rad).
+        Motor angles (rad): one, or one per guess.
     guess : array_like, shape (8,) or (batch, 8)
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
-        RK4 nodes per rod (the study's 41 by default; the RK4 error falls as ``nodes**-4``).
+        RK4 nodes per rod (the study's 41 by default; the RK4 error falls as ``nodes**-4``),
+        at most :data:`~mechnum.rods.assembly.checks.MAX_NODES`.
     tol, maxiter : optional
-        Newton's tolerance on the scaled residual (``criterion="residual"``), most iterations.
+        Newton's tolerance on the scaled residual (``criterion="residual"``), most iterations
+        (at most 10,000).
 
     Returns
     -------
     Shooting
+        ``status`` per system; a system that did not converge is not an equilibrium.
 
     Examples
     --------
@@ -164,17 +159,21 @@ def forward_shooting(mech, theta, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL,
     >>> z = chart_from_thesis([5.304574, 0.969830, 1.825456, -0.992135])
     >>> sol = forward_shooting(TABLE7, TABLE7_THETA, shooting_guess(TABLE7, TABLE7_THETA, z),
     ...                        nodes=801)
-    >>> np.round(sol.P, 6).tolist(), sol.newton.status.tolist()
+    >>> np.round(sol.P, 6).tolist(), sol.status.tolist()
     ([[-0.081103, -0.245872]], ['converged'])
     """
-    return _shooting(mech, "P", _validate.array(theta, "theta"), guess, nodes, tol, maxiter)
+    theta = _validate.array(theta, "theta", ndim=(1, 2))
+    if theta.shape[-1] != 2:
+        raise ValueError(f"theta must have shape (2,) or (batch, 2), got {theta.shape}")
+    return _shooting(mech, "P", theta, guess, nodes, tol, maxiter)
 
 
-def inverse_shooting(mech, P, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, maxiter=50):
+def inverse_shooting(mech: Mechanism, P: ArrayLike, guess: ArrayLike, *, nodes: int = STUDY_NODES,
+                     tol: float = SHOOTING_TOL, maxiter: int = 50):
     """The inverse problem by RK4 shooting: the study's (98) in its unknowns (99).
 
     ``X = (m0_1, n1_x, n1_y, theta1, m0_2, n2_x, n2_y, theta2)`` for a given end effector
-    ``P``; otherwise as :func:`forward_shooting`.
+    ``P`` (shape (2,) or (batch, 2)); otherwise as :func:`forward_shooting`.
 
     Examples
     --------
@@ -185,10 +184,14 @@ def inverse_shooting(mech, P, guess, *, nodes=STUDY_NODES, tol=SHOOTING_TOL, max
     >>> np.round(np.degrees(sol.theta), 3).tolist()
     [[40.0, 60.0]]
     """
-    return _shooting(mech, "theta", _validate.array(P, "P"), guess, nodes, tol, maxiter)
+    P = _validate.array(P, "P", ndim=(1, 2))
+    if P.shape[-1] != 2:
+        raise ValueError(f"P must have shape (2,) or (batch, 2), got {P.shape}")
+    return _shooting(mech, "theta", P, guess, nodes, tol, maxiter)
 
 
-def shooting_guess(mech, theta, chart, modes=(1, 1), *, unknown="P"):
+def shooting_guess(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1),
+                   *, unknown: str = "P") -> np.ndarray:
     """The study's shooting unknowns of closed-form equilibria: (102), or (99) with
     ``unknown="theta"``.
 
@@ -200,9 +203,10 @@ def shooting_guess(mech, theta, chart, modes=(1, 1), *, unknown="P"):
     >>> np.round(X, 4).tolist()
     [0.2541, 1.39, -0.4004, -0.3825, -1.09, 0.3004, -0.0811, -0.2459]
     """
-    _validate.choice(unknown, ("P", "theta"), "unknown")
-    tip, force, moment = _clamp_states(mech, theta, chart, modes)
-    theta = np.broadcast_to(_validate.array(theta, "theta"), moment.shape)
+    _validate.choice(unknown, UNKNOWNS, "unknown")
+    assembly.check_type(mech, Mechanism)
+    tip, force, moment, _, _ = rods(mech, theta, chart, modes, jacobian=False)
+    theta = np.broadcast_to(np.asarray(theta, dtype=float), moment.shape)
     if unknown == "P":
         return np.concatenate((moment[..., :1], force[..., 0, :], moment[..., 1:],
                                force[..., 1, :], tip[..., 0, :]), axis=-1)

@@ -5,15 +5,17 @@ solutions of Table 7 (:data:`TABLE7_PUBLISHED`); :func:`~mechnum.mechanisms.rfr2
 computes every registry value of the chapter.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.rfr2.elliptic import forward_elliptic, residual
-from mechnum.mechanisms.rfr2.model import (EI, LENGTH, TABLE7, TABLE7_THETA, YOUNG, _rods,
-                                           chart_from_thesis)
-from mechnum.mechanisms.rfr2.shooting import (STUDY_NODES, _shooting_system, forward_shooting,
-                                              shooting_guess)
+from mechnum.mechanisms.rfr2.model import TABLE7, TABLE7_THETA, chart_from_thesis, rods
+from mechnum.mechanisms.rfr2.shooting import forward_shooting, shooting_guess, shooting_system
 from mechnum.mechanisms.rfr2.trajectories import STUDY_PATHS, path
+from mechnum.mechanisms.thesis import EI, LENGTH, STUDY_NODES, YOUNG
 from mechnum.rods import regular
 
 TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
@@ -23,7 +25,7 @@ TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
 :func:`~mechnum.mechanisms.rfr2.reproduce`)."""
 
 
-def recover_inputs(solutions, free="EI"):
+def recover_inputs(solutions: ArrayLike, free: str = "EI"):
     """The example's inputs that the printed solutions of Table 7 determine, by least squares.
 
     Each printed solution ``(psi1, k_rel1, psi2, k_rel2)`` fixes both rods' shapes and
@@ -76,7 +78,7 @@ def recover_inputs(solutions, free="EI"):
             "residual": float(np.abs(residuals(fit.x)).max())}
 
 
-def _path_sizes():
+def _path_sizes() -> dict:
     """The sizes of the study's trajectories, measured on :func:`path`'s points."""
     out = {}
     for kind in STUDY_PATHS:
@@ -101,7 +103,7 @@ def _path_sizes():
     return out
 
 
-def reproduce():
+def reproduce() -> dict:
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
     Table 7 from the equilibria that :func:`forward_elliptic` finds (each printed solution
@@ -123,7 +125,7 @@ def reproduce():
             values[f"Table 7 solution {i} {name}"] = float(value)
     fit = recover_inputs(TABLE7_PUBLISHED)
     printed = chart_from_thesis(TABLE7_PUBLISHED[0])
-    load = _rods(TABLE7, np.ones(2), printed, TABLE7_THETA)[1].sum(axis=0)
+    load = rods(TABLE7, TABLE7_THETA, printed)[1].sum(axis=0)
     values.update({"motor angle theta1 (fitted to Table 7)": float(np.degrees(fit["theta"][0])),
                    "motor angle theta2 (fitted to Table 7)": float(np.degrees(fit["theta"][1])),
                    "motor 2 x (text: (0, 0.3); fitted to Table 7)": float(fit["motor2"][0]),
@@ -137,14 +139,14 @@ def reproduce():
     values["mode-1 equilibria for the Table 7 inputs"] = float(len(eq.P))
     # the listing of EmpArt_xyR returns tips relative to their clamps: at the printed
     # solution 1 its residual Res_x, Res_y is the distance between the motors
-    relative = _rods(TABLE7, np.ones(2), printed, TABLE7_THETA)[0] - TABLE7.origins
+    relative = rods(TABLE7, TABLE7_THETA, printed)[0] - TABLE7.origins
     values["tip gap at the printed solution 1 with EmpArt_xyR as listed (m)"] = float(
         np.hypot(*(relative[0] - relative[1])))
     X = shooting_guess(TABLE7, TABLE7_THETA, eq.chart)
     shot = forward_shooting(TABLE7, TABLE7_THETA, X, nodes=STUDY_NODES)
     scale = np.array([TABLE7.EI / TABLE7.L, TABLE7.L, TABLE7.L] * 2 + [TABLE7.EI] * 2)
     values["shooting residual at convergence, N = 41 (N m, m, N)"] = float(np.max(np.abs(
-        _shooting_system(TABLE7, STUDY_NODES, "P")[0](shot.newton.x, shot.theta) * scale)))
+        shooting_system(TABLE7, STUDY_NODES, "P")[0](shot.x, shot.theta) * scale)))
     values["elliptic residual (105) at convergence (m, N)"] = float(np.abs(residual(
         TABLE7, TABLE7_THETA, eq.chart)).max())
     values.update(_path_sizes())

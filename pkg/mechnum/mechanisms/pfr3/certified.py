@@ -1,0 +1,188 @@
+"""Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
+
+:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
+:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: the same six reduced equations
+(:func:`~mechnum.mechanisms.pfr3.model.forward_system`: the tips form the platform, ``d_1 / b_1
+= d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
+forces carry ``F``; the moments about the centroid carry ``M``) in the same chart, re-derived
+from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
+:func:`~mechnum.mechanisms.pfr3.model.clamps`, and enclosed over boxes
+(:mod:`mechnum.rods.balls`). Two exclusion tests of the mechanism's own speed the search up:
+the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
+platform's sides (every two tips are ``a`` apart).
+
+Without ``around``, the search covers the chart's whole domain (64 boxes, one per sign pattern
+of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
+``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
+sampled ``forward_elliptic(...).chart``), it covers a small box around each point: each
+equilibrium there is then proven to exist, alone in its box, and the count is a lower bound.
+
+**Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): ``stable`` is False
+where the reduced Hessian in the platform's pose, ``sum_i G_i^T K_i G_i`` plus the turning
+term ``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K_i`` the tips'
+stiffnesses), is proven to have a negative eigenvalue, None otherwise.
+"""
+
+import numpy as np
+from flint import acb, arb
+
+from mechnum import _validate, certify
+from mechnum.mechanisms.pfr3.model import clamps
+from mechnum.rods import certified, regular
+
+MAX_BOXES = 1_000_000
+"""Default bound on the boxes tested (``max_boxes``)."""
+
+
+def _modes(modes):
+    modes = _validate.array(modes, "modes", shape=(3,))
+    if np.any(modes < 1) or np.any(modes > 10) or np.any(modes != np.round(modes)):
+        raise ValueError(f"modes must be three integers in [1, 10], got {modes.tolist()}")
+    return [int(m) for m in modes]
+
+
+def system(mech, lambdas, modes=(1, 1, 1)):
+    """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes
+    (``exclude.split``: the cut of :func:`mechnum.rods.certified.forces_split`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
+    >>> f, J, rods, exclude = system(TABLE8, TABLE8_LAMBDAS)
+    >>> z = chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
+    >>> X = [certify.ball(v - 1e-3, v + 1e-3) for v in z]
+    >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
+    ([True, True, True, True, True, True], False)
+    """
+    lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
+    modes = _modes(modes)
+    origin = clamps(mech, lambdas)
+    inv_b = [1 / acb(float(x), float(y)) for x, y in mech.vertices]
+    inv_f, inv_fL = arb(mech.L) ** 2 / arb(mech.EI), arb(mech.L) / arb(mech.EI)
+    F = [arb(float(v)) for v in mech.force]
+    M, a = arb(float(mech.moment)), arb(float(mech.a))
+
+    @certified.memoised
+    def rods(X, jacobian):
+        return [certified.placed(mech.EI, mech.L, X, i, modes[i], origin[i],
+                                 mech.clamp_angles[i], jacobian) for i in range(3)]
+
+    def parts(rs):
+        tip = [acb(r.tip[0], r.tip[1]) for r in rs]
+        centre = (tip[0] + tip[1] + tip[2]) / 3
+        d = [t - centre for t in tip]
+        return d, [d[i] * inv_b[i] for i in range(3)]
+
+    def residual(X):
+        rs = rods(X, False)
+        d, w = parts(rs)
+        torque = sum((d[i].real * rs[i].force[1] - d[i].imag * rs[i].force[0]
+                      for i in range(3)), arb(0))
+        return [(w[0] - w[1]).real, (w[0] - w[1]).imag, w[0].real ** 2 + w[0].imag ** 2 - 1,
+                (rs[0].force[0] + rs[1].force[0] + rs[2].force[0] - F[0]) * inv_f,
+                (rs[0].force[1] + rs[1].force[1] + rs[2].force[1] - F[1]) * inv_f,
+                (torque - M) * inv_fL]
+
+    def jacobian(X):
+        rs = rods(X, True)
+        d, w = parts(rs)
+        rows = [[None] * 6 for _ in range(6)]
+        for r in range(3):
+            for p in range(2):
+                col = 2 * r + p
+                dtip = acb(rs[r].jacobian[0][p], rs[r].jacobian[1][p])
+                dd = [dtip * ((1 if i == r else 0) - arb(1) / 3) for i in range(3)]
+                dw = [dd[i] * inv_b[i] for i in range(3)]
+                rows[0][col], rows[1][col] = (dw[0] - dw[1]).real, (dw[0] - dw[1]).imag
+                rows[2][col] = 2 * (w[0].real * dw[0].real + w[0].imag * dw[0].imag)
+                dforce = (rs[r].jacobian[2][p], rs[r].jacobian[3][p])
+                rows[3][col], rows[4][col] = dforce[0] * inv_f, dforce[1] * inv_f
+                torque = sum((dd[i].real * rs[i].force[1] - dd[i].imag * rs[i].force[0]
+                              for i in range(3)), arb(0))
+                torque += d[r].real * dforce[1] - d[r].imag * dforce[0]
+                rows[5][col] = torque * inv_fL
+        return rows
+
+    def exclude(X):
+        rs = rods(X, False)
+        if certified.forces_exclude(rs, mech.force):
+            return True
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            box = [certify.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
+            low, high = certified._norm_range(box)
+            if bool(a < low) or bool(a > high):
+                return True
+        return False
+
+    def split(X):
+        return certified.forces_split(rods(X, False), mech.force, X)
+
+    exclude.split = split
+    return residual, jacobian, rods, exclude
+
+
+def _reduced(rs):
+    """The reduced Hessian in the pose ``(x, y, phi)`` (3 x 3 balls) of an equilibrium."""
+    P = [sum((r.tip[k] for r in rs), arb(0)) / 3 for k in range(2)]
+    H = [[arb(0)] * 3 for _ in range(3)]
+    for r in rs:
+        K = certified.stiffness(r)
+        rx, ry = r.tip[0] - P[0], r.tip[1] - P[1]
+        G = [[arb(1), arb(0), -ry], [arb(0), arb(1), rx]]
+        for i in range(3):
+            for j in range(3):
+                H[i][j] += sum((G[a][i] * K[a][b] * G[b][j] for a in range(2)
+                                for b in range(2)), arb(0))
+        H[2][2] -= r.force[0] * rx + r.force[1] * ry
+    return H
+
+
+def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
+    """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,)
+        Slider inputs (m).
+    modes : (int, int, int), optional
+        Buckling modes of the rods (in [1, 10]).
+    max_boxes : int, optional
+        The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
+    around : array_like, shape (k, 6), optional
+        Chart points to search around (boxes of half-width
+        :data:`mechnum.rods.certified.AROUND` times the chart's ranges) instead of the whole
+        chart.
+
+    Returns
+    -------
+    mechnum.rods.certified.Certified
+        ``roots``: enclosures in the chart; ``solutions``: their midpoints as
+        ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
+        ``stable``: False or None (see the module); ``complete``: the count is a theorem over
+        the chart's domain (never with ``around``, whose count is a lower bound: each root is
+        proven, alone in its box, but others may lie elsewhere; each part's ``certificate()``
+        covers its boxes).
+
+    Examples
+    --------
+    Each of the equilibria that the sampling finds, proven (here the first):
+
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
+    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
+    >>> r.count, r.complete, r.parts[0].complete, np.round(r.solutions[0], 4).tolist()
+    (1, False, True, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
+    """
+    modes = _modes(modes)
+    f, J, rods, exclude = system(mech, lambdas, modes)
+    boxes = certified.branch_boxes(3) if around is None else certified.around_boxes(around, 3)
+    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
+                         split=exclude.split)
+    z = part.x
+    solutions = z.copy()
+    if len(z):
+        solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
+    stable = [certified.verdict(_reduced(rods(certified.enclosed(root), True)))
+              for root in part.roots]
+    return certified.combine([part], solutions, stable, certified.around_note(around))

@@ -1,0 +1,130 @@
+"""Tests of the certified equilibria of the rods and the flexible mechanisms (issue: proofs,
+not samples): the enclosures of the closed form, the chapters' counts, the sampled solvers
+against the certified ones, and the stored certificates."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+from mechnum import certify, rods
+from mechnum.certify import ball, bounds
+from mechnum.mechanisms import pfr3, rfr2
+from mechnum.mechanisms.pfr3 import certified as pfr3_certified
+from mechnum.rods import balls, regular
+
+CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
+
+
+def test_the_balls_enclose_the_closed_form():
+    """Random boxes of the chart, wide and narrow, at its edges too: every float evaluation
+    of :mod:`mechnum.rods.regular` inside the box lies in the enclosure (to its rounding)."""
+    rng = np.random.default_rng(7)
+    for _ in range(60):
+        mode, sign = int(rng.integers(1, 4)), int(rng.choice([-1, 1]))
+        p0 = rng.uniform(0, 2 * np.pi)
+        p1 = min(2 * np.pi, p0 + 10 ** rng.uniform(-5, 0.5))
+        t0 = rng.choice([0.0, rng.uniform(0, regular.T_MAX)])
+        t1 = min(regular.T_MAX, t0 + 10 ** rng.uniform(-6, 0))
+        T = ball(t0, t1) if sign > 0 else ball(-t1, -t0)
+        rod = balls.clamped_pinned(1.3, 0.9, ball(p0, p1), T, mode, sign, jacobian=True)
+        psi = rng.uniform(p0, p1, 8)
+        t = sign * rng.uniform(max(t0, 1e-12), t1, 8)
+        ok = (psi > 0) & (psi < 2 * np.pi)
+        exact = regular.clamped_pinned_regular(1.3, 0.9, psi[ok], t[ok], mode)
+        values = np.column_stack((exact.tip, exact.force, exact.clamp_moment))
+        for column, enclosure in enumerate(rod.tip + rod.force + [rod.moment]):
+            lo, hi = bounds(enclosure)
+            slack = 1e-9 * (1 + np.abs(values[:, column]))
+            assert np.all((lo - slack <= values[:, column]) & (values[:, column] <= hi + slack))
+        for i in range(5):
+            for j in range(2):
+                lo, hi = bounds(rod.jacobian[i][j])
+                v = exact.jacobian[:, i, j]
+                slack = 1e-7 * (1 + np.abs(v))
+                assert np.all((lo - slack <= v) & (v <= hi + slack))
+
+
+@pytest.fixture(scope="module")
+def pinned():
+    return rods.certify_pinned(1.0, 1.0, [0.8, 0.1], modes=(1, 2, 3))
+
+
+def test_chapter3_pinned_rod_is_certified_complete(pinned):
+    assert pinned.complete and pinned.status == "converged"
+    assert pinned.count == 9 and pinned.solutions.shape == (9, 3)
+    assert [int(np.sum(pinned.solutions[:, 2] == m)) for m in (1, 2, 3)] == [1, 4, 4]
+    # the looped mode-2 rod that the reviewer found
+    looped = pinned.solutions[np.argmin(np.abs(pinned.solutions[:, 1] - 0.99961))]
+    rod = regular.clamped_pinned_regular(1.0, 1.0, looped[0],
+                                         regular.t_from_k_rel(looped[0], looped[1]), 2)
+    np.testing.assert_allclose(rod.clamp_moment, 2.7309, rtol=1e-4)
+    np.testing.assert_allclose(rod.force, [423.2, 56.3], rtol=1e-3)
+    for (psi, t), (_, _, mode) in zip(pinned.x, pinned.solutions):
+        tip = regular.clamped_pinned_regular(1.0, 1.0, psi, t, mode).tip
+        assert np.abs(tip - [0.8, 0.1]).max() < 1e-12
+    assert pinned.stable == [None] * 9
+
+
+def test_pinned_sampling_equals_certified(pinned):
+    sampled = rods.pinned_equilibria(1.0, 1.0, [0.8, 0.1], modes=(1, 2, 3))
+    assert len(sampled) == pinned.count
+    for row in pinned.solutions:
+        assert np.any(np.all(np.abs(sampled - row) < 1e-8, axis=1))
+
+
+def test_certify_pinned_refuses_bad_input():
+    with pytest.raises(ValueError, match="nearer than L"):
+        rods.certify_pinned(1.0, 1.0, [1.0, 0.5])
+    with pytest.raises(ValueError, match="mode"):
+        rods.certify_pinned(1.0, 1.0, [0.8, 0.1], modes=(0,))
+
+
+def _same_set(certified, sampled, tol):
+    return len(certified) == len(sampled) and all(
+        np.any(np.all(np.abs(sampled - row) < tol, axis=1)) for row in certified)
+
+
+def test_table7_sampled_equilibria_are_proven():
+    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
+    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    assert result.count == 3 and not result.complete and "lower bound" in result.message
+    assert _same_set(result.solutions, sampled.solutions, 1e-10)
+    # no certified verdict contradicts the sampled index (False only where unstable)
+    for verdict, index in zip(result.stable, sampled.index):
+        assert verdict is None or (verdict is False and index.min() > 0)
+
+
+def test_table8_sampled_equilibria_are_proven():
+    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
+    result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    assert result.count == 9 and result.parts[0].complete
+    assert _same_set(result.solutions, sampled.solutions, 1e-10)
+    for verdict, index in zip(result.stable, sampled.index):
+        assert verdict is None or (verdict is False and index.min() > 0)
+
+
+def test_a_box_without_an_equilibrium_is_excluded():
+    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
+                                  around=[[1.0, 0.5, 1.0, 0.5]])
+    assert result.count == 0 and result.parts[0].complete
+
+
+def test_the_stored_table8_certificate_verifies():
+    cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
+    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
+                                             cert.inputs["modes"])
+    checked = certify.verify(cert, f, J, exclude)
+    assert checked.count == 9 and checked.complete
+    other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
+    with pytest.raises(certify.CertificateError):
+        certify.verify(cert, other[0], other[1], other[3])
+
+
+@pytest.mark.parametrize("mode", [1, 2, 3])
+def test_the_stored_pinned_certificates_verify(mode):
+    from mechnum.rods.certified import pinned_system
+    cert = certify.Certificate.load(CERTIFICATES / f"ch3_pinned_mode{mode}.json")
+    f, J = pinned_system(1.0, 1.0, cert.inputs["target"], mode)
+    checked = certify.verify(cert, f, J)
+    assert checked.complete and checked.count == (1 if mode == 1 else 4)

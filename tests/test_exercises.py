@@ -1,0 +1,621 @@
+"""The self-checks of :mod:`mechnum.exercises`: each passes its reference, fails typical wrong
+implementations (written here, independently of the package's mistake models) with a message
+that names the mistake, fails a stub, never raises on a wrong answer, and raises on a malformed
+call. The references are checked against the package's own methods."""
+
+import re
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import nbformat
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from mechnum import exercises, linear, ode, rods
+from mechnum.mechanisms import actuator
+from mechnum.mechanisms import hacksaw as hs
+from mechnum.mechanisms import prr3
+
+NUMBERS = sorted(exercises.CHECKS)
+ROOT = Path(__file__).resolve().parents[1]
+ref = exercises.reference
+
+
+def test_at_least_two_exercises_per_chapter_and_the_krawczyk_test():
+    chapters = [n.split(".")[0] for n in NUMBERS]
+    assert all(chapters.count(str(c)) >= 2 for c in range(1, 8)) and "5.3" in NUMBERS
+    for c in range(1, 8):  # numbered N.1, N.2, ... so that they come first in the chapter
+        own = sorted(int(n.split(".")[1]) for n in NUMBERS if n.startswith(f"{c}."))
+        assert own == list(range(1, len(own) + 1))
+
+
+@pytest.mark.parametrize("number", NUMBERS)
+def test_the_reference_passes_and_a_stub_does_not(number):
+    assert exercises.check(number, ref(number)).passed
+    assert exercises.CHECKS[number](ref(number)).passed
+    namespace = {}
+    exec(exercises.starter(number), {"np": np}, namespace)  # the starter cell as it is
+    result = exercises.check(number, namespace[ref(number).__name__])
+    assert not result.passed and "not yet" in result.message and "None" in result.message
+
+
+@pytest.mark.parametrize("number", NUMBERS)
+def test_starter_solution_and_cells_agree(number):
+    starter, solution = exercises.starter(number), exercises.solution(number)
+    assert starter.rstrip().endswith("...") and "return" not in starter.split('"""')[-1]
+    head = starter.rstrip()[:-3].rstrip()
+    assert solution.startswith(head)  # the solution fills the starter in
+    cells = exercises.cells(number)
+    assert [c["metadata"].get("mechnum", {}).get("role") for c in cells] == [
+        None, "starter", None, "solution", None, "check"]
+    assert cells[1]["source"] == starter.rstrip("\n")
+    assert cells[5]["source"] == exercises.check_code(number)
+    assert "{solution-start}" in cells[2]["source"] and "{solution-end}" in cells[4]["source"]
+    assert exercises.statement(number) in cells[0]["source"]
+    for cell in cells[1::2]:  # the code a lecture page shows: its lines fit its column
+        assert max(len(line) for line in cell["source"].splitlines()) <= 76, cell["source"]
+
+
+def test_a_malformed_call_raises_and_a_wrong_answer_does_not():
+    with pytest.raises(ValueError, match="no self-checked exercise '9.9'"):
+        exercises.check("9.9", ref("1.1"))
+    with pytest.raises(ValueError):
+        exercises.check(1.1, ref("1.1"))
+    for answer in (None, 42, "newton"):
+        result = exercises.check("1.2", answer)
+        assert not result.passed and "Pass the function itself" in result.message
+
+    def raises(*args):
+        raise ZeroDivisionError("boom")
+    result = exercises.check("2.1", raises)
+    assert not result.passed and "raised ZeroDivisionError: boom" in result.message
+
+
+def test_an_endless_loop_is_stopped():
+    def loops(f, s, y, h):
+        while True:
+            pass
+    began = time.perf_counter()
+    result = exercises.check("3.1", loops)
+    assert time.perf_counter() - began < 3 * exercises.TIME_LIMIT
+    assert not result.passed and "endless loop" in result.message
+
+
+def test_the_check_runs_outside_the_main_thread_too():
+    import threading
+    box = {}
+
+    def loops(*args):
+        while True:
+            pass
+    worker = threading.Thread(target=lambda: box.update(r=exercises.check("4.1", loops)))
+    worker.start()
+    worker.join(10)
+    assert not box["r"].passed and "endless loop" in box["r"].message
+
+
+def test_an_answer_that_changes_its_argument_fails():
+    def in_place(A, b, x, omega):
+        x[:] = ref("2.1")(A, b, x, omega)
+        return x
+    result = exercises.check("2.1", in_place)
+    assert not result.passed and "changed its argument `x` in place" in result.message
+
+
+# Wrong implementations a student writes, named after the mistake; each check must fail them
+# and name the mistake (a word of the expected phrase is enough).
+def loop_typo(q, theta2, r1y, r2, r3):
+    r1, t1, t3 = q
+    F = np.array([r1 * np.sin(t1) - r1y, -r1 * np.cos(t1) + r2 * np.cos(theta2) + r3 *
+                  np.cos(theta2), r1 * np.sin(t1) - r2 * np.sin(theta2) - r3 * np.sin(theta2)])
+    return F, ref("1.1")(q, theta2, r1y, r2, r3)[1]
+
+
+def loop_transposed(*args):
+    F, J = ref("1.1")(*args)
+    return F, np.array(J).T
+
+
+def loop_sign(q, theta2, r1y, r2, r3):
+    F, J = ref("1.1")(q, theta2, r1y, r2, r3)
+    J = J.copy()
+    J[1, 1] = -q[0] * np.sin(q[1])
+    return F, J
+
+
+def newton_residual_test(F, J, x0, tol=1e-6, maxiter=50):
+    x = np.asarray(x0, float)
+    for k in range(maxiter):
+        if np.linalg.norm(F(x)) < tol:
+            return x, k
+        x = x - np.linalg.solve(J(x), F(x))
+    raise RuntimeError
+
+
+def newton_uncounted(F, J, x0, tol=1e-6, maxiter=50):
+    x, k = np.asarray(x0, float), 0
+    while k < maxiter:
+        dx = np.linalg.solve(J(x), -F(x))
+        x = x + dx
+        if np.linalg.norm(dx) < tol:
+            break
+        k += 1
+    return x, k
+
+
+def newton_transposed(F, J, x0, tol=1e-6, maxiter=50):
+    x = np.asarray(x0, float)
+    for k in range(1, maxiter + 1):
+        dx = np.linalg.solve(J(x).T, -F(x))
+        x = x + dx
+        if np.linalg.norm(dx) < tol:
+            return x, k
+    return x, maxiter
+
+
+def sor_jacobi(A, b, x, omega):
+    D = np.diag(A)
+    return (1 - omega) * x + omega * (b - (A @ x - D * x)) / D
+
+
+def sor_no_relaxation_term(A, b, x, omega):
+    x = x.copy()
+    for i in range(len(b)):
+        x[i] = omega * (b[i] - A[i] @ x + A[i, i] * x[i]) / A[i, i]
+    return x
+
+
+def sor_off_by_one(A, b, x, omega):
+    x = x.copy()
+    for i in range(len(b) - 1):
+        x[i] += omega * (b[i] - A[i] @ x) / A[i, i]
+    return x
+
+
+def lstsq_normal(A, b):
+    return np.linalg.solve(A.T @ A, A.T @ b)
+
+
+def lstsq_no_qt(A, b):
+    return np.linalg.solve(np.linalg.qr(A)[1], b[:A.shape[1]])
+
+
+def lstsq_transposed_r(A, b):
+    Q, R = np.linalg.qr(A)
+    return np.linalg.solve(R.T, Q.T @ b)
+
+
+def rk4_stages_at_s(f, s, y, h):
+    k1 = f(s, y)
+    k2 = f(s, y + h / 2 * k1)
+    k3 = f(s, y + h / 2 * k2)
+    k4 = f(s, y + h * k3)
+    return y + h * (k1 + 2 * k2 + 2 * k3 + k4) / 6
+
+
+def rk4_equal_weights(f, s, y, h):
+    k1 = f(s, y)
+    k2 = f(s + h / 2, y + h / 2 * k1)
+    k3 = f(s + h / 2, y + h / 2 * k2)
+    k4 = f(s + h, y + h * k3)
+    return y + h * (k1 + k2 + k3 + k4) / 4
+
+
+def rk4_full_steps(f, s, y, h):
+    k1 = f(s, y)
+    k2 = f(s + h / 2, y + h * k1)
+    k3 = f(s + h / 2, y + h * k2)
+    k4 = f(s + h, y + h * k3)
+    return y + h * (k1 + 2 * k2 + 2 * k3 + k4) / 6
+
+
+def _rod_tip(q, EI, L, nodes, moment_sign=1):
+    m0, nx, ny = q
+    f = (lambda s, y: np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
+                                moment_sign * (nx * np.sin(y[2]) - ny * np.cos(y[2]))]))
+    return ode.rk4(f, np.array([0.0, 0.0, 0.0, m0]), np.linspace(0, L, nodes))[-1]
+
+
+def shooting_moment_sign(q, EI, L, target, nodes):
+    y = _rod_tip(q, EI, L, nodes, -1)
+    return np.array([y[0] - target[0], y[1] - target[1], y[3]])
+
+
+def shooting_target_minus_tip(q, EI, L, target, nodes):
+    y = _rod_tip(q, EI, L, nodes)
+    return np.array([target[0] - y[0], target[1] - y[1], y[3]])
+
+
+def shooting_off_by_one(q, EI, L, target, nodes):
+    y = _rod_tip(q, EI, L, nodes + 1)
+    return np.array([y[0] - target[0], y[1] - target[1], y[3]])
+
+
+def companion_monic_only(c):
+    n = len(c) - 1
+    return np.column_stack([np.vstack([np.zeros(n - 1), np.eye(n - 1)]), -np.asarray(c[:-1])])
+
+
+def companion_descending(c):
+    c = np.asarray(c)[::-1]
+    n = len(c) - 1
+    return np.column_stack([np.vstack([np.zeros(n - 1), np.eye(n - 1)]), -c[:-1] / c[-1]])
+
+
+def companion_sign(c):
+    n = len(c) - 1
+    return np.column_stack([np.vstack([np.zeros(n - 1), np.eye(n - 1)]),
+                            np.asarray(c[:-1]) / c[-1]])
+
+
+def _prr3_system(pose, lam, g):
+    x, y, psi = pose
+    P = np.array([[x, y], [x + g.a * np.cos(psi), y + g.a * np.sin(psi)],
+                  [x + g.a * np.cos(psi + np.pi / 3), y + g.a * np.sin(psi + np.pi / 3)]])
+    C = np.array([[lam[0], 0], [g.B2 - lam[1], 0], [g.B3, g.H3 - lam[2]]])
+    u = P - C
+    n = np.column_stack((y - P[:, 1], P[:, 0] - x))
+    return (u ** 2).sum(1) - g.L ** 2, 2 * np.column_stack((u, (u * n).sum(1)))
+
+
+def prr3_transposed(pose, lam, g):
+    F, J = _prr3_system(pose, lam, g)
+    return pose - np.linalg.solve(J.T, F)
+
+
+def prr3_no_two(pose, lam, g):
+    F, J = _prr3_system(pose, lam, g)
+    return pose - np.linalg.solve(J / 2, F)
+
+
+def prr3_sign(pose, lam, g):
+    F, J = _prr3_system(pose, lam, g)
+    return pose + np.linalg.solve(J, F)
+
+
+def _tip(EI, L, psi, k_rel, mode, m_of_k=lambda k: k * k, phi2=None, ysign=-1):
+    from scipy.special import ellipeinc, ellipkinc
+    kmin = abs(np.cos(psi / 2))
+    k = np.sign(k_rel) * kmin + (1 - kmin) * k_rel
+    p1 = np.arcsin(np.cos(psi / 2) / k)
+    p2 = (mode - 0.5) * np.pi if phi2 is None else phi2(mode)
+    m = m_of_k(k)
+    F = ellipkinc(p2, m) - ellipkinc(p1, m)
+    E = ellipeinc(p2, m) - ellipeinc(p1, m)
+    C = np.cos(p2) - np.cos(p1)
+    lam = F / L
+    return np.array([-(np.cos(psi) * (2 * E - F) + 2 * k * np.sin(psi) * C) / lam,
+                     -(np.sin(psi) * (2 * E - F) + ysign * 2 * k * np.cos(psi) * C) / lam])
+
+
+def tip_modulus(EI, L, psi, k_rel, mode):
+    return _tip(EI, L, psi, k_rel, mode, m_of_k=lambda k: k)
+
+
+def tip_mode_pi(EI, L, psi, k_rel, mode):
+    return _tip(EI, L, psi, k_rel, mode, phi2=lambda mode: mode * np.pi)
+
+
+def tip_y_sign(EI, L, psi, k_rel, mode):
+    return _tip(EI, L, psi, k_rel, mode, ysign=1)
+
+
+def _rot(t):
+    return np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+
+
+def pin_plus_load(tips, forces, origins, theta, load):
+    p = [origins[i] + _rot(theta[i]) @ tips[i] for i in (0, 1)]
+    n = [_rot(theta[i]) @ forces[i] for i in (0, 1)]
+    return np.r_[p[0] - p[1], n[0] + n[1] + load]
+
+
+def pin_transposed_rotation(tips, forces, origins, theta, load):
+    p = [origins[i] + _rot(theta[i]).T @ tips[i] for i in (0, 1)]
+    n = [_rot(theta[i]).T @ forces[i] for i in (0, 1)]
+    return np.r_[p[0] - p[1], n[0] + n[1] - load]
+
+
+def pin_no_origins(tips, forces, origins, theta, load):
+    p = [_rot(theta[i]) @ tips[i] for i in (0, 1)]
+    n = [_rot(theta[i]) @ forces[i] for i in (0, 1)]
+    return np.r_[p[0] - p[1], n[0] + n[1] - load]
+
+
+def _K(f, df, lo, hi, sign=-1, centre=True, spread=True):
+    m = (lo + hi) / 2
+    dlo, dhi = df(lo, hi)
+    y = 2 / (dlo + dhi)
+    fm = f(m)
+    c = sorted([m + sign * y * fm[0], m + sign * y * fm[1]])
+    s = sorted([1 - y * dlo, 1 - y * dhi])
+    X = (lo - m, hi - m) if centre else (lo, hi)
+    p = [a * b for a in s for b in X] if spread else [0.0]
+    return (np.nextafter(c[0] + min(p), -np.inf), np.nextafter(c[1] + max(p), np.inf))
+
+
+def _verdict(K, lo, hi):
+    if lo < K[0] and K[1] < hi:
+        return "unique", K
+    return ("none" if K[1] < lo or K[0] > hi else "undecided"), K
+
+
+def krawczyk_sign(f, df, lo, hi):
+    return _verdict(_K(f, df, lo, hi, sign=1), lo, hi)
+
+
+def krawczyk_uncentred(f, df, lo, hi):
+    return _verdict(_K(f, df, lo, hi, centre=False), lo, hi)
+
+
+def krawczyk_newton_point(f, df, lo, hi):
+    return _verdict(_K(f, df, lo, hi, spread=False), lo, hi)
+
+
+def krawczyk_none_when_not_inside(f, df, lo, hi):
+    verdict, K = _verdict(_K(f, df, lo, hi), lo, hi)
+    return ("none" if verdict == "undecided" else verdict), K
+
+
+def index_unconstrained(H, A):
+    return int((np.linalg.eigvalsh(H) < 0).sum())
+
+
+def index_row_space(H, A):
+    if len(A) == 0:
+        return int((np.linalg.eigvalsh(H) < 0).sum())
+    Z = np.linalg.qr(np.asarray(A).T)[0]
+    return int((np.linalg.eigvalsh(Z.T @ H @ Z) < 0).sum())
+
+
+def index_non_positive(H, A):
+    from scipy.linalg import null_space
+    Z = null_space(A) if len(A) else np.eye(len(H))
+    return int((np.linalg.eigvalsh(Z.T @ H @ Z) <= 0).sum())
+
+
+def rigid_side_lengths(pins, a):
+    return np.array([np.linalg.norm(pins[i] - pins[j]) - a for i, j in ((0, 1), (1, 2), (2, 0))])
+
+
+def rigid_clockwise(pins, a):
+    z = pins[:, 0] + 1j * pins[:, 1]
+    d = z - z.mean()
+    b = a / np.sqrt(3) * np.exp(1j * np.radians([-30.0, -150.0, 90.0]))
+    w = d / b
+    return np.array([(w[0] - w[1]).real, (w[0] - w[1]).imag, abs(w[0]) - 1])
+
+
+def rigid_not_centred(pins, a):
+    z = pins[:, 0] + 1j * pins[:, 1]
+    d = z - z[0]
+    b = a / np.sqrt(3) * np.exp(1j * np.radians([-150.0, -30.0, 90.0]))
+    w = d / b
+    return np.array([(w[0] - w[1]).real, (w[0] - w[1]).imag, abs(w[0]) - 1])
+
+
+def coefficients_sheet(theta2, theta4, a, l, b):
+    d = theta2 - theta4
+    return np.sin(d) * np.cos(d) / (a + l), np.sin(d) / b
+
+
+def coefficients_reversed(theta2, theta4, a, l, b):
+    d = theta4 - theta2
+    return np.cos(d) / ((a + l) * np.sin(d)), 1 / (b * np.sin(d))
+
+
+def coefficients_no_l(theta2, theta4, a, l, b):
+    d = theta2 - theta4
+    return np.cos(d) / (a * np.sin(d)), 1 / (b * np.sin(d))
+
+
+def _force(kin, mech, g, coriolis=True, gravity=1.0, couples=True):
+    e2, e4 = np.exp(1j * kin.theta2), np.exp(1j * kin.theta4)
+    r3 = kin.a + mech.g3
+    cor = 2 * kin.omega2 * kin.a_dot if coriolis else 0.0
+    terms = [(mech.m2, mech.inertias[0], mech.g2 * (1j * kin.eps2 - kin.omega2 ** 2) * e2,
+              1j * mech.g2 * kin.k2 * e2, kin.eps2 * kin.k2),
+             (mech.m3, mech.inertias[1],
+              (kin.a_ddot - r3 * kin.omega2 ** 2 + 1j * (r3 * kin.eps2 + cor)) * e2,
+              (1 + 1j * r3 * kin.k2) * e2, kin.eps2 * kin.k2),
+             (mech.m4, mech.inertias[2], mech.g4 * (1j * kin.eps4 - kin.omega4 ** 2) * e4,
+              1j * mech.g4 * kin.k4 * e4, kin.eps4 * kin.k4)]
+    Q = 0.0
+    for mass, I, a_G, J, ek in terms:
+        Q += mass * (a_G * np.conj(J)).real + (I * ek if couples else 0) + \
+            gravity * mass * g * J.imag
+    return Q
+
+
+def force_no_coriolis(kin, mech, g):
+    return _force(kin, mech, g, coriolis=False)
+
+
+def force_gravity_sign(kin, mech, g):
+    return _force(kin, mech, g, gravity=-1.0)
+
+
+def force_no_couples(kin, mech, g):
+    return _force(kin, mech, g, couples=False)
+
+
+WRONG = {
+    "1.1": [("typo", loop_typo), ("transposed", loop_transposed), ("sign", loop_sign)],
+    "1.2": [("residual", newton_residual_test), ("counted", newton_uncounted),
+            ("transposed", newton_transposed)],
+    "2.1": [("Jacobi", sor_jacobi), ("(1 - omega)", sor_no_relaxation_term),
+            ("off-by-one", sor_off_by_one)],
+    "2.2": [("normal equations", lstsq_normal), ("without its reflections", lstsq_no_qt),
+            ("transposed R", lstsq_transposed_r)],
+    "3.1": [("stages at s", rk4_stages_at_s), ("weights", rk4_equal_weights),
+            ("full steps", rk4_full_steps)],
+    "3.2": [("sign in m'", shooting_moment_sign), ("target minus tip", shooting_target_minus_tip),
+            ("off-by-one", shooting_off_by_one)],
+    "4.1": [("leading coefficient", companion_monic_only), ("descending", companion_descending),
+            ("sign", companion_sign)],
+    "4.2": [("transposed", prr3_transposed), ("factor 2", prr3_no_two), ("sign", prr3_sign)],
+    "5.1": [("parameter", tip_modulus), ("phi2", tip_mode_pi), ("sign in y", tip_y_sign)],
+    "5.2": [("sign of F", pin_plus_load), ("inverse rotation", pin_transposed_rotation),
+            ("motors", pin_no_origins)],
+    "5.3": [("sign", krawczyk_sign), ("X - m", krawczyk_uncentred),
+            ("Newton point", krawczyk_newton_point), ("overlap", krawczyk_none_when_not_inside)],
+    "6.1": [("constraints ignored", index_unconstrained), ("row space", index_row_space),
+            ("zero counted", index_non_positive)],
+    "6.2": [("side lengths", rigid_side_lengths), ("clockwise", rigid_clockwise),
+            ("centroid", rigid_not_centred)],
+    "7.1": [("sheet", coefficients_sheet), ("delta", coefficients_reversed),
+            ("a + l", coefficients_no_l)],
+    "7.2": [("Coriolis", force_no_coriolis), ("gravity", force_gravity_sign),
+            ("couples", force_no_couples)],
+}
+
+
+def test_every_exercise_has_three_wrong_implementations():
+    assert sorted(WRONG) == NUMBERS and all(len(w) >= 3 for w in WRONG.values())
+
+
+@pytest.mark.parametrize("number, mistake, wrong",
+                         [(n, m, w) for n, ws in WRONG.items() for m, w in ws])
+def test_a_wrong_implementation_fails_with_its_mistake_named(number, mistake, wrong):
+    wrong.__name__ = ref(number).__name__
+    result = exercises.check(number, wrong)
+    assert not result.passed, result.message
+    assert result.message.startswith(f"Exercise {number}: not yet. On ")
+    assert mistake in result.message, result.message
+
+
+# The references against the package's own methods
+def test_references_of_chapter_1_agree_with_the_hacksaw():
+    rng = np.random.default_rng(0)
+    for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
+        F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
+        assert_allclose(F, hs.position_residual(q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(q), rtol=1e-13, atol=1e-15)
+    geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
+    x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
+                      lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
+    solved = hs.solve_consecutive((0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+    assert k == solved.iterations == 4
+    assert_allclose(x, solved.x, rtol=1e-13)
+
+
+def test_references_of_chapter_2_agree_with_the_package():
+    rng = np.random.default_rng(1)
+    M = rng.normal(size=(5, 5))
+    A, b, x = M @ M.T + 5 * np.eye(5), rng.normal(size=5), rng.normal(size=5)
+    assert_allclose(ref("2.1")(A, b, x, 1.3), linear.sweep_by_components(A, b, x, 1.3),
+                    rtol=1e-13)
+    A, b = rng.normal(size=(13, 3)), rng.normal(size=13)
+    assert_allclose(ref("2.2")(A, b), np.linalg.lstsq(A, b, rcond=None)[0], rtol=1e-12)
+
+
+def test_references_of_chapter_3_agree_with_the_package():
+    f = rods.equations(1.3, np.array([0.4, -2.0]))
+    y0 = np.array([0.0, 0.0, 0.0, 0.7])
+    s = np.linspace(0.0, 0.9, 11)
+    y = y0
+    for i in range(10):
+        y = ref("3.1")(f, s[i], y, s[i + 1] - s[i])
+    assert_allclose(y, ode.rk4(f, y0, s)[-1], rtol=1e-13)
+    q, target = np.array([-0.6, -3.2, -1.2]), np.array([0.8, 0.1])
+    rod = rods.integrate(0.164934, 1.0, q[0], q[1:], nodes=61)
+    assert_allclose(ref("3.2")(q, 0.164934, 1.0, target, 61),
+                    [*(rod.tip - target), rod.m[-1]], rtol=1e-12, atol=1e-13)
+
+
+def test_references_of_chapter_4_agree_with_the_package():
+    geometry, lam = prr3.EXAMPLES["Table 6"]
+    C = prr3.polynomial(lam, geometry)
+    assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
+                    np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
+    poses = prr3.direct(lam, geometry).poses
+    pose = poses[0] + np.array([0.01, -0.02, 0.03])
+    errors = []
+    for _ in range(6):
+        pose = ref("4.2")(pose, np.asarray(lam), geometry)
+        errors.append(np.abs(pose - poses[0]).max())
+    assert errors[-1] < 1e-13 and errors[2] < errors[1] ** 1.5  # quadratic convergence
+
+
+def test_references_of_chapter_5_agree_with_the_package():
+    for EI, L, psi, k_rel, mode in ((1.0, 1.0, 1.0, 0.5, 1), (0.16, 1.0, 3.49, -0.32, 2),
+                                    (2.0, 0.7, 4.0, 0.8, 3)):
+        assert_allclose(ref("5.1")(EI, L, psi, k_rel, mode),
+                        rods.clamped_pinned(EI, L, psi, k_rel, mode).tip, rtol=1e-10,
+                        atol=1e-12)
+    rng = np.random.default_rng(5)  # two rods whose tips meet and whose forces balance
+    theta, origins = rng.uniform(-3, 3, 2), rng.normal(size=(2, 2))
+    P, n1, load = rng.normal(size=2), rng.normal(size=2), rng.normal(size=2)
+    tips = np.array([_rot(-theta[i]) @ (P - origins[i]) for i in (0, 1)])
+    forces = np.array([_rot(-theta[0]) @ n1, _rot(-theta[1]) @ (load - n1)])
+    assert np.abs(ref("5.2")(tips, forces, origins, theta, load)).max() < 1e-14
+
+
+def test_the_krawczyk_reference_proves_only_what_is_true():
+    from mechnum.exercises._ch5 import _Polynomial
+    p = _Polynomial((-2, 0, 1))  # x^2 - 2
+    verdict, K = ref("5.3")(p.at, p.slope, 1.3, 1.5)
+    assert verdict == "unique" and 1.3 < K[0] <= np.sqrt(2) <= K[1] < 1.5
+    assert ref("5.3")(p.at, p.slope, 1.5, 2.0)[0] == "none"
+    assert ref("5.3")(p.at, p.slope, -1.6, 1.7)[0] == "undecided"  # two roots
+    double = _Polynomial((1, -2, 1))
+    assert ref("5.3")(double.at, double.slope, 0.9, 1.15)[0] == "undecided"
+
+
+def test_references_of_chapter_6():
+    from mechnum.exercises._ch6 import _column, _platform
+    # the column pinned at its tip buckles at P L^2 / EI = 20.19; free, at pi^2 / 4
+    assert [ref("6.1")(*_column(P, 200)) for P in (19.0, 21.5)] == [0, 1]
+    assert ref("6.1")(_column(3.0, 200)[0], np.zeros((0, 200))) == 1
+    turned = _platform((0.3, -0.1), 2.0, 0.2)
+    assert np.abs(ref("6.2")(turned, 0.2)).max() < 1e-14
+    assert np.abs(ref("6.2")(_platform((0.3, -0.1), 2.0, 0.2, mirror=True), 0.2)).max() > 0.1
+
+
+def test_references_of_chapter_7_agree_with_the_package():
+    for t in (0.1, 0.6):
+        kin = actuator.kinematics(t)
+        k2, k4 = ref("7.1")(float(kin.theta2), float(kin.theta4), float(kin.a),
+                            actuator.ANNEX.l, actuator.ANNEX.b)
+        assert_allclose([k2, k4], [float(kin.k2), float(kin.k4)], rtol=1e-12)
+        state = SimpleNamespace(**{name: float(getattr(kin, name)) for name in (
+            "theta2", "theta4", "k2", "k4", "omega2", "omega4", "eps2", "eps4", "a", "a_dot",
+            "a_ddot")})
+        assert_allclose(ref("7.2")(state, actuator.ANNEX, actuator.G_MATHCAD),
+                        float(actuator.virtual_power_force(kin)), rtol=1e-12)
+    from mechnum.exercises._ch7 import ANNEX, _state
+    assert_allclose(ANNEX.inertias, actuator.ANNEX.inertias, rtol=1e-12)
+    s, kin = _state(0.3), actuator.kinematics(0.3)
+    assert_allclose([s.eps2, s.eps4], [float(kin.eps2), float(kin.eps4)], rtol=1e-10)
+
+
+NOTEBOOKS = [*sorted((ROOT / "book").glob("*.ipynb")), ROOT / "tests" / "fixtures" /
+             "exercise_chapter.ipynb"]
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_the_notebooks_exercise_cells_are_the_packages(path):
+    """A chapter's starter, solution and check cells equal the package's, in that order, with
+    the exercise (its label and statement) and the gated solution's fences around them; the
+    fixture has two such exercises."""
+    cells = nbformat.read(path, as_version=4).cells
+    for k, cell in enumerate(cells):
+        meta = cell.metadata.get("mechnum", {})
+        if meta.get("role") != "starter":
+            continue
+        number = meta["exercise"]
+        expected = exercises.cells(number)
+        got = cells[k - 1:k + 5]
+        for mine, theirs in zip(got, expected):
+            if theirs["cell_type"] == "code":
+                assert mine.source == theirs["source"], (path.name, number)
+                assert mine.metadata["mechnum"] == theirs["metadata"]["mechnum"]
+        label = re.search(r":label: ([\w-]+)", expected[0]["source"]).group(1)
+        assert f":label: {label}" in got[0].source
+        assert exercises.statement(number) in got[0].source
+        assert f"{{solution-start}} {label}" in got[2].source
+        assert "{solution-end}" in got[4].source
+    if path.parent.name == "fixtures":
+        assert sum(c.metadata.get("mechnum", {}).get("role") == "starter" for c in cells) == 2
