@@ -5,5 +5,9 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "_ext"))
-from execution_statistics import (pytest_runtest_logreport, pytest_runtest_setup,  # noqa: E402,F401
-                                  pytest_runtest_teardown, pytest_sessionfinish)
+from execution_statistics import (  # noqa: E402,F401
+    pytest_runtest_logreport,
+    pytest_runtest_setup,
+    pytest_runtest_teardown,
+    pytest_sessionfinish,
+)

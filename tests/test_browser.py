@@ -18,7 +18,6 @@ import shutil
 from pathlib import Path
 
 import pytest
-
 from lecture_pages import chapter_pages, lectures, until_split
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")

@@ -11,10 +11,19 @@ it). The other checks, which today's chapters fail, wait for ``lecture_pages.CHA
 import sys
 
 import pytest
-
-from lecture_pages import (MAX_CODE_LINES, MAX_LINE, MAX_SECONDS, MAX_WORDS, ROOT,
-                           budget, chapter_pages, count_words, lectures, read_markdown,
-                           until_split)
+from lecture_pages import (
+    MAX_CODE_LINES,
+    MAX_LINE,
+    MAX_SECONDS,
+    MAX_WORDS,
+    ROOT,
+    budget,
+    chapter_pages,
+    count_words,
+    lectures,
+    read_markdown,
+    until_split,
+)
 
 sys.path.insert(0, str(ROOT / "book" / "_ext"))
 from execution_statistics import measured  # noqa: E402

@@ -4,15 +4,16 @@ that takes them in the book build and shows them (the directive ``{execution-sta
 
 A notebook is executed in a fresh kernel, either by strict nbval (``make notebooks`` and ``make
 notebooks-other-machine``, through ``book/conftest.py``, when ``MECHNUM_EXECUTION_RECORD``
-names the run's file) or by the book build (``make book``, which executes what its cache lacks). Both measure the same things
-and write them in the same form, one JSON file per run in ``_build/execution/``:
+names the run's file) or by the book build (``make book``, which executes what its cache
+lacks). Both measure the same things and write them in the same form, one JSON file per run in
+``_build/execution/``:
 
 * the **wall time** from the kernel's start to its end (nbval: its first cell's setup to its last
   cell's teardown; the book build: the time the notebook executor reports);
 * the **CPU time** of the kernel, user and system (what the finished kernel adds to the
   measuring process's ``RUSAGE_CHILDREN``): unlike the wall time, it does not grow when other
-  processes share the cores, so it estimates the wall time on a quiet machine (from above when
-  the kernel runs one thread; BLAS threads add their time to it);
+  processes share the cores. On a quiet machine the wall time is about the same: a little more
+  for the moments the kernel waits for the next cell, less when BLAS computes on two cores;
 * the **load average** of the last minute when the notebook started and when it ended (the
   number of processes running or waiting for a core: on a two-core machine, 2 means busy);
 * the notebook's SHA-256, so that a record is shown only for the notebook it measured.
@@ -34,6 +35,7 @@ from pathlib import Path
 
 import pytest
 from docutils import nodes
+from myst_nb.sphinx_ import NbMetadataCollector
 from sphinx.addnodes import pending_xref
 from sphinx.transforms.post_transforms import SphinxPostTransform
 from sphinx.util.docutils import SphinxDirective
@@ -73,7 +75,7 @@ class Stopwatch:
         self._wall, self._cpu, self._load = time.perf_counter(), _children_cpu(), os.getloadavg()[0]
 
     def stop(self, wall=None):
-        """The record: ``wall`` replaces the measured wall time when the executor reports its own."""
+        """The record (``wall``: the executor's own wall time, when it reports one)."""
         return {"sha256": digest(self.path),
                 "started": datetime.datetime.fromtimestamp(self.started).isoformat("T", "seconds"),
                 "wall": round(time.perf_counter() - self._wall if wall is None else wall, 2),
@@ -128,29 +130,34 @@ RECORD = "MECHNUM_EXECUTION_RECORD"
 project's root); without it nbval records nothing."""
 ROOT = Path(__file__).resolve().parents[2]
 """The project's root (book/_ext/ is two folders below it): record keys are relative to it."""
-_running, _failed, _records = {}, set(), {}
+_running, _failed, _records = {}, set(), {}  # by notebook, as pytest's node ids begin
+
+
+def _notebook(node_id):
+    return node_id.split("::")[0]
 
 
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_setup(item):
     if os.environ.get(RECORD) and item.path.suffix == ".ipynb":
-        _running.setdefault(item.path, Stopwatch(item.path))  # before its kernel starts
+        _running.setdefault(_notebook(item.nodeid), Stopwatch(item.path))  # before its kernel
     return (yield)
 
 
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_teardown(item, nextitem):
     result = yield
-    if item.path in _running and (nextitem is None or nextitem.path != item.path):
-        record = _running.pop(item.path).stop()               # its kernel has stopped
-        if item.path not in _failed:
+    notebook = _notebook(item.nodeid)
+    if notebook in _running and (nextitem is None or _notebook(nextitem.nodeid) != notebook):
+        record = _running.pop(notebook).stop()                # its kernel has stopped
+        if notebook not in _failed:                           # only what strict nbval passed
             _records[str(item.path.relative_to(ROOT))] = record
     return result
 
 
 def pytest_runtest_logreport(report):
     if report.failed:
-        _failed.add(Path(report.fspath).resolve())
+        _failed.add(_notebook(report.nodeid))
 
 
 def pytest_sessionfinish(session):
@@ -210,8 +217,6 @@ def _start(app, docname, source):
 
 
 def _stop(app, doctree):
-    from myst_nb.sphinx_ import NbMetadataCollector
-
     docname = app.env.docname
     watch = _reading.pop(docname, None)
     executed = NbMetadataCollector.get_exec_data(app.env, docname)
