@@ -18,7 +18,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from lecture_pages import chapter_pages, lectures, until_split
+from lecture_pages import MAX_LINE, chapter_pages, lectures, until_split
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
 CHROMIUM = os.environ.get("MECHNUM_CHROMIUM") or shutil.which("chromium")
@@ -240,3 +240,23 @@ def test_animations_play_and_draw_their_controls(browser, path):
             animation.locator('button[title="Pause"]').click()
     finally:
         visit.close()
+
+
+def test_a_line_of_the_longest_length_fits_every_code_cell(browser):
+    """CONTRIBUTING.md's longest line of code fits every code cell of a lecture page, also those
+    in narrower boxes (folded cells, solutions: book/_ext/code_width.py); two characters more
+    do not fit the column's."""
+    visit = Visit(browser, lecture_pages()[0])
+    try:
+        fits = visit.page.evaluate("""(n) => {
+            document.querySelectorAll("details").forEach(d => { d.open = true; });
+            const cells = [...document.querySelectorAll("article div.cell_input pre")];
+            const fit = (k) => cells.map(pre => { pre.textContent = "x".repeat(k);
+                                                  return pre.scrollWidth <= pre.clientWidth; });
+            const boxes = new Set(cells.map(pre => pre.clientWidth));
+            return {boxes: boxes.size, at: fit(n), over: fit(n + 2)};
+        }""", MAX_LINE)
+    finally:
+        visit.close()
+    assert fits["boxes"] >= 3, "the page lacks a folded cell or a solution's cell to measure"
+    assert all(fits["at"]) and not all(fits["over"])
