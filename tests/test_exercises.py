@@ -14,9 +14,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from mechnum import exercises, linear, ode, rods
-from mechnum.mechanisms import actuator
+from mechnum.mechanisms import actuator, prr3
 from mechnum.mechanisms import hacksaw as hs
-from mechnum.mechanisms import prr3
 
 NUMBERS = sorted(exercises.CHECKS)
 ROOT = Path(__file__).resolve().parents[1]
@@ -213,8 +212,11 @@ def rk4_full_steps(f, s, y, h):
 
 def _rod_tip(q, EI, L, nodes, moment_sign=1):
     m0, nx, ny = q
-    f = (lambda s, y: np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
-                                moment_sign * (nx * np.sin(y[2]) - ny * np.cos(y[2]))]))
+
+    def f(s, y):
+        return np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
+                         moment_sign * (nx * np.sin(y[2]) - ny * np.cos(y[2]))])
+
     return ode.rk4(f, np.array([0.0, 0.0, 0.0, m0]), np.linspace(0, L, nodes))[-1]
 
 

@@ -148,7 +148,8 @@ def test_box(residual, jacobian, X, counter, exclude=None):
     """Run the tests on the box of balls ``X``.
 
     Returns ``(test, J, K, value)``: ``test`` is ``"residual"``, ``"exclude"`` (the caller's
-    own test), ``"mean-value"`` or ``"krawczyk-exclusion"`` (no root in ``X``), ``"krawczyk"`` (exactly one, in ``K``),
+    own test), ``"mean-value"`` or ``"krawczyk-exclusion"`` (no root in ``X``), ``"krawczyk"``
+    (exactly one, in ``K``),
     ``"contracting"`` (Krawczyk's operator contracts but ``K(X)`` is not inside ``X``: a root
     near a face) or None (undecided); ``J`` is the Jacobian's enclosure (None when the first
     test sufficed), ``value`` the residual's enclosure. ``counter`` (a dict with ``nfev``,

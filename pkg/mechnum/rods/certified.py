@@ -65,7 +65,7 @@ class Certified(Roots):
 
 
 def combine(parts, solutions, stable, extra=""):
-    """One :class:`~mechnum.rods.certified.Certified` of several searches (their counts and work added)."""
+    """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
     n = parts[0].roots.shape[1] if parts else 2
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
     undecided = np.concatenate([p.undecided for p in parts] + [np.zeros((0, n, 2))])
