@@ -493,12 +493,12 @@ def test_references_of_chapter_1_agree_with_the_hacksaw():
     rng = np.random.default_rng(0)
     for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
         F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
-        assert_allclose(F, hs.position_residual(q, theta2), rtol=1e-13, atol=1e-15)
-        assert_allclose(J, hs.position_jacobian(q), rtol=1e-13, atol=1e-15)
+        assert_allclose(F, hs.position_residual(hs.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(hs.STUDY, q), rtol=1e-13, atol=1e-15)
     geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
     x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
                       lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
-    solved = hs.solve_consecutive((0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+    solved = hs.solve_consecutive(hs.STUDY, (0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
     assert k == solved.iterations == 4
     assert_allclose(x, solved.x, rtol=1e-13)
 
@@ -529,10 +529,10 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 def test_references_of_chapter_4_agree_with_the_package():
     geometry, lam = prr3.EXAMPLES["Table 6"]
-    C = prr3.polynomial(lam, geometry)
+    C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.direct(lam, geometry).poses
+    poses = prr3.forward(geometry, lam).poses
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):
