@@ -11,6 +11,7 @@ from types import SimpleNamespace
 import nbformat
 import numpy as np
 import pytest
+import yaml
 from numpy.testing import assert_allclose
 
 from mechnum import exercises, linear, ode, rods
@@ -621,3 +622,19 @@ def test_the_notebooks_exercise_cells_are_the_packages(path):
         assert "{solution-end}" in got[4].source
     if path.parent.name == "fixtures":
         assert sum(c.metadata.get("mechnum", {}).get("role") == "starter" for c in cells) == 2
+
+
+def test_every_exercise_is_in_its_chapters_lecture_in_number_order():
+    """Exercise N.k's starter is in the lecture page of chapter N (``_toc.yml``'s entry
+    ``book/0N_*``), and a lecture's starters are its chapter's exercises, in number order."""
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    lectures = {entry["file"][6]: ROOT / f"{entry['file']}.ipynb"
+                for part in toc["parts"] for entry in part["chapters"]
+                if re.fullmatch(r"book/0\d_\w+", entry["file"])}
+    for chapter, path in lectures.items():
+        starters = [cell.metadata["mechnum"]["exercise"]
+                    for cell in nbformat.read(path, as_version=4).cells
+                    if cell.metadata.get("mechnum", {}).get("role") == "starter"]
+        expected = sorted((n for n in exercises.CHECKS if n.split(".")[0] == chapter),
+                          key=lambda n: int(n.split(".")[1]))
+        assert starters == expected, (path.name, starters)
