@@ -328,8 +328,7 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
     >>> plt.close(fig)
     """
     plotting.check_axes(ax)
-    if not isinstance(mech, rods.DeadLoad):
-        raise ValueError(f"mech must be a rods.DeadLoad, got {mech!r:.80}")
+    mech = _validate.instance(mech, rods.DeadLoad, "mech", "a rods.DeadLoad")
     state = _validate.array(state, "state", shape=(2,))
     rod = mech.rod(state)
     head, along = rod.tip, mech.direction

@@ -93,14 +93,11 @@ def check(mech: object) -> "Geometry":
 
     Examples
     --------
-    >>> check(None)
+    >>> check("prr3")
     Traceback (most recent call last):
-    ...
-    ValueError: mech must be a prr3.Geometry, got None
+    ValueError: mech must be a prr3.Geometry, got 'prr3'
     """
-    if not isinstance(mech, Geometry):
-        raise ValueError(f"mech must be a prr3.Geometry, got {mech!r:.80}")
-    return mech
+    return _validate.instance(mech, Geometry, "mech", "a prr3.Geometry")
 
 
 def vectors(value: ArrayLike, name: str) -> np.ndarray:
