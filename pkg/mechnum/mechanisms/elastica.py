@@ -315,8 +315,6 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> column = rods.DeadLoad(1.0, 1.0, np.pi)
     >>> fig, ax = plt.subplots()
