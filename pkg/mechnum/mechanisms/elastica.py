@@ -315,8 +315,6 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> column = rods.DeadLoad(1.0, 1.0, np.pi)
     >>> fig, ax = plt.subplots()
@@ -328,8 +326,7 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
     >>> plt.close(fig)
     """
     plotting.check_axes(ax)
-    if not isinstance(mech, rods.DeadLoad):
-        raise ValueError(f"mech must be a rods.DeadLoad, got {mech!r:.80}")
+    mech = _validate.instance(mech, rods.DeadLoad, "mech", "a rods.DeadLoad")
     state = _validate.array(state, "state", shape=(2,))
     rod = mech.rod(state)
     head, along = rod.tip, mech.direction
