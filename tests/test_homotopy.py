@@ -5,12 +5,12 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from strategies import separated
 
 from mechnum import homotopy
 from mechnum.errors import ConvergenceError
 from mechnum.polynomials import PolynomialSystem, bezout_bound
 from mechnum.results import Result
-from strategies import separated
 
 
 def schedule(h0):

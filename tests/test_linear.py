@@ -9,8 +9,12 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from mechnum import linear
-from mechnum.errors import (ConvergenceError, DivergenceError, RelaxationFactorError,
-                            SingularJacobianError)
+from mechnum.errors import (
+    ConvergenceError,
+    DivergenceError,
+    RelaxationFactorError,
+    SingularJacobianError,
+)
 from mechnum.results import Result
 
 # Burden and Faires, Numerical Analysis, Examples 7.3.1 and 7.3.3: solution (1, 2, -1, 1).

@@ -23,18 +23,50 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
 """
 
 from mechnum.linear.checks import OMEGAS_LIMIT, SUBNORMAL_FLOOR, check_matrix, condition_number
-from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION,
-                                   REFINEMENT_MAXITER, REFINEMENT_TOL, LeastSquares,
-                                   iterative_refinement, least_squares)
-from mechnum.linear.krylov import (POISSON3D_LIMIT, POISSON_LIMIT, SYMMETRY_RTOL,
-                                   conjugate_gradient, poisson2d, poisson3d)
-from mechnum.linear.spectra import (BLOCK_ENTRIES, OMEGA_GRID, OMEGA_XTOL, OptimalOmega,
-                                    iteration_matrix, optimal_omega, sor_spectral_radii,
-                                    spectral_radius, young_omega)
-from mechnum.linear.stationary import (CHUNK, CRITERIA, DIAGNOSTIC_ORDER, DIVERGENCE_GROWTH,
-                                       MAXITER_LIMIT, NORMS, TOL, IterationResult,
-                                       SorSweep, StoppingRule, gauss_seidel, jacobi, sor,
-                                       sor_sweep)
+from mechnum.linear.direct import (
+                                   LEAST_SQUARES_METHODS,
+                                   REFINEMENT_CONTRACTION,
+                                   REFINEMENT_MAXITER,
+                                   REFINEMENT_TOL,
+                                   LeastSquares,
+                                   iterative_refinement,
+                                   least_squares,
+)
+from mechnum.linear.krylov import (
+                                   POISSON3D_LIMIT,
+                                   POISSON_LIMIT,
+                                   SYMMETRY_RTOL,
+                                   conjugate_gradient,
+                                   poisson2d,
+                                   poisson3d,
+)
+from mechnum.linear.spectra import (
+                                   BLOCK_ENTRIES,
+                                   OMEGA_GRID,
+                                   OMEGA_XTOL,
+                                   OptimalOmega,
+                                   iteration_matrix,
+                                   optimal_omega,
+                                   sor_spectral_radii,
+                                   spectral_radius,
+                                   young_omega,
+)
+from mechnum.linear.stationary import (
+                                   CHUNK,
+                                   CRITERIA,
+                                   DIAGNOSTIC_ORDER,
+                                   DIVERGENCE_GROWTH,
+                                   MAXITER_LIMIT,
+                                   NORMS,
+                                   TOL,
+                                   IterationResult,
+                                   SorSweep,
+                                   StoppingRule,
+                                   gauss_seidel,
+                                   jacobi,
+                                   sor,
+                                   sor_sweep,
+)
 from mechnum.linear.sweeps import METHODS, Splitting, splitting, sweep_by_components
 
 __all__ = [

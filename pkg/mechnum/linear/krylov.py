@@ -16,8 +16,13 @@ from numpy.typing import ArrayLike
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.linear.checks import check_matrix
-from mechnum.linear.stationary import (TOL, IterationResult, StoppingRule, _initial_guess,
-                                       _keeps_history)
+from mechnum.linear.stationary import (
+    TOL,
+    IterationResult,
+    StoppingRule,
+    _initial_guess,
+    _keeps_history,
+)
 
 #: A matrix is symmetric for conjugate gradients when ``max abs(A - A^T)`` is at most this
 #: times ``max abs(A)``: the round-off of forming a product such as ``A^T A``, with a margin.
