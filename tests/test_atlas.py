@@ -204,6 +204,17 @@ def test_the_3pfr_atlas_refuses_a_grid_that_is_no_plane(grid, message):
         pfr3.atlas(pfr3.TABLE8, grid, executor=1)
 
 
+@pytest.mark.parametrize("mech, modes, executor, message", [
+    (rfr2.TABLE7, (1, 1, 1), 1, "mech must be a Mechanism"),
+    (pfr3.TABLE8, (1, 1), 1, "modes must have shape"),
+    (pfr3.TABLE8, (1, 1, 1), -2, "executor must be None"),
+])
+def test_the_3pfr_atlas_names_bad_input(mech, modes, executor, message):
+    with pytest.raises(ValueError, match=message):
+        pfr3.atlas(mech, np.zeros((2, 2, 3)) + [0.0, 0.0, 0.001] * np.arange(2)[:, None, None],
+                   modes=modes, executor=executor)
+
+
 # ---------------------------------------------------------------------------- bad input
 @pytest.mark.parametrize("kwargs, message", [
     ({"mech": None}, "mech must be a Mechanism"),

@@ -3,9 +3,9 @@
 :func:`run` is what every ``executor`` argument of the package means (the mechanism protocol's
 ``atlas(..., executor=None)``): ``None`` runs the tasks on all local cores through joblib's
 process pool, a positive integer on that many local workers (1: one after another, in this
-process), and a :class:`dask.distributed.Client` on its cluster's workers (``pip install
+process), and a ``dask.distributed.Client`` on its cluster's workers (``pip install
 mechnum[dask]``). The tasks and their function travel to the workers by pickling: the function
-must be importable (a module's function, or a :func:`functools.partial` of one), and a task
+must be importable (a module's function, or a ``functools.partial`` of one), and a task
 holds arrays and numbers only. The results come back in the order of the tasks, whatever ran
 them, so that a result does not depend on the executor.
 """
