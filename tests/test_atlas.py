@@ -129,7 +129,7 @@ def test_the_2rfr_atlas_equals_the_full_search_at_every_point_of_a_9x9_grid(rfr2
     assert len(np.unique(at.counts)) == 3                      # the window holds folds
     # the full search (other starts than the atlas's) wherever the atlas did not search
     vouched = np.argwhere(~at.searched)
-    assert len(vouched) >= 40 and at.vouched[~at.searched].all()
+    assert len(vouched) >= 55 and at.vouched[~at.searched].all()   # few searches
     found = parallel.run(_full_search, [at.inputs[i, j] for i, j in vouched], 2)
     atlas_says = [(at.counts[i, j], at.stable_counts[i, j]) for i, j in vouched]
     assert atlas_says == found

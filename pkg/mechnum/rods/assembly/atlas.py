@@ -24,10 +24,14 @@ fully only where the continuation cannot vouch for the count:
    (a jump), continuation cannot vouch for the count. A count that differs between two
    neighbours is always of this kind (the equilibria of the point with more that the other
    lacks end on the edge between them: had one continued, the flood would have brought it
-   over), so both ends of every edge across which the count changes are searched.
-4. **Search where it cannot vouch.** Every point that is not vouched gets the full search; what
-   it finds that was unknown is flooded in turn (step 2), and steps 3 and 4 repeat until every
-   point is vouched or searched.
+   over), so both ends of every edge across which the count changes are searched. One
+   exception: ends that pair up one-to-one across an edge, with the same position (or pose)
+   to within what one step moves it and the same verdict, are taken for one equilibrium
+   leaving the chart on one side and entering it on the other (:func:`_paired`).
+4. **Search where it cannot vouch.** The points that are not vouched get the full search, a
+   spread subset of them per round (:func:`_spread`); what it finds that was unknown is
+   flooded in turn (step 2), and steps 3 and 4 repeat until every point is vouched or
+   searched.
 
 Stability is carried along the flood: an equilibrium's index (negative eigenvalues of its second
 variation) changes only where its Jacobian is singular, where continuation never passes (the
@@ -67,6 +71,13 @@ STEP_TOL = 1e-10
 (:data:`mechnum.newton.TOL`): the residual of a rod in strong tension cannot fall below a
 round-off floor that grows with its force (``1e-11`` of ``EI / L**2`` at ``t = 0.99``), where a
 fixed residual tolerance would end sound branches."""
+PAIRED = 2.0
+"""Two equilibria that ended on the two sides of one edge are one, seen in two charts, when
+their unknowns past the chart differ by at most this many times the largest change of those
+in one continuation step (:func:`_paired`): one equilibrium moves that much from one point to
+the next; distinct ones lie farther apart, except at a fold, where no partner waits across."""
+SPREAD = 2
+"""Searches of one round lie more than this many grid points apart (:func:`_spread`)."""
 SEED = 20_250_625
 """The seed of the searches' random starts, with the point's index: ``default_rng([SEED,
 index])``, the same on every executor."""
@@ -179,6 +190,7 @@ class _Store:
         self.went = np.full((points, 0, 4), -2)
         self.count = np.zeros(points, dtype=int)
         self.chart = chart
+        self.move = 0.0     # the largest change of the unknowns past the chart in one step
 
     def _room(self, slots: int):
         extra = slots - self.u.shape[1]
@@ -277,6 +289,9 @@ def _flood(store, entries, problem, inputs, neighbours, tally):
             p, k, d, q = (a[part:part + FLOOD_BATCH] for a in (pts, slots, dirs, to))
             ok, x = _continue(problem, inputs, p, q, store.u[p, k], tally)
             store.went[p, k, d] = -1
+            c = store.chart
+            store.move = max(store.move, np.abs(x[ok, c:] - store.u[p[ok], k[ok], c:]).max(
+                initial=0.0))
             there, new = store.insert(q[ok], x[ok], store.stable[p, k][ok])
             store.went[p[ok], k[ok], d[ok]] = there
             found[0].append(q[ok][new])
@@ -286,20 +301,43 @@ def _flood(store, entries, problem, inputs, neighbours, tally):
 
 def _vouched(store, neighbours) -> np.ndarray:
     """Where continuation vouches for the count (see the module): no equilibrium ended on an
-    edge of the point, from either side, and no two landed on one."""
+    edge of the point, from either side, unless the ends pair up across it (:func:`_paired`),
+    and no two landed on one."""
     slots = store.u.shape[1]
     valid = np.arange(slots) < store.count[:, None]                     # (points, slots)
-    went = np.where(valid[..., None], store.went, 0)
-    ended = ((went == -1) | (went == -2) & (neighbours >= 0)[:, None, :]).any(axis=1)
-    # an edge's far end: the neighbour in direction d sees the point in direction d ^ 1
-    arriving = np.zeros_like(ended)
-    for d in range(4):
-        inside = neighbours[:, d] >= 0
-        arriving[inside, d] = ended[neighbours[inside, d], d ^ 1]
+    exists = (neighbours >= 0)[:, None, :]
+    ends = valid[..., None] & ((store.went == -1) | (store.went == -2) & exists)
+    broken = np.zeros(len(store.count), dtype=bool)
+    for d in (0, 2):                                  # each edge once: towards +i and +j
+        p = np.flatnonzero(neighbours[:, d] >= 0)
+        q = neighbours[p, d]
+        for a, b in zip(*(x[ends[p, :, d].any(axis=1) | ends[q, :, d ^ 1].any(axis=1)]
+                          for x in (p, q))):
+            if not _paired(store, a, np.flatnonzero(ends[a, :, d]), b,
+                           np.flatnonzero(ends[b, :, d ^ 1])):
+                broken[[a, b]] = True
     marks = np.where(valid[..., None], store.went, -10 - np.arange(slots)[None, :, None])
     marks = np.sort(marks, axis=1)
     distinct = ~((np.diff(marks, axis=1) == 0) & (marks[:, 1:] >= 0)).any(axis=(1, 2))
-    return ~(ended | arriving).any(axis=1) & distinct
+    return ~broken & distinct
+
+
+def _paired(store, a, ended_a, b, ended_b) -> bool:
+    """Whether the equilibria ``ended_a`` (slots at point ``a``) that ended towards ``b`` and
+    those ``ended_b`` that ended towards ``a`` are one-to-one the same equilibria seen in two
+    charts: their unknowns past the chart (a position, a pose) closer than
+    :data:`PAIRED` times the largest change of them in one continuation step, with one
+    verdict. An equilibrium that leaves the chart on one side of an edge and enters it on the
+    other (an angle of the chart wraps) is one of these; at a fold or at a change of mode no
+    partner waits on the other side."""
+    c = store.chart
+    if len(ended_a) != len(ended_b) or store.u.shape[-1] == c or store.move == 0.0:
+        return False
+    gap = np.abs(store.u[a, ended_a, None, c:] - store.u[b, None, ended_b, c:]).max(axis=-1)
+    gap[store.stable[a, ended_a][:, None] != store.stable[b, ended_b][None, :]] = np.inf
+    nearest = gap.argmin(axis=1)
+    return (len(set(nearest.tolist())) == len(nearest)
+            and bool((gap[np.arange(len(nearest)), nearest] <= PAIRED * store.move).all()))
 
 
 def _search(problem, store, todo, inputs, executor, searched, undecided, tally):
@@ -365,9 +403,29 @@ def atlas_of(problem: AtlasProblem, inputs: np.ndarray, frame: tuple, labels: tu
         entries = _search(problem, store, todo, flat, executor, searched, undecided, tally)
         _flood(store, entries, problem, flat, neighbours, tally)
         vouched = _vouched(store, neighbours)
-        todo = np.flatnonzero(~vouched & ~searched)
+        todo = _spread(np.flatnonzero(~vouched & ~searched), ny)
     return _result(store, inputs, frame, labels, scale, modes, searched, vouched, undecided,
                    tally)
+
+
+def _spread(todo: np.ndarray, ny: int) -> np.ndarray:
+    """The points of ``todo`` (flat indices, rows of ``ny``) to search in this round: each
+    farther than :data:`SPREAD` points (along either axis) from those chosen before it. What
+    one search finds floods along its line of ends, and may pair up the ends of its
+    neighbours (:func:`_paired`), which then need no search.
+
+    Examples
+    --------
+    >>> _spread(np.arange(8), 8).tolist()
+    [0, 3, 6]
+    """
+    chosen, taken = [], np.zeros((0, 2), dtype=int)
+    for point in todo:
+        ij = np.array(divmod(int(point), ny))
+        if not len(taken) or np.abs(taken - ij).max(axis=1).min() > SPREAD:
+            chosen.append(point)
+            taken = np.vstack((taken, ij))
+    return np.array(chosen, dtype=int)
 
 
 def _folds(stable_counts, axes) -> np.ndarray:
