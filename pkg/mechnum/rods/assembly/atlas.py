@@ -82,6 +82,7 @@ SEED = 20_250_625
 """The seed of the searches' random starts, with the point's index: ``default_rng([SEED,
 index])``, the same on every executor."""
 _DIRECTIONS = ((1, 0), (-1, 0), (0, 1), (0, -1))
+LEFT = -3   # an equilibrium that left the chart's domain between two points
 
 
 @dataclass(frozen=True)
@@ -182,7 +183,8 @@ class Atlas(Result):
 
 class _Store:
     """The equilibria known at every grid point: ``u`` (points, slots, m), their verdicts, and
-    where each went in each direction (-2 untried, -1 it ended, else its slot there)."""
+    where each went in each direction (-2 untried, -1 it ended, :data:`LEFT` it left the
+    chart's domain, else its slot there)."""
 
     def __init__(self, points: int, width: int, chart: int):
         self.u = np.full((points, 0, width), np.nan)
@@ -256,9 +258,11 @@ def anchors(nx: int, ny: int, spacing: int = ANCHOR_SPACING) -> np.ndarray:
 def _continue(problem, inputs, start, end, u0, tally):
     """Continuation from the points ``start`` (their equilibria ``u0``) to the points ``end``:
     one step, then, for the equilibria that fail, :data:`REFINE` steps as long together.
-    Returns which arrived, and where."""
+    Returns which arrived, where, and which of the others left the chart's domain (the first
+    of the short steps to fail did so with the status "left-domain")."""
     path = np.stack((inputs[start], inputs[end]))
     ok, x = np.zeros(len(start), dtype=bool), np.full(u0.shape, np.nan)
+    left = np.zeros(len(start), dtype=bool)
     for attempt in range(2):
         rows = np.flatnonzero(~ok)
         if attempt:
@@ -272,7 +276,9 @@ def _continue(problem, inputs, start, end, u0, tally):
         ok[rows[arrived]], x[rows[arrived]] = True, tr.x[-1][arrived]
         if ok.all():
             break
-    return ok, x
+    first = np.argmax(tr.status != "converged", axis=0)
+    left[rows] = (tr.status[first, np.arange(len(rows))] == "left-domain") & ~ok[rows]
+    return ok, x, left
 
 
 def _flood(store, entries, problem, inputs, neighbours, tally):
@@ -287,8 +293,8 @@ def _flood(store, entries, problem, inputs, neighbours, tally):
         found = ([], [])
         for part in range(0, len(pts), FLOOD_BATCH):
             p, k, d, q = (a[part:part + FLOOD_BATCH] for a in (pts, slots, dirs, to))
-            ok, x = _continue(problem, inputs, p, q, store.u[p, k], tally)
-            store.went[p, k, d] = -1
+            ok, x, left = _continue(problem, inputs, p, q, store.u[p, k], tally)
+            store.went[p, k, d] = np.where(left, LEFT, -1)
             c = store.chart
             store.move = max(store.move, np.abs(x[ok, c:] - store.u[p[ok], k[ok], c:]).max(
                 initial=0.0))
@@ -302,20 +308,26 @@ def _flood(store, entries, problem, inputs, neighbours, tally):
 def _vouched(store, neighbours) -> np.ndarray:
     """Where continuation vouches for the count (see the module): no equilibrium ended on an
     edge of the point, from either side, unless the ends pair up across it (:func:`_paired`),
-    and no two landed on one."""
+    or left the chart's domain from the point's side; and no two landed on one."""
     slots = store.u.shape[1]
     valid = np.arange(slots) < store.count[:, None]                     # (points, slots)
     exists = (neighbours >= 0)[:, None, :]
-    ends = valid[..., None] & ((store.went == -1) | (store.went == -2) & exists)
+    hard = valid[..., None] & ((store.went == -1) | (store.went == -2) & exists)
+    ends = hard | valid[..., None] & (store.went == LEFT)
     broken = np.zeros(len(store.count), dtype=bool)
     for d in (0, 2):                                  # each edge once: towards +i and +j
         p = np.flatnonzero(neighbours[:, d] >= 0)
         q = neighbours[p, d]
         for a, b in zip(*(x[ends[p, :, d].any(axis=1) | ends[q, :, d ^ 1].any(axis=1)]
                           for x in (p, q))):
-            if not _paired(store, a, np.flatnonzero(ends[a, :, d]), b,
-                           np.flatnonzero(ends[b, :, d ^ 1])):
+            if _paired(store, a, np.flatnonzero(ends[a, :, d]), b,
+                       np.flatnonzero(ends[b, :, d ^ 1])):
+                continue
+            if hard[a, :, d].any() or hard[b, :, d ^ 1].any():
                 broken[[a, b]] = True
+            else:       # only exits from the chart: the far side may hold them in another form
+                broken[a] |= ends[b, :, d ^ 1].any()
+                broken[b] |= ends[a, :, d].any()
     marks = np.where(valid[..., None], store.went, -10 - np.arange(slots)[None, :, None])
     marks = np.sort(marks, axis=1)
     distinct = ~((np.diff(marks, axis=1) == 0) & (marks[:, 1:] >= 0)).any(axis=(1, 2))
