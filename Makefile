@@ -8,8 +8,8 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-student downloads grade pdf test unit lint explore notebooks notebooks-other-machine html-check bench \
-	execute lab clean certify
+.PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
+	notebooks-other-machine html-check bench execute lab clean certify
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -19,6 +19,14 @@ $(STAMP): environment.txt pkg/pyproject.toml
 
 book: downloads
 	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
+
+# The same book rendered from the outputs committed with the notebooks, executing nothing: what
+# `make test` builds after strict nbval has executed every notebook and checked that its outputs
+# are the committed ones. Its page "Execution statistics" shows strict nbval's measurements.
+COMMITTED_CONFIG := _build/committed_config.yml
+book-committed: downloads
+	$(BIN)/python .ci/book_config.py $(COMMITTED_CONFIG) execute.execute_notebooks=off
+	$(NB_ENV) $(BIN)/jupyter-book build . --config $(COMMITTED_CONFIG) -W -n --keep-going
 
 # What the page "Run the chapters yourself" serves: the package's wheel, and the chapters with
 # what they read (the registry) and cite (references.bib: the entries behind the citation keys).
@@ -58,12 +66,14 @@ grade: $(STAMP)
 		exit 2; }
 	$(NB_ENV) $(BIN)/python -m mechnum.exercises.grading $(SUBMISSIONS)
 
-# The property-based tests draw the same examples on every run (tests/conftest.py); `make explore`
-# draws new ones, to search for counterexamples, and fails on numpy's overflow and invalid-value
-# warnings too (not in `make test`: whether such a warning is raised can depend on the CPU's SIMD
-# loops).
+# The property-based tests draw the same examples on every run (tests/conftest.py), also when
+# pytest-xdist shares them out between the cores; `make explore` draws new ones, to search for
+# counterexamples, and fails on numpy's overflow and invalid-value warnings too (not in `make
+# test`: whether such a warning is raised can depend on the CPU's SIMD loops).
+XDIST := -n auto --dist worksteal
 unit: $(STAMP)
-	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest --doctest-modules pkg/mechnum tests
+	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
+		pkg/mechnum tests
 
 # The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
 lint: $(STAMP)
@@ -72,28 +82,45 @@ lint: $(STAMP)
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
 
+# Strict nbval: every notebook executed in a fresh kernel, its outputs compared with the committed
+# ones. Each run records how long each notebook took (book/_ext/execution_statistics.py) in
+# _build/execution/, for the page "Execution statistics" and the lectures' budget.
+EXECUTION := _build/execution
+NBVAL := $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg
 notebooks: $(STAMP)
-	$(NB_ENV) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg book
+	$(NB_ENV) MECHNUM_EXECUTION_RECORD=$(EXECUTION)/notebooks.json $(NBVAL) book
 
 # The same, with the arithmetic of another machine: OpenBLAS's oldest x86-64 kernels (Prescott)
 # and numpy's SIMD loops reduced to the x86-64-v2 baseline. A printed digit that changes here is
 # round-off, and must be printed as a checked bound instead (CONTRIBUTING.md).
 OTHER_MACHINE := OPENBLAS_CORETYPE=Prescott NPY_DISABLE_CPU_FEATURES=X86_V3,X86_V4,AVX512_ICL,AVX512_SPR
 notebooks-other-machine: $(STAMP)
-	$(NB_ENV) $(OTHER_MACHINE) $(BIN)/pytest --nbval --nbval-sanitize-with book/nbval_sanitize.cfg \
-		-p no:cacheprovider book
+	$(NB_ENV) $(OTHER_MACHINE) MECHNUM_EXECUTION_RECORD=$(EXECUTION)/notebooks-other-machine.json \
+		$(NBVAL) -p no:cacheprovider book
 
 # The tests of the built books: offline pages, rendered TeX, the downloads run in a fresh
-# environment, the student edition hides every solution, and every page in headless Chromium
-# (Debian's package chromium; without it those tests are skipped, and said so).
+# environment, the student edition hides every solution, every page in headless Chromium
+# (Debian's package chromium; without it those tests are skipped, and said so), and the
+# lectures' execution times that strict nbval measured. Each test module runs whole in one of
+# two processes (the browser tests visit each page once; the downloads test, the longest, runs
+# beside them).
 html-check: $(STAMP)
 	@command -v chromium >/dev/null || echo "*** chromium is not installed: the browser tests" \
 		"(tests/test_browser.py) are skipped; Debian: apt-get install chromium ***"
 	MECHNUM_BUILT_HTML=_build/html MECHNUM_STUDENT_HTML=_build/student/_build/html \
-		$(BIN)/pytest -rs tests/test_built_html.py tests/test_downloads.py \
-		tests/test_student_edition.py tests/test_browser.py
+		$(BIN)/pytest -n auto --dist loadfile -rsxX tests/test_built_html.py tests/test_downloads.py \
+		tests/test_student_edition.py tests/test_browser.py tests/test_lecture_budget.py
 
-test: lint unit notebooks notebooks-other-machine book book-student html-check
+# Every test, each step on both cores after the linter: the unit tests shared out by
+# pytest-xdist; the two strict nbval runs side by side; the book (from the outputs strict nbval
+# has just checked: executing the notebooks a third time would repeat that check) beside its
+# student edition; their tests.
+test: $(STAMP)
+	$(MAKE) lint
+	$(MAKE) unit
+	$(MAKE) -j2 --output-sync=target notebooks notebooks-other-machine
+	$(MAKE) -j2 --output-sync=target book-committed book-student
+	$(MAKE) html-check
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
@@ -122,11 +149,7 @@ pdf: downloads
 		command -v pdftotext >/dev/null || { echo "make pdf needs XeLaTeX and poppler:" \
 		"apt-get install $(TEX_PACKAGES)"; exit 1; }
 	@case "$(PAPER)" in a4|letter) ;; *) echo "PAPER is a4 or letter, not $(PAPER)"; exit 1;; esac
-	$(BIN)/python -c "import pathlib, yaml; c = yaml.safe_load(open('_config.yml')); \
-		s = c['sphinx']; s['config']['latex_elements']['papersize'] = '$(PAPER)paper'; \
-		s['local_extensions'] = {k: str(pathlib.Path(v).resolve()) \
-			for k, v in s['local_extensions'].items()}; \
-		yaml.safe_dump(c, open('$(PDF_CONFIG)', 'w'))"
+	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) sphinx.config.latex_elements.papersize=$(PAPER)paper
 	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
 	MECHNUM_PDF=_build/latex/numerical-methods-for-mechanisms.pdf MECHNUM_PDF_PAPER=$(PAPER) \
 		$(BIN)/pytest -rs tests/test_pdf.py

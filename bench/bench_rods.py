@@ -245,7 +245,9 @@ def hybr_equilibria(point, modes=(1, 2, 3), cells=12):
     for mode in modes:
         roots = []
         for start in np.stack(np.meshgrid(psi, np.concatenate((-t, t))), -1).reshape(-1, 2):
-            def f(z, sign=np.sign(start[1]), mode=mode):
+            sign = np.sign(start[1])
+
+            def f(z, sign=sign, mode=mode):
                 if not (0 < z[0] < 2 * np.pi and 0 < z[1] * sign <= regular.T_MAX):
                     return [1e3, 1e3]             # outside the chart: far from any root
                 return regular.closed_form(EI, L, z[0], z[1], mode, jacobian=False).tip - point

@@ -2,9 +2,11 @@
 
 Each page must load with no console error and no request leaving the machine, render all its
 TeX, and fit a 1280 px wide window (wide content scrolls inside its own code cell or table, not
-the page). Solution dropdowns must open, and animations must advance when played, with their
-control icons drawn. A screenshot of the top of each page is written to
-``_build/screenshots`` for a reader to look at.
+the page). Within the page, with every dropdown and folded cell open: no display equation is
+wider than its column, and on a lecture page (``lecture_pages``) no table is, nor the code of
+any code cell (it would need scrolling sideways). Solution dropdowns must open, and animations
+must advance when played, with their control icons drawn. A screenshot of the top of each page
+is written to ``_build/screenshots`` for a reader to look at.
 
 Runs on the HTML that ``make book`` writes (``MECHNUM_BUILT_HTML``), with Debian's Chromium
 (``apt-get install chromium``; ``MECHNUM_CHROMIUM`` names another binary) driven by Playwright.
@@ -16,6 +18,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from lecture_pages import MAX_LINE, chapter_pages, lectures, until_split
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
 CHROMIUM = os.environ.get("MECHNUM_CHROMIUM") or shutil.which("chromium")
@@ -39,6 +42,30 @@ TEX_LEFT = r"""() => {
             left.push(node.textContent.trim().slice(0, 80));
     }
     return left;
+}"""
+
+
+# Everything wider than the box it sits in, with the dropdowns and folded cells open: display
+# equations (MathJax's containers scroll), tables (in the theme's scrolling box), code cells' input
+TOO_WIDE = r"""() => {
+    document.querySelectorAll("details").forEach(d => { d.open = true; });
+    document.querySelectorAll(".toggle-hidden").forEach(e => e.classList.remove("toggle-hidden"));
+    const tex = (m) => {
+        const items = window.MathJax && MathJax.startup.document.getMathItemsWithin(m);
+        return items && items.length ? items[0].math : m.textContent;
+    };
+    const longest = (text) => text.split("\n").reduce((a, b) => b.length > a.length ? b : a, "");
+    const wider = (selector, width, box, text) => [...document.querySelectorAll(selector)]
+        .filter(e => Math.round(width(e)) > box(e).clientWidth + 1)
+        .map(e => ({text: text(e).replace(/\s+/g, " ").trim().slice(0, 70),
+                    width: Math.round(width(e)), column: box(e).clientWidth}));
+    return {
+        equations: wider("article mjx-container[display='true']", e => e.scrollWidth, e => e, tex),
+        tables: wider("article table", e => e.getBoundingClientRect().width, e => e.parentElement,
+                      e => e.rows.length ? e.rows[0].textContent : ""),
+        code: wider("article div.cell_input pre", e => e.scrollWidth, e => e,
+                    e => longest(e.textContent)),
+    };
 }"""
 
 
@@ -91,20 +118,88 @@ class Visit:
         self.context.close()
 
 
+@pytest.fixture(scope="module")
+def measured(browser):
+    """``measured(path)``: what one visit of the page found (each page is visited once)."""
+    found = {}
+
+    def measure(path):
+        if path not in found:
+            visit = Visit(browser, path)
+            shots = Path(BUILT).parent / "screenshots"
+            shots.mkdir(exist_ok=True)
+            visit.page.screenshot(path=shots / (name(path).replace("/", "_") + ".png"))
+            found[path] = {"left": visit.page.evaluate(TEX_LEFT), "width": visit.page.evaluate(
+                "() => [document.documentElement.scrollWidth, window.innerWidth]")}
+            found[path].update(visit.page.evaluate(TOO_WIDE), errors=visit.errors,
+                               remote=visit.remote)
+            visit.close()
+        return found[path]
+    return measure
+
+
 @pytest.mark.parametrize("path", pages(), ids=name)
-def test_page_loads_clean_renders_its_tex_and_fits_the_window(browser, path):
-    visit = Visit(browser, path)
-    page = visit.page
-    shots = Path(BUILT).parent / "screenshots"
-    shots.mkdir(exist_ok=True)
-    page.screenshot(path=shots / (name(path).replace("/", "_") + ".png"))
-    left = page.evaluate(TEX_LEFT)
-    width = page.evaluate("() => [document.documentElement.scrollWidth, window.innerWidth]")
-    visit.close()
-    assert not visit.errors, f"console errors: {visit.errors}"
-    assert not visit.remote, f"requests leaving the machine: {visit.remote}"
-    assert not left, f"TeX left unrendered: {left[:5]}"
+def test_page_loads_clean_renders_its_tex_and_fits_the_window(measured, path):
+    page = measured(path)
+    assert not page["errors"], f"console errors: {page['errors']}"
+    assert not page["remote"], f"requests leaving the machine: {page['remote']}"
+    assert not page["left"], f"TeX left unrendered: {page['left'][:5]}"
+    width = page["width"]
     assert width[0] <= width[1], f"the page is {width[0]} px wide in a {width[1]} px window"
+
+
+def until_split_if_a_chapter(paths):
+    """The pages as test parameters, a chapter's page marked to wait for the split chapters
+    (``lecture_pages.until_split``)."""
+    chapters = {f"{page}.html" for page in chapter_pages()}
+    return [pytest.param(path, id=name(path), marks=[until_split] * (name(path) in chapters))
+            for path in paths]
+
+
+def lecture_pages():
+    return [path for path in pages() if name(path).removesuffix(".html") in lectures()]
+
+
+@pytest.mark.parametrize("path", until_split_if_a_chapter(pages()))
+def test_display_equations_fit_their_column(measured, path):
+    too_wide = measured(path)["equations"]
+    assert not too_wide, f"equations wider than their column (px): {too_wide}"
+
+
+@pytest.mark.parametrize("path", until_split_if_a_chapter(lecture_pages()))
+def test_lecture_tables_fit_their_column(measured, path):
+    too_wide = measured(path)["tables"]
+    assert not too_wide, f"tables wider than their column (px): {too_wide}"
+
+
+@pytest.mark.parametrize("path", until_split_if_a_chapter(lecture_pages()))
+def test_lecture_code_cells_need_no_sideways_scrolling(measured, path):
+    too_wide = measured(path)["code"]
+    assert not too_wide, f"code cells wider than their column (px): {too_wide}"
+
+
+def test_the_width_checks_find_what_is_too_wide(browser):
+    """A wide equation, table and code cell added to a lecture page are found; the page's own
+    narrow ones are not (each check fails on a broken detector)."""
+    visit = Visit(browser, lecture_pages()[0])
+    try:
+        before = visit.page.evaluate(TOO_WIDE)
+        visit.page.evaluate(r"""async () => {
+            const article = document.querySelector("article");
+            const add = (html) => article.insertAdjacentHTML("beforeend", html);
+            add('<div class="math notranslate nohighlight">\\[' + 'x + '.repeat(150) +
+                'x\\]</div>');
+            add('<div class="pst-scrollable-table-container"><table><tr>' +
+                '<td>column</td>'.repeat(100) + '</tr></table></div>');
+            add('<div class="cell_input"><pre>' + 'y = 1; '.repeat(40) + '</pre></div>');
+            await MathJax.typesetPromise();
+        }""")
+        after = visit.page.evaluate(TOO_WIDE)
+    finally:
+        visit.close()
+    for kind in ("equations", "tables", "code"):
+        assert len(after[kind]) == len(before[kind]) + 1, kind
+        assert after[kind][-1]["width"] > after[kind][-1]["column"] + 100, after[kind][-1]
 
 
 def with_selector(selector):
@@ -145,3 +240,28 @@ def test_animations_play_and_draw_their_controls(browser, path):
             animation.locator('button[title="Pause"]').click()
     finally:
         visit.close()
+
+
+def test_a_line_of_the_longest_length_fits_every_code_cell(browser):
+    """CONTRIBUTING.md's longest line of code fits every code cell of the lecture pages, also
+    those in narrower boxes (folded cells, solutions: book/_ext/code_width.py); two characters
+    more do not fit the column's."""
+    widths, over = set(), []
+    for path in lecture_pages():
+        visit = Visit(browser, path)
+        try:
+            fits = visit.page.evaluate("""(n) => {
+                document.querySelectorAll("details").forEach(d => { d.open = true; });
+                const cells = [...document.querySelectorAll("article div.cell_input pre")];
+                const fit = (k) => cells.map(pre => { pre.textContent = "x".repeat(k);
+                                                      return pre.scrollWidth <= pre.clientWidth; });
+                const widths = cells.map(pre => pre.clientWidth);
+                return {widths: widths, at: fit(n), over: fit(n + 2)};
+            }""", MAX_LINE)
+        finally:
+            visit.close()
+        assert all(fits["at"]), f"{name(path)}: a {MAX_LINE}-character line needs scrolling"
+        widths.update(fits["widths"])
+        over += fits["over"]
+    assert len(widths) >= 2, "the lectures lack a code cell in a narrower box to measure"
+    assert not all(over)

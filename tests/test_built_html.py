@@ -1,19 +1,22 @@
 """The built book works offline (no page loads a script or a stylesheet from the network), and
 its mathematics is rendered (no TeX is left in the text outside MathJax's math elements).
 
-Runs on the HTML that ``make book`` writes (``make html-check`` points ``MECHNUM_BUILT_HTML`` at
-it); the tests of built pages are skipped when that variable is unset, as in the unit-test run
-that precedes the build.
+Runs on the HTML that ``make book`` (or ``make book-committed``) writes (``make html-check``
+points ``MECHNUM_BUILT_HTML`` at it); the tests of built pages are skipped when that variable is
+unset, as in the unit-test run that precedes the build. The page *Execution statistics* shows
+what was measured.
 """
 
 import os
 import re
+import sys
 from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
+ROOT = Path(__file__).resolve().parents[1]
 needs_build = pytest.mark.skipif(not BUILT, reason="MECHNUM_BUILT_HTML is not set")
 REMOTE = re.compile(r"^\s*(https?:)?//", re.IGNORECASE)
 
@@ -40,7 +43,7 @@ class Resources(HTMLParser):
 
 
 class VisibleText(HTMLParser):
-    """The text a reader sees as prose: outside scripts, styles, code and MathJax's math elements."""
+    """The text a reader sees as prose: outside scripts, styles, code and MathJax's math."""
 
     HIDDEN = {"script", "style", "pre", "code", "textarea", "kbd", "samp"}
     VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source",
@@ -115,3 +118,25 @@ def test_the_tex_detector_finds_a_broken_passage():
     parser.feed('<p>The angle <span class="math">\\(\\theta_1\\)</span> is fine, <code>a_{1}</code>'
                 ' too.<br></p><ul><li><p>+ A_r\\sin\\theta_1 + 2$. The annex</p></li></ul>')
     assert LEFT_TEX.findall(" ".join(parser.text)) == ["\\sin", "\\theta", "$."]
+
+
+@needs_build
+def test_the_execution_page_shows_what_was_measured():
+    """Every table of the page *Execution statistics* lists every notebook of the book, each with
+    the wall and CPU times of a record of the notebook as it is now (book/_ext)."""
+    sys.path.insert(0, str(ROOT / "book" / "_ext"))
+    from execution_statistics import measured
+
+    page = (Path(BUILT) / "book" / "execution.html").read_text(encoding="utf-8")
+    tables = re.findall(r"<table.*?</table>", page, re.DOTALL)
+    assert tables, "the page shows no measurement"
+    notebooks = sorted(p.stem for p in (ROOT / "book").glob("*.ipynb"))
+    for table in tables:
+        rows = [[re.sub(r"<[^>]+>", "", cell).strip() for cell in
+                 re.findall(r"<t[dh][^>]*>(.*?)</t[dh]>", row, re.DOTALL)]
+                for row in re.findall(r"<tr.*?</tr>", table, re.DOTALL)[1:]]
+        assert sorted(row[0] for row in rows) == notebooks
+        for name, wall, cpu, _ in rows:
+            shown = {(f"{r['wall']:.1f}", f"{r['cpu']:.1f}")
+                     for _, r in measured(ROOT, f"book/{name}.ipynb")}
+            assert (wall, cpu) in shown, f"{name}: {wall} s, {cpu} s measured by no run"

@@ -125,3 +125,29 @@ def test_reproduce_recovers_the_odd_q_of_each_mode_from_shooting():
     with warnings.catch_warnings():           # reproduce uses no deprecated name
         warnings.simplefilter("error", DeprecationWarning)
         el.reproduce()
+
+
+def test_draw_shows_the_equilibrium_and_moves_without_adding():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    push = rods.DeadLoad(el.EI, el.LENGTH, np.pi - 0.1, segments=20)
+    fig, ax = plt.subplots()
+    first = el.draw(ax, push, push.start(0.3))
+    lines = len(ax.lines)
+    u = push.start(-0.5)
+    moved = el.draw(ax, push, u, artists=first)
+    assert moved is first and len(ax.lines) == lines
+    rod = push.rod(u)
+    assert_allclose(moved["rod"].get_xydata(), np.column_stack((rod.x, rod.y)), rtol=1e-15)
+    head = moved["force"].get_xydata()
+    assert_allclose(head[1], rod.tip, rtol=1e-15)                     # the head at the tip
+    assert_allclose(head[1] - head[0], el.ARROW * el.LENGTH * push.direction, rtol=1e-12)
+    with pytest.raises(ValueError, match="mech must be a rods.DeadLoad"):
+        el.draw(ax, "column", u)
+    with pytest.raises(ValueError, match="state"):
+        el.draw(ax, push, [0.0, 1.0, 2.0])
+    with pytest.raises(ValueError, match="ax must be"):
+        el.draw(None, push, u)
+    plt.close(fig)

@@ -11,12 +11,12 @@ from types import SimpleNamespace
 import nbformat
 import numpy as np
 import pytest
+import yaml
 from numpy.testing import assert_allclose
 
 from mechnum import exercises, linear, ode, rods
-from mechnum.mechanisms import actuator
+from mechnum.mechanisms import actuator, prr3
 from mechnum.mechanisms import hacksaw as hs
-from mechnum.mechanisms import prr3
 
 NUMBERS = sorted(exercises.CHECKS)
 ROOT = Path(__file__).resolve().parents[1]
@@ -213,8 +213,11 @@ def rk4_full_steps(f, s, y, h):
 
 def _rod_tip(q, EI, L, nodes, moment_sign=1):
     m0, nx, ny = q
-    f = (lambda s, y: np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
-                                moment_sign * (nx * np.sin(y[2]) - ny * np.cos(y[2]))]))
+
+    def f(s, y):
+        return np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
+                         moment_sign * (nx * np.sin(y[2]) - ny * np.cos(y[2]))])
+
     return ode.rk4(f, np.array([0.0, 0.0, 0.0, m0]), np.linspace(0, L, nodes))[-1]
 
 
@@ -491,12 +494,12 @@ def test_references_of_chapter_1_agree_with_the_hacksaw():
     rng = np.random.default_rng(0)
     for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
         F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
-        assert_allclose(F, hs.position_residual(q, theta2), rtol=1e-13, atol=1e-15)
-        assert_allclose(J, hs.position_jacobian(q), rtol=1e-13, atol=1e-15)
+        assert_allclose(F, hs.position_residual(hs.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(hs.STUDY, q), rtol=1e-13, atol=1e-15)
     geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
     x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
                       lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
-    solved = hs.solve_consecutive((0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+    solved = hs.solve_consecutive(hs.STUDY, (0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
     assert k == solved.iterations == 4
     assert_allclose(x, solved.x, rtol=1e-13)
 
@@ -527,10 +530,10 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 def test_references_of_chapter_4_agree_with_the_package():
     geometry, lam = prr3.EXAMPLES["Table 6"]
-    C = prr3.polynomial(lam, geometry)
+    C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.direct(lam, geometry).poses
+    poses = prr3.forward(geometry, lam).poses
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):
@@ -576,7 +579,7 @@ def test_references_of_chapter_6():
 
 def test_references_of_chapter_7_agree_with_the_package():
     for t in (0.1, 0.6):
-        kin = actuator.kinematics(t)
+        kin = actuator.kinematics(actuator.ANNEX, t)
         k2, k4 = ref("7.1")(float(kin.theta2), float(kin.theta4), float(kin.a),
                             actuator.ANNEX.l, actuator.ANNEX.b)
         assert_allclose([k2, k4], [float(kin.k2), float(kin.k4)], rtol=1e-12)
@@ -587,7 +590,7 @@ def test_references_of_chapter_7_agree_with_the_package():
                         float(actuator.virtual_power_force(kin)), rtol=1e-12)
     from mechnum.exercises._ch7 import ANNEX, _state
     assert_allclose(ANNEX.inertias, actuator.ANNEX.inertias, rtol=1e-12)
-    s, kin = _state(0.3), actuator.kinematics(0.3)
+    s, kin = _state(0.3), actuator.kinematics(actuator.ANNEX, 0.3)
     assert_allclose([s.eps2, s.eps4], [float(kin.eps2), float(kin.eps4)], rtol=1e-10)
 
 
@@ -619,3 +622,19 @@ def test_the_notebooks_exercise_cells_are_the_packages(path):
         assert "{solution-end}" in got[4].source
     if path.parent.name == "fixtures":
         assert sum(c.metadata.get("mechnum", {}).get("role") == "starter" for c in cells) == 2
+
+
+def test_every_exercise_is_in_its_chapters_lecture_in_number_order():
+    """Exercise N.k's starter is in the lecture page of chapter N (``_toc.yml``'s entry
+    ``book/0N_*``), and a lecture's starters are its chapter's exercises, in number order."""
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    lectures = {entry["file"][6]: ROOT / f"{entry['file']}.ipynb"
+                for part in toc["parts"] for entry in part["chapters"]
+                if re.fullmatch(r"book/0\d_\w+", entry["file"])}
+    for chapter, path in lectures.items():
+        starters = [cell.metadata["mechnum"]["exercise"]
+                    for cell in nbformat.read(path, as_version=4).cells
+                    if cell.metadata.get("mechnum", {}).get("role") == "starter"]
+        expected = sorted((n for n in exercises.CHECKS if n.split(".")[0] == chapter),
+                          key=lambda n: int(n.split(".")[1]))
+        assert starters == expected, (path.name, starters)

@@ -9,8 +9,12 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from mechnum import linear
-from mechnum.errors import (ConvergenceError, DivergenceError, RelaxationFactorError,
-                            SingularJacobianError)
+from mechnum.errors import (
+    ConvergenceError,
+    DivergenceError,
+    RelaxationFactorError,
+    SingularJacobianError,
+)
 from mechnum.results import Result
 
 # Burden and Faires, Numerical Analysis, Examples 7.3.1 and 7.3.3: solution (1, 2, -1, 1).
@@ -225,6 +229,23 @@ def test_poisson2d_structure():
     assert abs(A - A.T).max() == 0
     rho_j = linear.spectral_radius(linear.iteration_matrix(A.toarray(), "jacobi"))
     assert rho_j == pytest.approx(np.cos(np.pi / 8), rel=1e-12)
+
+
+def test_poisson3d_structure_and_jacobi_radius():
+    m = 4
+    A = linear.poisson3d(m)
+    n = m ** 3
+    assert A.shape == (n, n) and A.nnz == 7 * n - 6 * m * m and abs(A - A.T).max() == 0
+    dense = A.toarray()
+    assert set(np.diag(dense)) == {6.0}
+    # node (i, j, k) = i + m j + m^2 k: its neighbours are 1, m and m^2 away (not across edges)
+    assert dense[0, [1, m, m * m]].tolist() == [-1.0, -1.0, -1.0] and dense[m - 1, m] == 0
+    eig = np.linalg.eigvalsh(dense)
+    assert eig.min() > 0
+    assert eig.max() / 6 - 1 == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
+    rho_j = linear.spectral_radius(linear.iteration_matrix(dense, "jacobi"))
+    assert rho_j == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
+    assert linear.poisson3d(1).toarray().tolist() == [[6.0]]
 
 
 def test_a_sparse_matrix_is_never_made_dense(monkeypatch):
@@ -736,6 +757,7 @@ def test_results_follow_the_contract():
     (lambda: linear.conjugate_gradient(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
     (lambda: linear.iterative_refinement(TRI_A, TRI_B, maxiter=1000), "bound on the work"),
     (lambda: linear.poisson2d(10 ** 5), "bound on the work"),
+    (lambda: linear.poisson3d(linear.POISSON3D_LIMIT + 1), "bound on the work"),
     (lambda: linear.StoppingRule(relative=1), "relative must be True or False"),
 ])
 def test_every_amount_of_work_is_bounded(call, message):

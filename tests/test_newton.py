@@ -7,8 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechnum.errors import (ConvergenceError, DivergenceError, NonFiniteError,
-                            SingularJacobianError)
+from mechnum.errors import ConvergenceError, DivergenceError, NonFiniteError, SingularJacobianError
 from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
 from mechnum.results import Result
 
@@ -142,7 +141,7 @@ def test_batch_has_per_system_convergence():
     c = np.array([2.0, 3.0, 400.0])
     res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((3, 1)), lambda x: 2 * x[:, :, None])
     np.testing.assert_allclose(res.x[:, 0], np.sqrt(c), rtol=1e-14)
-    singles = [solve(lambda x: x ** 2 - ci, [1.0], lambda x: np.diag(2 * x)).iterations
+    singles = [solve(lambda x, ci=ci: x ** 2 - ci, [1.0], lambda x: np.diag(2 * x)).iterations
                for ci in c]
     assert res.iterations.tolist() == singles
     assert res.iterations[2] > res.iterations[0]

@@ -1,8 +1,8 @@
 """The printed book that `make pdf` builds (skipped without the PDF: `make test` needs no TeX).
 
 `make pdf` runs this module on the PDF it has just built (``MECHNUM_PDF``, on the paper
-``MECHNUM_PDF_PAPER``, ``a4`` or ``letter``); without ``MECHNUM_PDF`` its tests are skipped. It reads the PDF as a reader would, through poppler's
-``pdftotext``, and the LaTeX log beside it:
+``MECHNUM_PDF_PAPER``, ``a4`` or ``letter``); without ``MECHNUM_PDF`` its tests are skipped.
+It reads the PDF as a reader would, through poppler's ``pdftotext``, and the LaTeX log beside it:
 
 * the page count lies in :data:`PAGES` and every page has the paper asked for;
 * no line of the LaTeX log is overfull by more than :data:`OVERFULL_PT`: nothing runs into the
@@ -172,8 +172,9 @@ def audit_tables(cells):
     Examples
     --------
     >>> cell = nbformat.v4.new_code_cell(outputs=[nbformat.v4.new_output(
-    ...     "execute_result", {"text/markdown": "| quantity | verdict | finding |\\n|---|---|---|\\n"
-    ...                                          "| T | source-error | ch1-T |"})])
+    ...     "execute_result",
+    ...     {"text/markdown": "| quantity | verdict | finding |\\n|---|---|---|\\n"
+    ...                       "| T | source-error | ch1-T |"})])
     >>> list(audit_tables([cell]))
     [[{'quantity': 'T', 'verdict': 'source-error', 'finding': 'ch1-T'}]]
     """

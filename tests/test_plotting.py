@@ -60,6 +60,36 @@ def test_set_limits_are_kept():
     assert ax.get_xlim() == (-5, 5) and ax.get_ylim() == (-1, 1)
 
 
+def wide(ax, mech, state, *, artists=None):
+    """A bar drawn as a mechanism's draw draws a wide linkage: equal scales, set limits,
+    labelled axes (Chapter 1's saw in a short figure)."""
+    out = bar(ax, mech, state, artists=artists)
+    if artists is None:
+        ax.set(xlim=(-2.6, 0.9), ylim=(-0.9, 0.9), aspect="equal", xlabel="x (m)",
+               ylabel="y (m)")
+    return out
+
+
+def test_the_frames_crop_no_label_or_title():
+    """Laid out once on its first frame, the animation's labels and title lie inside the
+    figure (without the layout, the x label of this short figure is cut off)."""
+    fig, ax = plt.subplots(figsize=(6, 3.2))
+    animate(wide, 0.8, np.linspace(0, np.pi, 3), ax=ax, titles=["a", "b", "c"])
+    fig.draw_without_rendering()  # as a frame is drawn: the layout is not redone
+    page = fig.bbox
+    for text in (ax.xaxis.label, ax.yaxis.label, ax.title):
+        box = text.get_window_extent()
+        assert page.x0 <= box.x0 and box.x1 <= page.x1, text.get_text()
+        assert page.y0 <= box.y0 and box.y1 <= page.y1, text.get_text()
+    assert fig.get_layout_engine().__class__.__name__ == "PlaceHolderLayoutEngine"
+
+
+def test_a_figure_with_its_own_layout_keeps_it():
+    fig, ax = plt.subplots(figsize=(6, 3.2), layout="tight")
+    animate(wide, 0.8, [0.0, 1.0], ax=ax)
+    assert fig.get_layout_engine().__class__.__name__ == "TightLayoutEngine"
+
+
 def line_animation(frames):
     return animate(bar, 1.0, np.linspace(0, 1, frames))
 

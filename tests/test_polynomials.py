@@ -8,11 +8,11 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from strategies import separated
 
 from mechnum import polynomials as poly
 from mechnum.errors import NonFiniteError
 from mechnum.polynomials import PolynomialSystem
-from strategies import separated
 
 MANY = settings(max_examples=200, deadline=None)
 P = np.polynomial.polynomial

@@ -18,7 +18,8 @@ def test_installed_version_is_the_package_version():
 
 def test_citation_and_footer_name_the_release():
     citation = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
-    footer = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))["html"]["extra_footer"]
+    config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    footer = config["html"]["extra_footer"]
     assert citation["version"] == mechnum.__version__
     released = str(citation["date-released"])
     assert re.fullmatch(r"\d{4}-\d{2}-\d{2}", released)

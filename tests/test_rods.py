@@ -618,6 +618,15 @@ def test_equations_are_those_the_sweeps_integrate():
     assert_allclose(f(0.0, states)[2], states[3] / 1.3, rtol=1e-15)
 
 
+def test_dead_load_jacobian_is_the_derivative_of_its_equation():
+    # central differences of fun (truncation ~1e-10 at this step) against the complex step
+    load = rods.DeadLoad(0.7, 1.3, 2.5, segments=40)
+    u = np.array([-1.1, 4.2])
+    steps = 1e-5 * np.eye(2)
+    central = np.column_stack([(load.fun(u + e) - load.fun(u - e)) / 2e-5 for e in steps])
+    assert_allclose(load.jac(u), central, rtol=1e-8)
+
+
 def test_imperfect_column_folds_at_the_closed_form_least_load():
     # a cantilever pushed nearly along its axis: the branch bent against the small transverse
     # component of the force exists only above a least load, where it folds; it is stable on

@@ -111,8 +111,6 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
     >>> drawn = parts(ax, {"bar": ([[0, 0], [1, 1]], {"color": "k"})})
@@ -260,8 +258,10 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
     the axes' limits are set, they are fitted to hold every frame. The frames are embedded as
     PNG images in the HTML, so the animation plays in the static book with no server and no
     network (the control icons are inline SVG, not a web font); every frame adds to the page,
-    so keep to a few dozen. The figure is closed, so it is not displayed again as a still. The
-    HTML is the same whenever the frames are: its element ids are a hash of the content.
+    so keep to a few dozen. A figure without a layout engine of its own is laid out once, on
+    the first frame, so that no label or title is cropped, and keeps that layout in every frame.
+    The figure is closed, so it is not displayed again as a still. The HTML is the same
+    whenever the frames are: its element ids are a hash of the content.
 
     The form ``animate(fig, update, frames)`` of version 0.1 (``update(i)`` redraws frame
     ``i``) is deprecated; it still works, with a :class:`DeprecationWarning`.
@@ -301,8 +301,6 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> def draw(ax, mech, state, *, artists=None):      # a bar of length mech, at an angle
     ...     tip = mech * np.array([np.cos(state), np.sin(state)])
     ...     return parts(ax, {"bar": ([[0, 0], tip], {"lw": 3})}, artists)
@@ -333,4 +331,17 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
         if titles is not None:
             ax.set_title(titles[i])
 
+    update(0)
+    _lay_out(ax.figure)
     return _render(ax.figure, update, range(len(states)), interval, dpi)
+
+
+def _lay_out(fig):
+    """Lay out the figure once, on its first frame, so that no label or title is cropped, and
+    keep that layout for every frame (laid out per frame, the axes would jump as the titles
+    change). A figure that has a layout engine of its own keeps it."""
+    if fig.get_layout_engine() is not None:
+        return
+    fig.set_layout_engine("constrained")
+    fig.draw_without_rendering()
+    fig.set_layout_engine("none")

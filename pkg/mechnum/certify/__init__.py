@@ -7,19 +7,22 @@ ball always holds the exact result), a function's value over a whole box is encl
 * a box over which the residual's enclosure excludes 0 holds **no** root;
 * a box that Krawczyk's operator maps into its own interior holds **exactly one**
   (:mod:`mechnum.certify.krawczyk`);
-* any other box is cut in two, and the search goes on (:func:`~mechnum.certify.search.roots`: branch and prune).
+* any other box is cut in two, and the search goes on
+  (:func:`~mechnum.certify.search.roots`: branch and prune).
 
 When no box is left undecided the count of roots is a theorem over the box: ``complete``. It
 holds for the functions that the given ``residual`` and ``jacobian`` enclose; the mechanisms'
-enclosures are in :mod:`mechnum.rods.balls` and the applications :func:`~mechnum.rods.certified.certify_pinned`,
-``rfr2.certify_forward`` and ``pfr3.certify_forward``. A search's **certificate** (its leaves
-and the test each passed) is stored as JSON and re-checked by :func:`~mechnum.certify.certificate.verify`, in one
-evaluation per leaf; :func:`~mechnum.certify.definite.definite` proves a symmetric interval matrix positive definite (or
-not), for certified stability.
+enclosures are in :mod:`mechnum.rods.balls` and the applications
+:func:`~mechnum.rods.certified.certify_pinned`, ``rfr2.certify_forward`` and
+``pfr3.certify_forward``. A search's **certificate** (its leaves and the test each passed) is
+stored as JSON and re-checked by :func:`~mechnum.certify.certificate.verify`, in one evaluation
+per leaf; :func:`~mechnum.certify.definite.definite` proves a symmetric interval matrix
+positive definite (or not), for certified stability.
 
 Modules: :mod:`~mechnum.certify.balls` (intervals as balls, tight over wide boxes),
 :mod:`~mechnum.certify.krawczyk` (the tests of one box), :mod:`~mechnum.certify.search`
-(:func:`~mechnum.certify.search.roots`, :class:`~mechnum.certify.search.Roots`), :mod:`~mechnum.certify.certificate` (:class:`~mechnum.certify.certificate.Certificate`,
+(:func:`~mechnum.certify.search.roots`, :class:`~mechnum.certify.search.Roots`),
+:mod:`~mechnum.certify.certificate` (:class:`~mechnum.certify.certificate.Certificate`,
 :func:`~mechnum.certify.certificate.verify`) and :mod:`~mechnum.certify.definite`.
 
 Examples

@@ -9,8 +9,9 @@ and checks that the leaves **cover** the box: merging, like a stack, every two c
 leaves that are the two halves of a box must end with the searched box itself. Then the roots
 are re-derived from the Krawczyk leaves (:func:`distinct_roots`) and must be the stored count.
 
-A certificate serialises to JSON (:meth:`~mechnum.certify.certificate.Certificate.to_json`): floats are written with
-Python's shortest round-trip ``repr``, so every leaf comes back bit for bit.
+A certificate serialises to JSON (:meth:`~mechnum.certify.certificate.Certificate.to_json`):
+floats are written with Python's shortest round-trip ``repr``, so every leaf comes back bit for
+bit.
 """
 
 import itertools
@@ -296,7 +297,8 @@ def _check_leaf(leaf, residual, jacobian, counter, exclude):
     X = kr.to_balls(leaf.box)
     if leaf.test == "residual":
         counter["nfev"] += 1
-        return None if kr.residual_excludes(kr.values_of(residual, X)) else "the residual does not exclude 0"
+        excluded = kr.residual_excludes(kr.values_of(residual, X))
+        return None if excluded else "the residual does not exclude 0"
     if leaf.test == "exclude":
         return None if exclude is not None and exclude(X) else "the exclusion test fails"
     J = kr.matrix_of(jacobian, X)
@@ -318,7 +320,8 @@ def verify(certificate, residual, jacobian, exclude=None):
     Parameters
     ----------
     certificate : Certificate
-        From :meth:`~mechnum.certify.search.Roots.certificate` or :meth:`~mechnum.certify.certificate.Certificate.load`.
+        From :meth:`~mechnum.certify.search.Roots.certificate` or
+        :meth:`~mechnum.certify.certificate.Certificate.load`.
     residual, jacobian : callable
         The functions the certificate was made with (see :func:`~mechnum.certify.search.roots`).
     exclude : callable, optional

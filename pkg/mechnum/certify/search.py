@@ -96,7 +96,8 @@ class Roots(Result):
         return self.nfev + self.njev
 
     def certificate(self, inputs=None):
-        """The leaves with the test each passed, as a :class:`~mechnum.certify.certificate.Certificate`.
+        """The leaves with the test each passed, as a
+        :class:`~mechnum.certify.certificate.Certificate`.
 
         Parameters
         ----------
@@ -167,8 +168,8 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
         ``MIN_WIDTH_RANGE``; such a box is undecided.
     exclude : callable, optional
         ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
-        box ``X`` holds no root (tried after the residual's enclosure; :func:`~mechnum.certify.certificate.verify` needs it
-        too).
+        box ``X`` holds no root (tried after the residual's enclosure;
+        :func:`~mechnum.certify.certificate.verify` needs it too).
     split : callable, optional
         ``split(X) -> (d, value)`` or None: where the caller would cut the box ``X`` (for
         example at the edge of the directions that a force balance allows, so that one half is

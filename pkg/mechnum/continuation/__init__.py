@@ -36,8 +36,13 @@ Examples
 """
 
 from mechnum.continuation.arclength import CORRECTOR_TOL, STEPS_LIMIT, Branch, pseudo_arclength
-from mechnum.continuation.natural import (MAX_JUMP, PATH_POINTS_LIMIT, PATH_TOL, PathResult,
-                                          solve_path)
+from mechnum.continuation.natural import (
+                                          MAX_JUMP,
+                                          PATH_POINTS_LIMIT,
+                                          PATH_TOL,
+                                          PathResult,
+                                          solve_path,
+)
 
 __all__ = ["solve_path", "PathResult", "pseudo_arclength", "Branch", "PATH_TOL", "MAX_JUMP",
            "PATH_POINTS_LIMIT", "CORRECTOR_TOL", "STEPS_LIMIT"]

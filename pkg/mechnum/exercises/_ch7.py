@@ -9,66 +9,54 @@ from mechnum.exercises._harness import Case, Exercise, Mistake, close
 
 
 def velocity_coefficients(theta2, theta4, a, l, b):
-    """The exact velocity coefficients ``k_2`` and ``k_4``.
+    """The exact velocity coefficients ``k2`` and ``k4`` (rad/m).
 
     Parameters
     ----------
     theta2, theta4 : float
         The angles of the barrel and of the rocker (rad), at a closed loop.
-    a : float
-        The stroke (m).
-    l, b : float
-        The rod beyond the stroke and the crank ``O_4 A`` (m).
+    a, l, b : float
+        The stroke, the rod beyond it and the crank ``O4 A`` (m).
 
     Returns
     -------
     k2, k4 : float
-        ``d theta_2 / da`` and ``d theta_4 / da`` (rad/m).
+        ``d theta2 / da`` and ``d theta4 / da`` (rad/m).
     """
     delta = theta2 - theta4
-    k4 = 1 / (b * np.sin(delta))
-    return np.cos(delta) / ((a + l) * np.sin(delta)), k4
+    s, c = np.sin(delta), np.cos(delta)
+    return c / ((a + l) * s), 1 / (b * s)
 
 
 def force_by_virtual_power(kin, mech, g):
-    """The actuator's force at one instant, by virtual power.
+    """The actuator's force ``Q`` (N) at one instant, by virtual power.
 
     Parameters
     ----------
     kin : object
-        The kinematics at the instant, with attributes ``theta2, theta4``
-        (rad), ``k2, k4`` (rad/m), ``omega2, omega4`` (rad/s), ``eps2,
-        eps4`` (rad/s^2) and ``a, a_dot, a_ddot`` (m, m/s, m/s^2), as
-        ``actuator.kinematics`` returns them.
+        The kinematics at the instant, as ``actuator.kinematics`` gives
+        them: ``a, a_dot, a_ddot, theta2, theta4, k2, k4, omega2, omega4,
+        eps2, eps4`` (SI units, angles in rad).
     mech : object
-        The mechanism, with attributes ``m2, m3, m4`` (kg), ``inertias``
-        (``I_G2, I_G3, I_G4``, kg m^2) and ``g2, g3, g4`` (m), as
-        ``actuator.ANNEX``.
+        The mechanism, as ``actuator.ANNEX``: ``m2, m3, m4, g2, g3, g4``
+        and ``inertias`` (``I_G2, I_G3, I_G4``), in SI units.
     g : float
         Gravity (m/s^2).
-
-    Returns
-    -------
-    float
-        ``Q`` (N).
     """
     e2, e4 = np.exp(1j * kin.theta2), np.exp(1j * kin.theta4)
     r3, w2, w4 = kin.a + mech.g3, kin.omega2, kin.omega4
-    eps2, eps4, k2, k4 = kin.eps2, kin.eps4, kin.k2, kin.k4
+    eps, k = (kin.eps2, kin.eps2, kin.eps4), (kin.k2, kin.k2, kin.k4)
     coriolis = 2 * w2 * kin.a_dot  # the rod's centre slides on the barrel
-    links = [  # mass, I_G, acceleration of G, its J, epsilon, k
-        (mech.m2, mech.inertias[0], mech.g2 * (1j * eps2 - w2 ** 2) * e2,
-         1j * mech.g2 * k2 * e2, eps2, k2),
-        (mech.m3, mech.inertias[1],
-         (kin.a_ddot - r3 * w2 ** 2 + 1j * (r3 * eps2 + coriolis)) * e2,
-         (1 + 1j * r3 * k2) * e2, eps2, k2),
-        (mech.m4, mech.inertias[2], mech.g4 * (1j * eps4 - w4 ** 2) * e4,
-         1j * mech.g4 * k4 * e4, eps4, k4)]
+    a_G = [mech.g2 * (1j * eps[0] - w2 ** 2) * e2,  # of G2, G3, G4
+           (kin.a_ddot - r3 * w2 ** 2 + 1j * (r3 * eps[1] + coriolis)) * e2,
+           mech.g4 * (1j * eps[2] - w4 ** 2) * e4]
+    J = [1j * mech.g2 * k[0] * e2, (1 + 1j * r3 * k[1]) * e2,
+         1j * mech.g4 * k[2] * e4]
     Q = 0.0
-    for mass, inertia, a_G, J, eps, k in links:
-        Q += mass * (a_G.real * J.real + a_G.imag * J.imag)  # force . J
-        Q += inertia * eps * k  # inertia couple * k
-        Q += mass * g * J.imag  # weight . J, sign reversed
+    for i, mass in enumerate((mech.m2, mech.m3, mech.m4)):
+        Q += mass * (a_G[i] * np.conj(J[i])).real  # inertia force . J
+        Q += mech.inertias[i] * eps[i] * k[i]  # inertia couple * k
+        Q += mass * g * J[i].imag  # weight . J, sign reversed
     return Q
 
 
@@ -176,7 +164,7 @@ FORCE = Exercise(
         "$Q = \\sum_i m_i\\,\\mathbf a_{G_i}\\cdot\\mathbf J_i + I_{G_i}\\varepsilon_i k_i "
         "+ m_i g J_{i,y}$, with the accelerations of the centres of mass by the relative-motion "
         "formulas of the chapter (the rod's centre has a Coriolis term $2\\omega_2\\dot a$). "
-        "Compare with the package's `virtual_power_force` on `kinematics(t)`, and at "
+        "Compare with the package's `virtual_power_force` on `kinematics(ANNEX, t)`, and at "
         "$t = 0.25$ s, where the actuator stops, with the sheet's power divided by $\\dot a$."),
     reference=force_by_virtual_power, cases=_force_cases,
     compare=lambda expected, got: close(expected, float(got), rtol=1e-10, atol=1e-10,

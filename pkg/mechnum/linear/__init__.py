@@ -16,24 +16,57 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
 * :mod:`~mechnum.linear.stationary`: the solvers :func:`sor`, :func:`gauss_seidel` and
   :func:`jacobi`, their :class:`StoppingRule` and :class:`IterationResult`, and SOR over many
   relaxation factors (:func:`sor_sweep`);
-* :mod:`~mechnum.linear.krylov`: :func:`conjugate_gradient`, and the model problem
-  :func:`poisson2d`;
+* :mod:`~mechnum.linear.krylov`: :func:`conjugate_gradient`, and the model problems
+  :func:`poisson2d` and :func:`poisson3d`;
 * :mod:`~mechnum.linear.direct`: :func:`least_squares` (QR, the SVD, the normal equations) and
   :func:`iterative_refinement`.
 """
 
 from mechnum.linear.checks import OMEGAS_LIMIT, SUBNORMAL_FLOOR, check_matrix, condition_number
-from mechnum.linear.direct import (LEAST_SQUARES_METHODS, REFINEMENT_CONTRACTION,
-                                   REFINEMENT_MAXITER, REFINEMENT_TOL, LeastSquares,
-                                   iterative_refinement, least_squares)
-from mechnum.linear.krylov import POISSON_LIMIT, SYMMETRY_RTOL, conjugate_gradient, poisson2d
-from mechnum.linear.spectra import (BLOCK_ENTRIES, OMEGA_GRID, OMEGA_XTOL, OptimalOmega,
-                                    iteration_matrix, optimal_omega, sor_spectral_radii,
-                                    spectral_radius, young_omega)
-from mechnum.linear.stationary import (CHUNK, CRITERIA, DIAGNOSTIC_ORDER, DIVERGENCE_GROWTH,
-                                       MAXITER_LIMIT, NORMS, TOL, IterationResult,
-                                       SorSweep, StoppingRule, gauss_seidel, jacobi, sor,
-                                       sor_sweep)
+from mechnum.linear.direct import (
+                                   LEAST_SQUARES_METHODS,
+                                   REFINEMENT_CONTRACTION,
+                                   REFINEMENT_MAXITER,
+                                   REFINEMENT_TOL,
+                                   LeastSquares,
+                                   iterative_refinement,
+                                   least_squares,
+)
+from mechnum.linear.krylov import (
+                                   POISSON3D_LIMIT,
+                                   POISSON_LIMIT,
+                                   SYMMETRY_RTOL,
+                                   conjugate_gradient,
+                                   poisson2d,
+                                   poisson3d,
+)
+from mechnum.linear.spectra import (
+                                   BLOCK_ENTRIES,
+                                   OMEGA_GRID,
+                                   OMEGA_XTOL,
+                                   OptimalOmega,
+                                   iteration_matrix,
+                                   optimal_omega,
+                                   sor_spectral_radii,
+                                   spectral_radius,
+                                   young_omega,
+)
+from mechnum.linear.stationary import (
+                                   CHUNK,
+                                   CRITERIA,
+                                   DIAGNOSTIC_ORDER,
+                                   DIVERGENCE_GROWTH,
+                                   MAXITER_LIMIT,
+                                   NORMS,
+                                   TOL,
+                                   IterationResult,
+                                   SorSweep,
+                                   StoppingRule,
+                                   gauss_seidel,
+                                   jacobi,
+                                   sor,
+                                   sor_sweep,
+)
 from mechnum.linear.sweeps import METHODS, Splitting, splitting, sweep_by_components
 
 __all__ = [
@@ -49,7 +82,8 @@ __all__ = [
     "DIAGNOSTIC_ORDER", "StoppingRule",
     "IterationResult", "sor", "gauss_seidel", "jacobi", "SorSweep", "sor_sweep",
     # krylov
-    "SYMMETRY_RTOL", "POISSON_LIMIT", "conjugate_gradient", "poisson2d",
+    "SYMMETRY_RTOL", "POISSON_LIMIT", "POISSON3D_LIMIT", "conjugate_gradient", "poisson2d",
+    "poisson3d",
     # direct
     "LEAST_SQUARES_METHODS", "REFINEMENT_CONTRACTION", "REFINEMENT_TOL", "REFINEMENT_MAXITER",
     "LeastSquares", "least_squares",

@@ -79,7 +79,8 @@ def _relaxation_factor(omega):
     try:
         omega = _validate.scalar(omega, "omega")
     except ValueError as error:
-        raise RelaxationFactorError(f"SOR needs a relaxation factor omega in (0, 2): {error}")
+        raise RelaxationFactorError(
+            f"SOR needs a relaxation factor omega in (0, 2): {error}") from None
     if not 0 < omega < 2:
         raise RelaxationFactorError(
             f"SOR relaxation factor omega must lie in (0, 2), got {omega!r}: "
@@ -92,7 +93,7 @@ def _relaxation_factors(omegas):
     try:
         omegas = _validate.array(omegas, "omegas", ndim=1)
     except ValueError as error:
-        raise RelaxationFactorError(f"SOR needs relaxation factors in (0, 2): {error}")
+        raise RelaxationFactorError(f"SOR needs relaxation factors in (0, 2): {error}") from None
     if omegas.size > OMEGAS_LIMIT:
         raise ValueError(f"at most {OMEGAS_LIMIT} relaxation factors (a bound on the work), got "
                          f"{omegas.size}")

@@ -7,7 +7,10 @@ along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) 
 one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
-loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`).
+loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`). :func:`draw` draws the
+chapter's other rod, a cantilever under a dead tip load
+(:class:`mechnum.rods.loading.DeadLoad`), in one of its equilibria, for
+:func:`mechnum.plotting.animate`.
 
 The thesis's budget (its Section 14 and Tabla 9) is study material, not a method: it moves to
 the chapter's study page, and :func:`budget` is deprecated (it warns, and goes in release 0.3);
@@ -20,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _validate, rods
+from mechnum import _validate, plotting, rods
 from mechnum.errors import ConvergenceError, SingularJacobianError
 
 LENGTH = 1.0                                  # m
@@ -270,3 +273,69 @@ def reproduce(nodes: int = NODES) -> dict:
             "Tabla 9: senior engineering": costs["senior"],
             "Tabla 9: junior engineering": costs["junior"],
             "Tabla 9: total": costs["total"]}
+
+
+ARROW = 0.25
+"""Length of the drawn force arrow, relative to ``L``."""
+
+
+def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | None = None,
+         color: str = "C0") -> dict:
+    """Draw a cantilever under a dead tip load in one equilibrium, or move a drawing to it.
+
+    The rod (its RK4 shape, :meth:`mechnum.rods.loading.DeadLoad.rod`), the clamp (a short bar
+    across the clamped end at the origin) and the tip force (an arrow of length :data:`ARROW` ``L``
+    along the load's direction, its head at the tip). Labels, limits and titles are the
+    caller's.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Where to draw.
+    mech : rods.DeadLoad
+        The cantilever and the direction of its load.
+    state : array_like, shape (2,)
+        ``u = (m0 L / EI, R L**2 / EI)``: a point of a curve of equilibria (where
+        ``mech.fun(u)`` vanishes), as :func:`mechnum.continuation.pseudo_arclength` traces them.
+    artists : dict, optional
+        The artists returned by an earlier call on ``ax``: they are moved, nothing is added
+        (a frame of :func:`mechnum.plotting.animate`).
+    color : str, optional
+        The rod's colour.
+
+    Returns
+    -------
+    dict
+        The artists, keyed ``"rod"``, ``"clamp"`` and ``"force"``.
+
+    Raises
+    ------
+    ValueError
+        If ``ax`` is not an Axes, ``mech`` not a ``DeadLoad``, ``state`` not two finite numbers
+        or ``artists`` not what an earlier call returned.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> column = rods.DeadLoad(1.0, 1.0, np.pi)
+    >>> fig, ax = plt.subplots()
+    >>> parts = draw(ax, column, [0.0, 1.0])                # straight, under half Euler's load
+    >>> (np.round(parts["rod"].get_xydata()[[0, -1]], 12) + 0.0).tolist(), sorted(parts)
+    ([[0.0, 0.0], [1.0, 0.0]], ['clamp', 'force', 'rod'])
+    >>> (np.round(parts["force"].get_xydata()[:2], 12) + 0.0).tolist()   # its head at the tip
+    [[1.25, 0.0], [1.0, 0.0]]
+    >>> plt.close(fig)
+    """
+    plotting.check_axes(ax)
+    mech = _validate.instance(mech, rods.DeadLoad, "mech", "a rods.DeadLoad")
+    state = _validate.array(state, "state", shape=(2,))
+    rod = mech.rod(state)
+    head, along = rod.tip, mech.direction
+    wings = [head - 0.3 * ARROW * mech.L * np.array([np.cos(mech.psi + a), np.sin(mech.psi + a)])
+             for a in np.radians((25.0, -25.0))]                # the arrow's head, 25 deg
+    bar = 0.06 * mech.L
+    shapes = {"rod": (np.column_stack((rod.x, rod.y)), {"lw": 2.5, "color": color}),
+              "clamp": ([[0.0, -bar], [0.0, bar]], {"lw": 5, "color": "k"}),
+              "force": ([head - ARROW * mech.L * along, head, [np.nan, np.nan], wings[0],
+                         head, wings[1]], {"lw": 1.5, "color": "k"})}
+    return plotting.parts(ax, shapes, artists)

@@ -58,8 +58,16 @@ array([2.])
 """
 
 from mechnum.newton.batch import BatchNewtonResult, solve_batch
-from mechnum.newton.core import (ARMIJO, HALVINGS_LIMIT, MAX_HALVINGS, MAXITER_LIMIT, ROOT_TOL,
-                                 SEARCH_HALVINGS, TOL, fd_jacobian)
+from mechnum.newton.core import (
+    ARMIJO,
+    HALVINGS_LIMIT,
+    MAX_HALVINGS,
+    MAXITER_LIMIT,
+    ROOT_TOL,
+    SEARCH_HALVINGS,
+    TOL,
+    fd_jacobian,
+)
 from mechnum.newton.search import SAME, STARTS_LIMIT, RootSet, solve_all
 from mechnum.newton.single import NewtonResult, broyden, solve
 from mechnum.results import STATUSES

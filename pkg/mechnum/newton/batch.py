@@ -18,8 +18,18 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton.core import (HALVINGS_LIMIT, MAX_HALVINGS, TOL, Equations, StoppingRule,
-                                 bounded, inside, line_search, newton_step, norms)
+from mechnum.newton.core import (
+    HALVINGS_LIMIT,
+    MAX_HALVINGS,
+    TOL,
+    Equations,
+    StoppingRule,
+    bounded,
+    inside,
+    line_search,
+    newton_step,
+    norms,
+)
 from mechnum.results import Result, status_counts
 
 

@@ -20,8 +20,17 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError, SingularJacobianError
-from mechnum.newton.core import (HALVINGS_LIMIT, MAX_HALVINGS, TOL, Equations, StoppingRule,
-                                 bounded, line_search, newton_step, norms)
+from mechnum.newton.core import (
+    HALVINGS_LIMIT,
+    MAX_HALVINGS,
+    TOL,
+    Equations,
+    StoppingRule,
+    bounded,
+    line_search,
+    newton_step,
+    norms,
+)
 from mechnum.results import Result
 
 

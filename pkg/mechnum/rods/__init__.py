@@ -52,7 +52,7 @@ more than one rod (the cost of a sweep is per numpy call, not per rod).
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.rods.growing import closed_form
+from mechnum.rods.certified import certify_pinned
 from mechnum.rods.elliptic import (
     TWO_PI,
     EllipticRod,
@@ -63,7 +63,7 @@ from mechnum.rods.elliptic import (
     elliptic_parameters,
     k_rel_for_force,
 )
-from mechnum.rods.certified import certify_pinned
+from mechnum.rods.growing import closed_form
 from mechnum.rods.loading import DeadLoad
 from mechnum.rods.multiple import shoot_pinned_multiple
 from mechnum.rods.pinned import Classification, classify, pinned_equilibria
@@ -79,8 +79,8 @@ from mechnum.rods.shooting import (
 __all__ = ["SHOOTING_TOL", "TWO_PI", "Classification", "DeadLoad", "EllipticRod",
            "NoEquilibriumError", "NotAnElasticaError", "Rod", "Shooting", "UnresolvedRodError",
            "cantilever", "certify_pinned", "clamped_pinned", "classify", "elliptic_k",
-           "elliptic_parameters", "equations", "integrate", "k_rel_for_force", "pinned_equilibria", "shoot_cantilever",
-           "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian"]
+           "elliptic_parameters", "equations", "integrate", "k_rel_for_force", "pinned_equilibria",
+           "shoot_cantilever", "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian"]
 
 METHODS = ("elliptic", "shooting")
 

@@ -65,7 +65,7 @@ class Certified(Roots):
 
 
 def combine(parts, solutions, stable, extra=""):
-    """One :class:`~mechnum.rods.certified.Certified` of several searches (their counts and work added)."""
+    """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
     n = parts[0].roots.shape[1] if parts else 2
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
     undecided = np.concatenate([p.undecided for p in parts] + [np.zeros((0, n, 2))])
@@ -147,7 +147,7 @@ def pinned_system(EI, L, target, mode):
 def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`~mechnum.rods.elliptic.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.pinned.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.rods.elliptic import clamped_pinned
-from mechnum.rods.rod import MAX_NODES, Rod, integrate, rod_scales, tip_jacobian
+from mechnum.rods.rod import MAX_NODES, Rod, integrate, rod_scales, tip_states
 from mechnum.rods.stability import constrained_index, rod_block
 
 
@@ -63,8 +63,11 @@ class DeadLoad:
         return np.array([self.rod(u).m[-1] * self.L / self.EI])
 
     def jac(self, u: ArrayLike) -> np.ndarray:
-        """``d (m(L) L / EI) / d u``, shape ``(1, 2)`` (complex step, exact to rounding)."""
-        J = tip_jacobian(self.EI, self.L, *self._physical(u), nodes=2 * self.segments + 1)[1]
+        """``d (m(L) L / EI) / d u``, shape ``(1, 2)`` (complex step, exact to rounding; the
+        one rod on Python's complex numbers, as a shooting Newton step does)."""
+        m0, force = self._physical(u)
+        J = tip_states(self.EI, self.L, np.array([m0]), force[None], 0.0,
+                       2 * self.segments + 1)[1][0]
         return np.array([[J[3, 0], J[3, 1:] @ self.direction / self.L]])
 
     def index(self, u: ArrayLike) -> int:

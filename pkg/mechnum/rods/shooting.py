@@ -67,7 +67,8 @@ a node count (a margin below the observed threshold, about 7)."""
 class UnresolvedRodError(ConvergenceError):
     """Shooting converged to a solution of the discrete (RK4) equations that is no equilibrium
     of the rod (or, from a cantilever's default start, another one): more nodes, multiple
-    shooting or the closed form is needed. ``result`` holds the :class:`Shooting`."""
+    shooting or the closed form is needed. ``result`` holds the :class:`Shooting` (None where
+    Newton failed first on a load the nodes cannot resolve)."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -193,6 +194,19 @@ def _advice(lam_L, what="multiple shooting or the closed form"):
         return f"it is beyond single shooting at any node count: use {what}"
     nodes = math.ceil(1.0 + lam_L * math.exp((lam_L - RESOLVE_LOG) / 4.0))
     return f"use more nodes (about {nodes}) or {what}"
+
+
+def _unresolvable(EI, L, force, nodes, error):
+    """Raise :class:`UnresolvedRodError` from Newton's ``error`` if RK4 on ``nodes`` cannot
+    resolve a rod under ``force`` (``lambda L + 4 ln(lambda h)`` above :data:`RESOLVE_LOG`):
+    the failure is then the grid's, and more nodes is the remedy to name."""
+    lam_L = math.sqrt(math.hypot(*force) / EI) * L
+    if float(_risk(EI, L, np.asarray(force), L / (nodes - 1))) > RESOLVE_LOG:
+        raise UnresolvedRodError(
+            f"shoot_cantilever: RK4 on {nodes} nodes cannot resolve the rod under the force "
+            f"{np.asarray(force).tolist()} (P L^2/EI = {lam_L ** 2:.4g}, lambda h = "
+            f"{lam_L / (nodes - 1):.3g}), and Newton failed ({error}); "
+            f"{_advice(lam_L, 'rods.cantilever')}", None) from error
 
 
 def check_resolved(EI: float, L: float, result: Shooting, segments: int = 1) -> None:
@@ -357,8 +371,12 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
         if len(batch) != 1 or not damping:
             raise
         # a start beyond a hump of m(L): restart from the sign change of m(L) nearest it
-        x0 = _bracket(lambda m0: float(fun(np.array([[m0]]))[0, 0]), float(x0[0, 0]), scale)
-        res, p, tol = _solve(fun, jac, x0, tol, floor, maxiter, "shoot_cantilever")
+        try:
+            x0 = _bracket(lambda m0: float(fun(np.array([[m0]]))[0, 0]), float(x0[0, 0]), scale)
+            res, p, tol = _solve(fun, jac, x0, tol, floor, maxiter, "shoot_cantilever")
+        except ConvergenceError as error:
+            _unresolvable(EI, L, batch[0], nodes, error)
+            raise
     rod = integrate(EI, L, p[:, 0], batch, theta0=theta0, nodes=nodes)
     result = shooting_result("shoot_cantilever", res, p[:, 0], start, rod, force.shape[:-1],
                              tol, tips)

@@ -116,7 +116,8 @@ def draw(ax: Axes, mech: model.Mechanism, state: State | ArrayLike, z: ArrayLike
         along = np.array([np.cos(mech.guide_angles[i]), np.sin(mech.guide_angles[i])])
         ends = clamps[i] + np.outer([-1.0, 1.0], GUIDE_HALF_LENGTH * mech.L * along)
         parts += [(*ends.T, {"color": "0.6", "lw": 3, "solid_capstyle": "butt"}),
-                  ([clamps[i, 0]], [clamps[i, 1]], {"marker": "s", "color": "k", "ms": 6, "ls": ""}),
+                  ([clamps[i, 0]], [clamps[i, 1]],
+                   {"marker": "s", "color": "k", "ms": 6, "ls": ""}),
                   (x[i], y[i], {"color": colors[i], "lw": 2,
                                     "label": None if label is None else f"{label}, rod {i + 1}"})]
     pins = np.column_stack((x[:, -1], y[:, -1]))

@@ -1,12 +1,12 @@
 """The 3PFR by RK4 shooting: the study's (109) with its unknowns (111) and (112) (11.4.1).
 
-Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.shooting.tip_jacobian`,
-complex-step derivatives in the same sweep). The twelve equations are the study's (109): at each pin a
-moment-free tip at ``B_i``, and the platform's balance of forces and of moments about the origin,
-``sum_i p_i x n_i - P x F - M = 0`` (its (110) prints rod 1 three times in ``f12``). The
-unknowns are the clamp moments and forces with the sliders, ``X = (m0_i, n_i, lambda_i)`` (its
-(111), the inverse problem at a given pose), or with the pose, ``X = (m0_i, n_i; x, y, phi)``
-(its (112), the direct problem at given sliders).
+Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.rod.tip_jacobian`,
+complex-step derivatives in the same sweep). The twelve equations are the study's (109): at
+each pin a moment-free tip at ``B_i``, and the platform's balance of forces and of moments
+about the origin, ``sum_i p_i x n_i - P x F - M = 0`` (its (110) prints rod 1 three times in
+``f12``). The unknowns are the clamp moments and forces with the sliders,
+``X = (m0_i, n_i, lambda_i)`` (its (111), the inverse problem at a given pose), or with the pose,
+``X = (m0_i, n_i; x, y, phi)`` (its (112), the direct problem at given sliders).
 
 The study's shooting programs (Annex II 4.1 to 4.3) end each rod with a rigid segment of length
 ``d = 0.1`` m along the tip's tangent, pinned at its far end: ``rigid_end`` reproduces it

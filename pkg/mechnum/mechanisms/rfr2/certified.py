@@ -3,9 +3,10 @@
 :func:`~mechnum.mechanisms.rfr2.certify_forward` is the certified counterpart of
 :func:`~mechnum.mechanisms.rfr2.forward_elliptic`: the same four equations (both tips at one
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
-same chart ``(psi1, t1, psi2, t2)``, re-derived here from the :class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields
-and enclosed over boxes (:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots`
-over the chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
+same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
+:class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields and enclosed over boxes
+(:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots` over the
+chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
 tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rods.certified`).
@@ -18,8 +19,9 @@ are nearer than that (as for the study's Table 7), else the result is not ``comp
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
 and the index of the reduced Hessian ``K1 + K2`` (each ``K_i = d n_i / d tip_i`` along the
 rod's branch, :func:`mechnum.rods.certified.stiffness`), by Haynsworth's inertia additivity.
-``stable`` is False where :func:`~mechnum.certify.definite.definite` proves ``K1 + K2`` over the root's
-enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are not enclosed).
+``stable`` is False where :func:`~mechnum.certify.definite.definite` proves ``K1 + K2`` over
+the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are
+not enclosed).
 """
 
 import numpy as np

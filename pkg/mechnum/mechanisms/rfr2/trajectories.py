@@ -31,7 +31,8 @@ def straight_path(length: float, angle: float, divisions: int):
 def circles(diameter: float, count: int, divisions: int):
     """Increments on concentric circles (the study's ``Workspace_Circles``, not listed):
     the centre, then ``count`` circles of diameters ``diameter k / count``, each from angle 0
-    in ``divisions`` points (``count divisions`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
+    in ``divisions`` points (``count divisions`` at most
+    :data:`~mechnum.rods.assembly.checks.MAX_POINTS`).
 
     Examples
     --------
