@@ -3,10 +3,10 @@
 The three sliders span a space of inputs; an atlas is a map, so it covers a plane of it, given
 as a grid ``lambdas_grid[i, j] = lambdas0 + a[i] u + b[j] v`` (:func:`plane` recovers the
 axes ``a``, ``b`` and the unit directions ``u``, ``v`` and checks that the grid is one).
-:func:`~mechnum.mechanisms.pfr3.atlas` runs :func:`mechnum.rods.assembly.atlas.atlas_of` (its
+:func:`~mechnum.mechanisms.pfr3.atlases.atlas` runs :func:`mechnum.rods.assembly.atlas_of` (its
 module explains the method) with the 3PFR's closed form: the full search is
-:func:`~mechnum.mechanisms.pfr3.forward_elliptic` with its defaults (none where no platform
-can close between the clamps), the continuation
+:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic` with its defaults (none where
+no platform can close between the clamps), the continuation
 :func:`~mechnum.mechanisms.pfr3.paths.forward_trace`.
 """
 
@@ -109,9 +109,9 @@ def atlas(mech: model.Mechanism, lambdas_grid: ArrayLike, *, modes: ArrayLike = 
     stable ones, and the folds where the stable count changes.
 
     As :func:`mechnum.mechanisms.rfr2.atlas`, with the 3PFR's full search
-    (:func:`~mechnum.mechanisms.pfr3.forward_elliptic`: 1000 starts and the check of 10,000,
-    about ten times the 2RFR's work) at the anchors and wherever continuation cannot vouch for
-    the count.
+    (:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: 1000 starts and the
+    check of 10,000, about ten times the 2RFR's work) at the anchors and wherever
+    continuation cannot vouch for the count.
 
     Parameters
     ----------
@@ -128,7 +128,7 @@ def atlas(mech: model.Mechanism, lambdas_grid: ArrayLike, *, modes: ArrayLike = 
 
     Returns
     -------
-    mechnum.rods.assembly.atlas.Atlas
+    mechnum.rods.assembly.Atlas
         ``axes = (a, b)`` (m) along ``directions = (u, v)`` from ``origin = lambdas0``.
 
     Raises

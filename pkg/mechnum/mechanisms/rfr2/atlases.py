@@ -1,10 +1,10 @@
 """The 2RFR's atlas: how many equilibria, and how many stable ones, over a grid of motor angles.
 
-:func:`~mechnum.mechanisms.rfr2.atlas` runs :func:`mechnum.rods.assembly.atlas.atlas_of` (its
+:func:`~mechnum.mechanisms.rfr2.atlas` runs :func:`mechnum.rods.assembly.atlas_of` (its
 module explains the method: full searches at anchors and where continuation cannot vouch for
 the count, continuation everywhere else) with the 2RFR's closed form: the full search is
 :func:`~mechnum.mechanisms.rfr2.forward_elliptic` with its defaults, the continuation
-:func:`~mechnum.mechanisms.rfr2.continuation.grid_trace`, as :func:`forward_map` follows one
+``continuation.grid_trace``, as :func:`forward_map` follows one
 equilibrium.
 """
 
@@ -63,7 +63,7 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
 
     Returns
     -------
-    mechnum.rods.assembly.atlas.Atlas
+    mechnum.rods.assembly.Atlas
         ``counts`` and ``stable_counts`` of shape (nx, ny), ``folds`` in radians,
         ``axes = (theta1, theta2)``; ``draw`` shows it in degrees.
 

@@ -37,7 +37,7 @@ Stability is carried along the flood: an equilibrium's index (negative eigenvalu
 variation) changes only where its Jacobian is singular, where continuation never passes (the
 sign of ``det`` is kept), so each equilibrium keeps the verdict of the search that found it; at
 a searched point the search's own verdict is used. The evidence: searched counts are the
-search's (sampled: :attr:`mechnum.newton.RootSet.complete`); a vouched count is the count of a
+search's (sampled: the ``complete`` of its ``RootSet``); a vouched count is the count of a
 searched point carried over edges where nothing ends. An equilibrium whose whole region of the
 grid holds no searched point (an isola, or a sliver narrower than the anchors' spacing that
 touches no fold of a known branch) is missed: sampling, not proof.
@@ -68,7 +68,7 @@ between two points (a fold, the chart's edge) fails again, a numerical failure (
 near a fold) does not."""
 STEP_TOL = 1e-10
 """Newton's tolerance per continuation step of the atlas, on the step and relative
-(:data:`mechnum.newton.TOL`): the residual of a rod in strong tension cannot fall below a
+(``mechnum.newton.TOL``): the residual of a rod in strong tension cannot fall below a
 round-off floor that grows with its force (``1e-11`` of ``EI / L**2`` at ``t = 0.99``), where a
 fixed residual tolerance would end sound branches."""
 PAIRED = 2.0
@@ -175,7 +175,7 @@ class Atlas(Result):
 
     def draw(self, ax, *, trajectory=None, **style):
         """The stable count as a map with the folds drawn on it, and optionally a trajectory
-        (:func:`~mechnum.rods.assembly.drawing.draw_atlas`); its artists."""
+        (:func:`~mechnum.rods.assembly.draw_atlas`); its artists."""
         from mechnum.rods.assembly.drawing import draw_atlas
 
         return draw_atlas(ax, self, trajectory=trajectory, **style)

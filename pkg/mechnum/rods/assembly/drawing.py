@@ -116,7 +116,7 @@ def draw_atlas(ax, atlas, *, trajectory=None, searched: bool = False, cmap: str 
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    atlas : mechnum.rods.assembly.atlas.Atlas
+    atlas : mechnum.rods.assembly.Atlas
     trajectory : array_like, shape (n, k), optional
         Inputs along a path (the atlas's inputs' units: rad, m), projected on its plane.
     searched : bool, optional
