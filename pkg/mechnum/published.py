@@ -156,13 +156,15 @@ def below(value: object, bound: float) -> str:
     '< 1e-14'
     >>> below([np.zeros(3), np.full(6, 1e-30)], 1e-25), below(0.04, 0.5), below(2e-6, 1e-5)
     ('< 1e-25', '< 0.5', '< 1e-5')
+    >>> below(3e-14 + 4e-14j, 1e-13)    # the magnitude of a complex number
+    '< 1e-13'
     """
     bound = _number(bound, "bound")
     if not (np.isfinite(bound) and bound > 0):
         raise ValueError(f"bound must be a finite positive number, got {bound!r}")
     parts = value if isinstance(value, (list, tuple)) else [value]
     try:
-        largest = max(np.max(np.abs(np.asarray(p, dtype=float)), initial=0.0) for p in parts)
+        largest = max(np.max(np.abs(np.asarray(p)).astype(float), initial=0.0) for p in parts)
     except (TypeError, ValueError):
         raise ValueError(f"value must be numbers (arrays), got {value!r:.80}") from None
     if not largest < bound:

@@ -40,6 +40,8 @@ def ball(lo, hi=None):
     (True, True, False)
     """
     try:
+        if np.iscomplexobj(lo) or np.iscomplexobj(hi):
+            raise TypeError
         lo = float(lo)
         hi = lo if hi is None else float(hi)
     except (TypeError, ValueError):
