@@ -11,6 +11,7 @@ from types import SimpleNamespace
 import nbformat
 import numpy as np
 import pytest
+import yaml
 from numpy.testing import assert_allclose
 
 from mechnum import exercises, linear, ode, rods
@@ -493,12 +494,12 @@ def test_references_of_chapter_1_agree_with_the_hacksaw():
     rng = np.random.default_rng(0)
     for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
         F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
-        assert_allclose(F, hs.position_residual(q, theta2), rtol=1e-13, atol=1e-15)
-        assert_allclose(J, hs.position_jacobian(q), rtol=1e-13, atol=1e-15)
+        assert_allclose(F, hs.position_residual(hs.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(hs.STUDY, q), rtol=1e-13, atol=1e-15)
     geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
     x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
                       lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
-    solved = hs.solve_consecutive((0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+    solved = hs.solve_consecutive(hs.STUDY, (0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
     assert k == solved.iterations == 4
     assert_allclose(x, solved.x, rtol=1e-13)
 
@@ -529,10 +530,10 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 def test_references_of_chapter_4_agree_with_the_package():
     geometry, lam = prr3.EXAMPLES["Table 6"]
-    C = prr3.polynomial(lam, geometry)
+    C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.direct(lam, geometry).poses
+    poses = prr3.forward(geometry, lam).poses
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):
@@ -621,3 +622,19 @@ def test_the_notebooks_exercise_cells_are_the_packages(path):
         assert "{solution-end}" in got[4].source
     if path.parent.name == "fixtures":
         assert sum(c.metadata.get("mechnum", {}).get("role") == "starter" for c in cells) == 2
+
+
+def test_every_exercise_is_in_its_chapters_lecture_in_number_order():
+    """Exercise N.k's starter is in the lecture page of chapter N (``_toc.yml``'s entry
+    ``book/0N_*``), and a lecture's starters are its chapter's exercises, in number order."""
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    lectures = {entry["file"][6]: ROOT / f"{entry['file']}.ipynb"
+                for part in toc["parts"] for entry in part["chapters"]
+                if re.fullmatch(r"book/0\d_\w+", entry["file"])}
+    for chapter, path in lectures.items():
+        starters = [cell.metadata["mechnum"]["exercise"]
+                    for cell in nbformat.read(path, as_version=4).cells
+                    if cell.metadata.get("mechnum", {}).get("role") == "starter"]
+        expected = sorted((n for n in exercises.CHECKS if n.split(".")[0] == chapter),
+                          key=lambda n: int(n.split(".")[1]))
+        assert starters == expected, (path.name, starters)

@@ -301,3 +301,22 @@ def choice(value: object, options: tuple, name: str) -> object:
     if not known:
         raise ValueError(f"{name} must be one of {tuple(options)}, got {value!r}")
     return value
+
+
+def instance(value: object, kind: type, name: str, label: str) -> object:
+    """``value`` if it is an instance of ``kind``; else :class:`ValueError` naming ``label``.
+
+    Every mechanism checks its ``mech`` argument with this at its entry points.
+
+    Examples
+    --------
+    >>> instance(2.5, float, "x", "a float")
+    2.5
+    >>> instance(None, float, "mech", "a finger.Linkage")
+    Traceback (most recent call last):
+    ...
+    ValueError: mech must be a finger.Linkage, got None
+    """
+    if not isinstance(value, kind):
+        raise ValueError(f"{name} must be {label}, got {value!r:.80}")
+    return value

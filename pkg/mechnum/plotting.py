@@ -111,8 +111,6 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
     >>> drawn = parts(ax, {"bar": ([[0, 0], [1, 1]], {"color": "k"})})
@@ -305,8 +303,6 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> def draw(ax, mech, state, *, artists=None):      # a bar of length mech, at an angle
     ...     tip = mech * np.array([np.cos(state), np.sin(state)])
     ...     return parts(ax, {"bar": ([[0, 0], tip], {"lw": 3})}, artists)

@@ -144,6 +144,17 @@ def to_floats(values):
     return np.array([bounds(v) for v in values])
 
 
+def _linearised(residual, jacobian, X, counter):
+    """``(J, yb, fy)``: the Jacobian's enclosure over ``X``, the midpoint of ``X`` and the
+    residual's enclosure there, the two evaluations counted in ``counter``."""
+    J = matrix_of(jacobian, X)
+    counter["njev"] += 1
+    yb, _ = midpoint(X)
+    fy = values_of(residual, yb)
+    counter["nfev"] += 1
+    return J, yb, fy
+
+
 def test_box(residual, jacobian, X, counter, exclude=None):
     """Run the tests on the box of balls ``X``.
 
@@ -161,11 +172,7 @@ def test_box(residual, jacobian, X, counter, exclude=None):
         return "residual", None, None, value
     if exclude is not None and exclude(X):
         return "exclude", None, None, value
-    J = matrix_of(jacobian, X)
-    counter["njev"] += 1
-    yb, _ = midpoint(X)
-    fy = values_of(residual, yb)
-    counter["nfev"] += 1
+    J, yb, fy = _linearised(residual, jacobian, X, counter)
     if mean_value_excludes(fy, J, X, yb):
         return "mean-value", J, None, value
     Y = preconditioner(J)
@@ -182,11 +189,7 @@ def test_box(residual, jacobian, X, counter, exclude=None):
 def krawczyk_test(residual, jacobian, X, counter):
     """One Krawczyk test of the box ``X``: ``(passed, K)``, ``passed`` True when ``K(X)`` lies in
     the interior of ``X`` (exactly one root, in ``K``)."""
-    J = matrix_of(jacobian, X)
-    counter["njev"] += 1
-    yb, _ = midpoint(X)
-    fy = values_of(residual, yb)
-    counter["nfev"] += 1
+    J, yb, fy = _linearised(residual, jacobian, X, counter)
     Y = preconditioner(J)
     if Y is None:
         return False, None

@@ -2,14 +2,8 @@
 
 Each step fixes the parameter and corrects the state by damped Newton
 (:func:`mechnum.newton.solve_batch`) from a secant prediction; a point where Newton converged on
-another branch (across a fold) is reported as a ``"branch-jump"``.
-
-Examples
---------
->>> import numpy as np
->>> path = solve_path(lambda x, p: x ** 2 - p[:, None], [1.0, 4.0, 9.0], [1.0])
->>> path.x[:, 0].round(12).tolist(), path.status.tolist()
-([1.0, 2.0, 3.0], ['converged', 'converged', 'converged'])
+another branch (across a fold) is reported as a ``"branch-jump"``. The package's docstring and
+:func:`solve_path`'s show it at work.
 """
 
 from collections.abc import Callable

@@ -8,7 +8,7 @@ one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward 
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
 loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`). :func:`draw` draws the
-chapter's other rod, a cantilever under a dead tip load (:class:`mechnum.rods.DeadLoad`), in one
+chapter's other rod, a cantilever under a dead tip load (:class:`mechnum.rods.loading.DeadLoad`), in one
 of its equilibria, for :func:`mechnum.plotting.animate`.
 
 The thesis's budget (its Section 14 and Tabla 9) is study material, not a method: it moves to
@@ -282,7 +282,7 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
          color: str = "C0") -> dict:
     """Draw a cantilever under a dead tip load in one equilibrium, or move a drawing to it.
 
-    The rod (its RK4 shape, :meth:`mechnum.rods.DeadLoad.rod`), the clamp (a short bar across
+    The rod (its RK4 shape, :meth:`mechnum.rods.loading.DeadLoad.rod`), the clamp (a short bar across
     the clamped end at the origin) and the tip force (an arrow of length :data:`ARROW` ``L``
     along the load's direction, its head at the tip). Labels, limits and titles are the
     caller's.
@@ -315,8 +315,6 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> column = rods.DeadLoad(1.0, 1.0, np.pi)
     >>> fig, ax = plt.subplots()
@@ -328,8 +326,7 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
     >>> plt.close(fig)
     """
     plotting.check_axes(ax)
-    if not isinstance(mech, rods.DeadLoad):
-        raise ValueError(f"mech must be a rods.DeadLoad, got {mech!r:.80}")
+    mech = _validate.instance(mech, rods.DeadLoad, "mech", "a rods.DeadLoad")
     state = _validate.array(state, "state", shape=(2,))
     rod = mech.rod(state)
     head, along = rod.tip, mech.direction

@@ -147,7 +147,7 @@ def pinned_system(EI, L, target, mode):
 def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`~mechnum.rods.elliptic.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.pinned.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,

@@ -50,8 +50,6 @@ def draw(ax: object, mech: Actuator, state: tuple, *, artists: dict | None = Non
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
     >>> parts = draw(ax, ANNEX, (0.6, forward(ANNEX, 0.6)[0]))

@@ -27,9 +27,11 @@ from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the exam
 from mechnum.ode import rk4
 
 
-def _per_link(values, kin):
-    """The three links' constants shaped to broadcast against arrays of shape (3,) + a.shape."""
-    return np.reshape(values, (3,) + (1,) * kin.a.ndim)
+def _masses(kin):
+    """The three links' masses and inertias about their centres, shaped to broadcast against
+    arrays of shape ``(3,) + kin.a.shape``."""
+    shape, m = (3,) + (1,) * kin.a.ndim, kin.mech
+    return np.reshape([m.m2, m.m3, m.m4], shape), np.reshape(m.inertias, shape)
 
 
 def kane_force(kin: Kinematics, g: float = G_MATHCAD) -> np.ndarray:
@@ -65,9 +67,7 @@ def kane_force(kin: Kinematics, g: float = G_MATHCAD) -> np.ndarray:
     43.14926
     """
     kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
-    pv = partial_velocities(kin)
-    mass = _per_link([kin.mech.m2, kin.mech.m3, kin.mech.m4], kin)
-    inertia = _per_link(kin.mech.inertias, kin)
+    pv, (mass, inertia) = partial_velocities(kin), _masses(kin)
     acc = pv.v * kin.a_ddot + pv.dv * kin.a_dot**2
     alpha = pv.omega * kin.a_ddot + pv.domega * kin.a_dot**2
     dot = acc.real * pv.v.real + acc.imag * pv.v.imag  # a_G . J
@@ -135,7 +135,7 @@ def virtual_power_force(kin: Kinematics, g: float = G_MATHCAD,
     else:  # the virtual motion delta a = 1: the velocity coefficients
         rate, w, rod = 1.0, np.array([kin.k2, kin.k2, kin.k4]), 1.0
     v = np.array([1j * m.g2 * w[0] * e2, (rod + 1j * r3 * w[1]) * e2, 1j * m.g4 * w[2] * e4])
-    mass, inertia = _per_link([m.m2, m.m3, m.m4], kin), _per_link(m.inertias, kin)
+    mass, inertia = _masses(kin)
     power = np.sum(mass * (acc.real * v.real + acc.imag * v.imag) + inertia * alpha * w
                    + mass * g * v.imag, axis=0)
     with np.errstate(invalid="ignore"):
@@ -304,9 +304,7 @@ def energy(kin: Kinematics, g: float = G_MATHCAD) -> "Energy":
     (0.137069, 40.20726)
     """
     kin, g = checked_kinematics(kin), _validate.scalar(g, "g")
-    pv = partial_velocities(kin)
-    mass = _per_link([kin.mech.m2, kin.mech.m3, kin.mech.m4], kin)
-    inertia = _per_link(kin.mech.inertias, kin)
+    pv, (mass, inertia) = partial_velocities(kin), _masses(kin)
     kinetic = 0.5 * np.sum(mass * np.abs(pv.v) ** 2 + inertia * pv.omega**2, axis=0) * kin.a_dot**2
     return Energy(kinetic, g * np.sum(mass * centres_of_mass(kin).imag, axis=0))
 

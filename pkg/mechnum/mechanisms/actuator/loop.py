@@ -192,13 +192,15 @@ def singular_points(mech: Actuator) -> np.ndarray:
     return np.array([abs(mech.d - mech.b), mech.d + mech.b]) - mech.l
 
 
-def _pairs(x):
-    """``(theta2, theta4)`` from an array of shape (..., 2), checked."""
+def _loop_inputs(mech, x, a):
+    """The checked inputs of the loop equations: ``mech``, ``theta2`` and ``theta4`` from ``x`` of
+    shape (..., 2), and the length ``a + l`` of the cylinder."""
     x = _validate.array(x, "x", ndim=range(1, 33))
     if x.shape[-1] != 2:
         raise ValueError(f"x must have shape (..., 2): pairs (theta2, theta4), "
                          f"got shape {x.shape}")
-    return x[..., 0], x[..., 1]
+    mech = checked(mech)
+    return mech, x[..., 0], x[..., 1], _validate.scalar(a, "a") + mech.l
 
 
 @_deprecated.mech_moved(to=2, **_MOVED)
@@ -229,9 +231,7 @@ def loop_residual(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
     >>> np.round(loop_residual(ANNEX, [np.pi / 2, 0.0], 0.6), 12) + 0.0
     array([0., 0.])
     """
-    th2, th4 = _pairs(x)
-    mech = checked(mech)
-    L = _validate.scalar(a, "a") + mech.l
+    mech, th2, th4, L = _loop_inputs(mech, x, a)
     return np.stack([L * np.cos(th2) + mech.o2 - mech.b * np.cos(th4),
                      L * np.sin(th2) - mech.o4 - mech.b * np.sin(th4)], axis=-1)
 
@@ -245,11 +245,8 @@ def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
 
     Parameters
     ----------
-    mech : Actuator
-    x : array_like, shape (..., 2)
-        ``(theta2, theta4)`` in radians, or a batch of such pairs.
-    a : float
-        Stroke (m).
+    mech, x, a
+        As :func:`loop_residual`.
 
     Returns
     -------
@@ -265,9 +262,7 @@ def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
     >>> round(float(np.linalg.det(loop_jacobian(ANNEX, [np.pi / 2, 0.0], 0.6))), 12)
     0.25
     """
-    th2, th4 = _pairs(x)
-    mech = checked(mech)
-    L = _validate.scalar(a, "a") + mech.l
+    mech, th2, th4, L = _loop_inputs(mech, x, a)
     rows = [np.stack([-L * np.sin(th2), mech.b * np.sin(th4)], axis=-1),
             np.stack([L * np.cos(th2), -mech.b * np.cos(th4)], axis=-1)]
     return np.stack(rows, axis=-2)

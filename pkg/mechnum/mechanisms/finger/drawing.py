@@ -59,8 +59,6 @@ def draw(ax: object, mech: Linkage, state: tuple, *, artists: dict | None = None
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> from mechnum.mechanisms.finger import forward
     >>> fig, ax = plt.subplots()

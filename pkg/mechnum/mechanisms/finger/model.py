@@ -61,14 +61,10 @@ def checked(mech: object) -> Linkage:
 
     Examples
     --------
-    >>> checked(None)
-    Traceback (most recent call last):
-    ...
-    ValueError: mech must be a finger.Linkage, got None
+    >>> checked(Linkage(2.0, 3.0, 4.0, 1.0)).r3
+    4.0
     """
-    if not isinstance(mech, Linkage):
-        raise ValueError(f"mech must be a finger.Linkage, got {mech!r:.80}")
-    return mech
+    return _validate.instance(mech, Linkage, "mech", "a finger.Linkage")
 
 
 @dataclass(frozen=True)

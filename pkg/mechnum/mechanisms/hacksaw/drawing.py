@@ -87,8 +87,6 @@ def draw(ax: object, mech: Geometry, state: tuple, *, artists: dict | None = Non
     Examples
     --------
     >>> from mechnum.mechanisms.hacksaw import closed_form
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
     >>> parts = draw(ax, STUDY, (0.0, closed_form(STUDY, 0.0)))

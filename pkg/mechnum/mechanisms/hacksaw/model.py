@@ -80,8 +80,7 @@ def checked(mech: object, states=(), motor=()) -> list:
     ...
     ValueError: mech must be a hacksaw.Geometry, got None
     """
-    if not isinstance(mech, Geometry):
-        raise ValueError(f"mech must be a hacksaw.Geometry, got {mech!r:.80}")
+    _validate.instance(mech, Geometry, "mech", "a hacksaw.Geometry")
     arrays, batches = [], []
     for name, value, width in states:
         a = _validate.array(value, name)

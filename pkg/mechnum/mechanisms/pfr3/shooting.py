@@ -1,6 +1,6 @@
 """The 3PFR by RK4 shooting: the study's (109) with its unknowns (111) and (112) (11.4.1).
 
-Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.shooting.tip_jacobian`,
+Each rod is integrated from its clamp by RK4 (:func:`mechnum.rods.rod.tip_jacobian`,
 complex-step derivatives in the same sweep). The twelve equations are the study's (109): at
 each pin a moment-free tip at ``B_i``, and the platform's balance of forces and of moments
 about the origin, ``sum_i p_i x n_i - P x F - M = 0`` (its (110) prints rod 1 three times in

@@ -55,8 +55,6 @@ def draw(ax: object, mech: Geometry, state: tuple[ArrayLike, ArrayLike], *,
 
     Examples
     --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)

@@ -3,7 +3,7 @@
 :func:`~mechnum.mechanisms.rfr2.forward_shooting` (the direct problem, unknowns (102)) and
 :func:`~mechnum.mechanisms.rfr2.inverse_shooting` (the inverse problem, unknowns (99)) drive the
 tip moments to zero, both tips to ``P`` and ``n1 + n2`` to ``F`` by damped Newton with
-complex-step Jacobians (:func:`mechnum.rods.shooting.tip_jacobian`);
+complex-step Jacobians (:func:`mechnum.rods.rod.tip_jacobian`);
 :func:`~mechnum.mechanisms.rfr2.shooting_guess` gives their unknowns from a closed-form
 equilibrium, and :func:`shooting_system` is the residual and Jacobian they solve.
 """
@@ -131,7 +131,7 @@ def forward_shooting(mech: Mechanism, theta: ArrayLike, guess: ArrayLike, *,
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
     moments to zero, both tips to ``P`` and ``n1 + n2`` to ``F``, with the complex-step
-    Jacobian of :func:`mechnum.rods.shooting.tip_jacobian` (the study differentiates by forward
+    Jacobian of :func:`mechnum.rods.rod.tip_jacobian` (the study differentiates by forward
     differences with a step of ``1e-11``). The guess picks the equilibrium.
 
     Parameters
