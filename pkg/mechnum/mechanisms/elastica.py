@@ -8,8 +8,9 @@ one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward 
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
 loop, on the package's RK4 rod (:func:`mechnum.rods.rod.integrate`). :func:`draw` draws the
-chapter's other rod, a cantilever under a dead tip load (:class:`mechnum.rods.loading.DeadLoad`), in one
-of its equilibria, for :func:`mechnum.plotting.animate`.
+chapter's other rod, a cantilever under a dead tip load
+(:class:`mechnum.rods.loading.DeadLoad`), in one of its equilibria, for
+:func:`mechnum.plotting.animate`.
 
 The thesis's budget (its Section 14 and Tabla 9) is study material, not a method: it moves to
 the chapter's study page, and :func:`budget` is deprecated (it warns, and goes in release 0.3);
@@ -282,8 +283,8 @@ def draw(ax: object, mech: rods.DeadLoad, state: ArrayLike, *, artists: dict | N
          color: str = "C0") -> dict:
     """Draw a cantilever under a dead tip load in one equilibrium, or move a drawing to it.
 
-    The rod (its RK4 shape, :meth:`mechnum.rods.loading.DeadLoad.rod`), the clamp (a short bar across
-    the clamped end at the origin) and the tip force (an arrow of length :data:`ARROW` ``L``
+    The rod (its RK4 shape, :meth:`mechnum.rods.loading.DeadLoad.rod`), the clamp (a short bar
+    across the clamped end at the origin) and the tip force (an arrow of length :data:`ARROW` ``L``
     along the load's direction, its head at the tip). Labels, limits and titles are the
     caller's.
 
