@@ -13,6 +13,7 @@ import doctest
 import importlib
 import inspect
 import io
+import re
 import signal
 import sys
 import time
@@ -35,16 +36,13 @@ MODULES = ("continuation", "newton", "linear", "ode", "homotopy", "polynomials",
            "rods.regular", "rods.growing", "mechanisms.actuator", "mechanisms.elastica",
            "mechanisms.finger", "mechanisms.hacksaw", "mechanisms.hacksaw.equations",
            "mechanisms.pfr3", "mechanisms.prr3", "mechanisms.rfr2")
-LIMIT = 2.0  # seconds
-PACKAGE = mechnum.__path__[0]
-BAD = ("raw", "hang", "silent")
+LIMIT, PACKAGE, BAD = 2.0, mechnum.__path__[0], ("raw", "hang", "silent")  # LIMIT in seconds
 # Arguments that set an amount of work: -1, 0, a fraction and 10**9 (which a bound must refuse).
 WORK = {"nodes", "segments", "n_psi", "n_k", "n_starts", "check", "maxiter", "max_boxes",
         "steps", "max_steps", "halvings", "directions", "levels", "divisions", "count", "m",
         "samples", "frames", "n"}
-# Batches (with the shape of an empty one): emptied together, they must give an empty result.
-BATCH = {"poses": (0, 3), "inputs": None, "thetas": None, "points": None, "starts": None,
-         "params": None, "theta_in": None, "theta_out": None, "psi": None, "k_rel": None}
+# Batches (and those documented as shape (..., n)): emptied, they must give an empty result.
+BATCH = {"inputs", "thetas", "points", "starts", "params", "theta_in", "theta_out", "psi", "k_rel"}
 NOT_BATCHES = {"mechanisms.finger.synthesize"}  # a fit of at least 3 angle pairs
 # Arguments handed on untouched to the caller's own function (its business, not mechnum's).
 PASSED_ON = {("plotting.animate", "mech"), ("plotting.animate", "states")}
@@ -129,11 +127,13 @@ def families(name, value, default):
     return out | ({"negative": -1.0} if arr.ndim == 0 and float(arr) >= 0 else {})
 
 
-def emptied(arguments):
-    """``arguments`` with every batch emptied, or None if it has no batch."""
-    empty = {name: np.empty(BATCH[name] or (0,) + np.shape(value)[1:])
-             for name, value in arguments.items()
-             if name in BATCH and np.ndim(value) >= 1 and not isinstance(value, str)}
+def emptied(obj, arguments):
+    """``arguments`` with every batch emptied (a named one along its first axis, one documented
+    as ``shape (..., n)`` to shape ``(0, n)``), or None if there is no batch."""
+    empty = {name: np.empty((0,) + np.shape(value)[1:] if name in BATCH else
+                            (0,) + np.shape(value)[-1:]) for name, value in arguments.items()
+             if (name in BATCH or re.search(rf"^ *(\w+, )*{name}(, \w+)* :.*shape \(\.\.\.",
+                                            obj.__doc__ or "", re.M)) and np.ndim(value)}
     return dict(arguments, **empty) if empty else None
 
 
@@ -211,7 +211,7 @@ def fuzz(name, obj):
             default = "required" if parameter.default is parameter.empty else parameter.default
             trials += [(arg, family, dict(arguments, **{arg: bad}))
                        for family, bad in families(arg, value, default).items()]
-    if name not in NOT_BATCHES and (empty := emptied(arguments)) is not None:
+    if name not in NOT_BATCHES and (empty := emptied(obj, arguments)) is not None:
         trials.append(("batches", "empty batch", empty))
     return [(arg, family, "hang", NOT_RUN[name, arg, family]) if (name, arg, family) in NOT_RUN
             else (arg, family, *classify(*call(obj, trial, limit), family))
@@ -240,7 +240,6 @@ REPRODUCERS = [
     ("continuation.solve_path(lambda x, c: x ** 2 - c[:, None], [1.0, 2.0], [1.0, 1.0],"
      " lambda x, c: 2 * x[:, :, None])", r"Jacobian in x must be square, \(2, 2\)"),
     ("homotopy.track(None, [1.0 + 0j])", "homotopy must be a function"),
-    ("certify.ball('a')", "two real numbers"),
     ("certify.ball([1.0, 2.0])", "two real numbers"),
     ("certify.ball(np.complex128(1 + 1j))", "two real numbers"),
     ("certify.definite(None)", "hessian_ball must be a square"),
