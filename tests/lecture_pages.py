@@ -3,24 +3,15 @@
 A *lecture page* is a chapter entry of ``_toc.yml``, ``book/0N_<name>``; its *study page*,
 ``book/0N_<name>_study``, is nested under it with ``sections:``. CONTRIBUTING.md ("The lecture's
 budget") states the limits and how words and lines are counted; this module counts them.
-
-``CHAPTERS_SPLIT`` is the one switch of the checks that today's chapters fail because they are
-not yet split and rewritten: the budget (tests/test_lecture_budget.py) and the widths on the
-page (tests/test_browser.py). Until it is True those checks are expected to fail (xfail, not
-strict: one that passes is reported as XPASS); flip it when the chapters are merged.
 """
 
 import re
 from pathlib import Path
 
 import nbformat
-import pytest
 import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
-CHAPTERS_SPLIT = False
-until_split = pytest.mark.xfail(not CHAPTERS_SPLIT, reason="chapters are being split (issue 20)",
-                                strict=False)
 
 MAX_WORDS, MAX_CODE_LINES, MAX_LINE, MAX_SECONDS = 3000, 250, 76, 30.0
 CHAPTER = re.compile(r"book/0\d_\w+")

@@ -18,7 +18,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from lecture_pages import MAX_LINE, chapter_pages, lectures, until_split
+from lecture_pages import MAX_LINE, lectures
 
 BUILT = os.environ.get("MECHNUM_BUILT_HTML")
 CHROMIUM = os.environ.get("MECHNUM_CHROMIUM") or shutil.which("chromium")
@@ -148,31 +148,23 @@ def test_page_loads_clean_renders_its_tex_and_fits_the_window(measured, path):
     assert width[0] <= width[1], f"the page is {width[0]} px wide in a {width[1]} px window"
 
 
-def until_split_if_a_chapter(paths):
-    """The pages as test parameters, a chapter's page marked to wait for the split chapters
-    (``lecture_pages.until_split``)."""
-    chapters = {f"{page}.html" for page in chapter_pages()}
-    return [pytest.param(path, id=name(path), marks=[until_split] * (name(path) in chapters))
-            for path in paths]
-
-
 def lecture_pages():
     return [path for path in pages() if name(path).removesuffix(".html") in lectures()]
 
 
-@pytest.mark.parametrize("path", until_split_if_a_chapter(pages()))
+@pytest.mark.parametrize("path", pages(), ids=name)
 def test_display_equations_fit_their_column(measured, path):
     too_wide = measured(path)["equations"]
     assert not too_wide, f"equations wider than their column (px): {too_wide}"
 
 
-@pytest.mark.parametrize("path", until_split_if_a_chapter(lecture_pages()))
+@pytest.mark.parametrize("path", lecture_pages(), ids=name)
 def test_lecture_tables_fit_their_column(measured, path):
     too_wide = measured(path)["tables"]
     assert not too_wide, f"tables wider than their column (px): {too_wide}"
 
 
-@pytest.mark.parametrize("path", until_split_if_a_chapter(lecture_pages()))
+@pytest.mark.parametrize("path", lecture_pages(), ids=name)
 def test_lecture_code_cells_need_no_sideways_scrolling(measured, path):
     too_wide = measured(path)["code"]
     assert not too_wide, f"code cells wider than their column (px): {too_wide}"

@@ -5,7 +5,7 @@ characters (on its study page too), and, where its execution was measured, at mo
 The execution time is the one strict nbval or the book build measured (``_build/execution``,
 written by ``make notebooks`` and ``make book``) for the notebook as it is now; ``make test``
 runs this module again after strict nbval, so there it is always measured (the preface promises
-it). The other checks, which today's chapters fail, wait for ``lecture_pages.CHAPTERS_SPLIT``.
+it).
 """
 
 import sys
@@ -22,7 +22,6 @@ from lecture_pages import (
     count_words,
     lectures,
     read_markdown,
-    until_split,
 )
 
 sys.path.insert(0, str(ROOT / "book" / "_ext"))
@@ -35,7 +34,6 @@ def test_the_table_of_contents_has_the_seven_chapters():
     assert [page[:7] for page in LECTURES] == [f"book/0{n}" for n in range(1, 8)]
 
 
-@until_split
 @pytest.mark.parametrize("lecture", LECTURES)
 def test_every_lecture_has_its_study_page_nested_under_it(lecture):
     study = f"{lecture}_study"
@@ -43,7 +41,6 @@ def test_every_lecture_has_its_study_page_nested_under_it(lecture):
     assert (ROOT / f"{study}.ipynb").exists()
 
 
-@until_split
 @pytest.mark.parametrize("lecture", LECTURES)
 def test_lecture_prose_and_code_are_within_the_budget(lecture):
     counted = budget(lecture)
@@ -51,7 +48,6 @@ def test_lecture_prose_and_code_are_within_the_budget(lecture):
     assert counted["code lines"] <= MAX_CODE_LINES, f"{counted['code lines']} lines of code"
 
 
-@until_split
 @pytest.mark.parametrize("page", chapter_pages())
 def test_every_line_of_code_fits_the_column(page):
     long = budget(page)["long lines"]

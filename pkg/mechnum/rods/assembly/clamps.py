@@ -24,16 +24,28 @@ def chart_from_clamps(EI, L, clamp_angle, clamp_moment, force):
     -------
     chart : ndarray, shape (..., 2 r)
         ``(psi_i, t_i)``; ``t_i`` is NaN for a rod whose ``|k_rel|`` rounds to 0 or 1 from its
-        clamp state (a rod straight to rounding, or in tension beyond the chart).
+        clamp state (a rod straight to rounding, or in tension beyond the chart), or whose
+        force lies along its clamped tangent to rounding (``psi`` 0 or ``2 pi``, the chart's
+        edge).
     modes : ndarray of int, shape (..., r)
         0 where the clamp state gives none (a rod straight to rounding).
+
+    Examples
+    --------
+    A straight rod pulled along its tangent, its clamp moment and the force's normal
+    component round-off: ``psi`` rounds to ``2 pi``, and the rod has no chart.
+
+    >>> chart, modes = chart_from_clamps(1.0, 1.0, [0.0], [-2.5e-17], [[0.2, -5.1e-17]])
+    >>> bool(chart[0] == 2 * np.pi), bool(np.isnan(chart[1]))
+    (True, True)
     """
     c, s = np.cos(clamp_angle), np.sin(clamp_angle)
     force = np.asarray(force, dtype=float)
     local = np.stack((c * force[..., 0] + s * force[..., 1],
                       -s * force[..., 0] + c * force[..., 1]), axis=-1)
     psi, k_rel, modes, _ = elliptic_parameters(EI, L, clamp_moment, local, outside="nan")
-    inside = (k_rel != 0) & (np.abs(k_rel) < 1)     # a rod straight to rounding has no chart
+    # a rod straight to rounding, or on the chart's edge psi = 0 (2 pi), has no chart
+    inside = (k_rel != 0) & (np.abs(k_rel) < 1) & (psi > 0) & (psi < regular.TWO_PI)
     chart = np.full(psi.shape[:-1] + (2 * psi.shape[-1],), np.nan)
     chart[..., 0::2] = psi
     chart[..., 1::2][inside] = regular.t_from_k_rel(psi[inside], k_rel[inside])
