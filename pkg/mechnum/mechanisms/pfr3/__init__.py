@@ -15,14 +15,16 @@ are pinned to the vertices of a rigid triangular platform, which carries a force
 * :mod:`~mechnum.mechanisms.pfr3.paths`: trajectories by continuation, the determinants of the
   direct and inverse problems, maps over the plane, singularity curves
   (:func:`singular_points`) and the workspace's edge (:func:`workspace`);
+* :mod:`~mechnum.mechanisms.pfr3.atlases`: :func:`atlas`, the equilibria and the stable ones
+  over a grid of slider inputs on a plane (:func:`plane`), and the folds;
 * :mod:`~mechnum.mechanisms.pfr3.study`: the study's published numbers, the inputs they belong
   to, and its own residual; :func:`reproduce` gives the registry's values;
 * :mod:`~mechnum.mechanisms.pfr3.drawing`: :func:`shapes` and :func:`draw`.
 
 The mechanism protocol, the same verbs as the 2RFR's, the mechanism first: :func:`forward`
-(with ``status`` and ``stable``), :func:`inverse`, :func:`singular_points`, :func:`workspace`
-and ``draw(ax, mech, state, *, artists=None)``. The shared parts (results, searches, paths,
-maps) are :mod:`mechnum.rods.assembly`'s; the study's constants
+(with ``status`` and ``stable``), :func:`inverse`, :func:`singular_points`, :func:`workspace`,
+:func:`atlas` and ``draw(ax, mech, state, *, artists=None)``. The shared parts (results,
+searches, paths, maps) are :mod:`mechnum.rods.assembly`'s; the study's constants
 :mod:`mechnum.mechanisms.thesis`'s.
 """
 
@@ -35,6 +37,7 @@ from mechnum.mechanisms.pfr3.analysis import (
     strain,
     verify,
 )
+from mechnum.mechanisms.pfr3.atlases import atlas, plane
 from mechnum.mechanisms.pfr3.certified import certify_forward
 from mechnum.mechanisms.pfr3.drawing import draw, shapes
 from mechnum.mechanisms.pfr3.equilibria import (
@@ -93,11 +96,12 @@ from mechnum.mechanisms.pfr3.study import (
 __all__ = [
     "LAYOUT", "SHOOTING_EXAMPLE", "SHOOTING_POSE", "TABLE2", "TABLE2_LAMBDAS", "TABLE8",
     "TABLE8_LAMBDAS", "TABLE8_PUBLISHED", "Equilibria", "Mechanism", "Path", "Shooting",
-    "certify_forward", "chart_from_thesis", "check_closure", "clamps", "crossings",
+    "atlas", "certify_forward", "chart_from_thesis", "check_closure", "clamps", "crossings",
     "digit_matches", "draw",
     "forward", "forward_elliptic", "forward_path", "forward_shooting", "forward_system",
     "full_system", "index", "inverse", "inverse_map", "inverse_path", "inverse_sampler",
-    "inverse_shooting", "jacobians", "orientation", "pins", "pose_of_tips", "recover_inputs",
+    "inverse_shooting", "jacobians", "orientation", "pins", "plane", "pose_of_tips",
+    "recover_inputs",
     "reproduce", "resolutions", "sampler", "second_variation", "shapes", "shooting_guess",
     "shooting_system", "singular_points", "stability", "strain", "thesis_from_chart",
     "thesis_residual", "verify", "within_study_reach", "workspace", "workspace_edge",

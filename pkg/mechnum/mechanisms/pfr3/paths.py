@@ -224,14 +224,27 @@ def forward_path(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
         X0 = shooting.shooting_guess(mech, lambdas[0], z0, modes)
         result = assembly.follow(fun, jac, lambdas, X0, tol=SHOOTING_TOL, resume=resume)
         return _shooting_path(mech, result, lambdas, "pose", nodes, rigid_end)
-    fun, jac = assembly.continuation_system(model.full_system(mech, modes), model.LAYOUT,
-                                            "inputs")
     tip = model.rods(mech, lambdas[0], z0, modes, jacobian=False)[0]
     u0 = np.concatenate((z0, model.pose_of_tips(mech, tip)), axis=-1)
-    result = assembly.follow(fun, jac, lambdas, u0, tol=assembly.PATH_TOL,
-                             maxiter=assembly.PATH_MAXITER, resume=resume, chart=6,
-                             domain=lambda u: model.in_chart(u[:, :6]))
+    result = forward_trace(mech, modes, resume)(lambdas, u0)
     return _closed_form(mech, modes, result, lambdas, "inputs")
+
+
+def forward_trace(mech: model.Mechanism, modes: np.ndarray, resume: bool = False, *,
+                  tol: float = assembly.PATH_TOL, criterion: str = "residual"):
+    """``trace(lambdas, u0)``: the closed form followed along the sliders
+    (:func:`mechnum.rods.assembly.follow`, with ``resume``, ``tol`` and ``criterion``),
+    ``u = (z, pose)``: the continuation of :func:`forward_path` and of the atlas (which
+    abandons a path at its first failure)."""
+    fun, jac = assembly.continuation_system(model.full_system(mech, modes), model.LAYOUT,
+                                            "inputs")
+
+    def trace(lambdas, u0):
+        return assembly.follow(fun, jac, lambdas, u0, tol=tol, maxiter=assembly.PATH_MAXITER,
+                               resume=resume, chart=6, criterion=criterion,
+                               domain=lambda u: model.in_chart(u[:, :6]))
+
+    return trace
 
 
 def inverse_map(mech: model.Mechanism, x: ArrayLike, y: ArrayLike, phi: float, pose: ArrayLike,

@@ -29,7 +29,7 @@ The residual is dimensionless: positions over ``L``, forces over ``EI / L**2``.
 
 The mechanism protocol (the same verbs as the 3PFR's, the mechanism first): :func:`forward`
 (every equilibrium of given motor angles, with ``status`` and ``stable``), :func:`inverse` (of a
-given end effector), :func:`singular_points`, :func:`workspace`, and
+given end effector), :func:`singular_points`, :func:`workspace`, :func:`atlas`, and
 ``draw(ax, mech, state, *, artists=None)``. The shared parts (results, searches, paths, maps)
 are :mod:`mechnum.rods.assembly`'s; the study's constants :mod:`mechnum.mechanisms.thesis`'s.
 
@@ -53,6 +53,8 @@ The package's modules:
 * :mod:`~mechnum.mechanisms.rfr2.continuation`: equilibria followed along paths
   (:func:`inverse_path`, :func:`forward_path`, :func:`forward_map`, :func:`workspace`,
   :func:`singular_points`, :class:`Path`);
+* :mod:`~mechnum.mechanisms.rfr2.atlases`: :func:`atlas`, the equilibria and the stable ones
+  over a grid of motor angles, and the folds where their count changes;
 * :mod:`~mechnum.mechanisms.rfr2.trajectories`: the study's paths (:func:`straight_path`,
   :func:`circles`, :func:`rectangles`, :func:`path`);
 * :mod:`~mechnum.mechanisms.rfr2.drawing`: :func:`shapes` and :func:`draw`;
@@ -74,6 +76,7 @@ from mechnum.mechanisms.rfr2.analysis import (
     strain,
     verify,
 )
+from mechnum.mechanisms.rfr2.atlases import atlas
 from mechnum.mechanisms.rfr2.certified import certify_forward
 from mechnum.mechanisms.rfr2.continuation import (
     Path,
@@ -131,7 +134,7 @@ __all__ = [
     "DIAMETER", "EI", "EIGEN_SEGMENTS", "IVP_RTOL", "LAYOUT", "LENGTH", "SEGMENTS", "SHAPE_NODES",
     "SHOOTING_TOL", "START_T", "STUDY_NODES", "STUDY_PATHS", "TABLE7", "TABLE7_PUBLISHED",
     "TABLE7_THETA", "YOUNG", "Equilibria", "Jacobians", "Mechanism", "Path", "Shooting",
-    "broadcast", "certify_forward", "chart_from_thesis", "circles", "crossings", "draw",
+    "atlas", "broadcast", "certify_forward", "chart_from_thesis", "circles", "crossings", "draw",
     "eigenvalues", "forward",
     "forward_elliptic", "forward_map", "forward_path", "forward_shooting", "forward_system",
     "full_system", "in_chart", "index", "inverse", "inverse_path", "inverse_shooting",

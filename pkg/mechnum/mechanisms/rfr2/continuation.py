@@ -199,6 +199,22 @@ def forward_path(mech: Mechanism, thetas: ArrayLike, chart: ArrayLike, modes: Ar
     return _closed_form(mech, modes, trace, thetas, "inputs")
 
 
+def grid_trace(mech: Mechanism, modes: np.ndarray, *, tol: float = assembly.PATH_TOL,
+               criterion: str = "residual"):
+    """``trace(params, u0)``: the closed form followed along the motor angles, every path
+    abandoned at its first failure (:func:`mechnum.rods.assembly.follow`, ``resume=False``,
+    with ``tol`` and ``criterion``), ``u = (chart, P)``: the continuation of the maps
+    (:func:`forward_map`, the atlas)."""
+    fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "inputs")
+
+    def trace(params, u0):
+        return assembly.follow(fun, jac, params, u0, tol=tol, maxiter=assembly.PATH_MAXITER,
+                               resume=False, chart=4, domain=lambda u: in_chart(u[:, :4]),
+                               criterion=criterion)
+
+    return trace
+
+
 def forward_map(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, theta: ArrayLike,
                 chart: ArrayLike, modes: ArrayLike = (1, 1)) -> Path:
     """An equilibrium followed over the grid ``theta1 x theta2`` of motor angles (rad).
@@ -240,13 +256,7 @@ def forward_map(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, theta: Ar
     grid = np.stack(np.meshgrid(theta1, theta2, indexing="ij"), axis=-1)
     theta, z0 = broadcast(_validate.array(theta, "theta", shape=(2,)),
                           _validate.array(chart, "chart", shape=(4,)))
-    fun, jac = assembly.continuation_system(full_system(mech, modes), LAYOUT, "inputs")
-
-    def trace(params, u0):
-        return assembly.follow(fun, jac, params, u0, tol=assembly.PATH_TOL,
-                               maxiter=assembly.PATH_MAXITER, resume=False, chart=4,
-                               domain=lambda u: in_chart(u[:, :4]))
-
+    trace = grid_trace(mech, modes)
     if not grid.size:
         return _closed_form(mech, modes, assembly.follow_grid(trace, grid, (0, 0), np.zeros(6)),
                             grid, "inputs")

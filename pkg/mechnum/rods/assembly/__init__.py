@@ -25,7 +25,11 @@ Here are, once for every such mechanism:
   :func:`follow_grid` (a map over a grid, from a neighbour), :func:`workspace_edge` (where a
   branch ends on rays), :func:`jacobians` and :func:`zero_crossings` (singular points on a map);
 * :func:`peak_moment`, the largest bending moment along a clamped-pinned rod, for the strain
-  that decides whether a rod can be built.
+  that decides whether a rod can be built;
+* the atlas (:func:`atlas_of`, :class:`Atlas`, :func:`draw_atlas`): how many equilibria, and
+  how many stable ones, over a grid of the inputs, by continuation and all-solutions searches
+  only where continuation cannot vouch for the count, in parallel (:mod:`parallel`: joblib,
+  or a dask cluster).
 
 Each mechanism (:mod:`mechnum.mechanisms.rfr2`, :mod:`mechnum.mechanisms.pfr3`) defines its
 equations and drawing and calls these; the two never import each other.
@@ -33,10 +37,11 @@ equations and drawing and calls these; the two never import each other.
 The package's modules, whose names are all importable from here:
 :mod:`~mechnum.rods.assembly.checks` (the bounds on the work,
 :data:`~mechnum.rods.assembly.checks.MAX_NODES` and the others, and the checks of the input),
-``results`` (the result classes), ``drivers`` (searches, paths, maps), ``drawing`` and
-``clamps`` (rods known by their clamp states).
+``results`` (the result classes), ``drivers`` (searches, paths, maps), ``drawing``,
+``clamps`` (rods known by their clamp states), ``atlas`` and ``parallel``.
 """
 
+from mechnum.rods.assembly.atlas import ANCHOR_SPACING, Atlas, AtlasProblem, atlas_of
 from mechnum.rods.assembly.checks import (
     MAX_CHECK,
     MAX_DENSE_SEGMENTS,
@@ -58,7 +63,7 @@ from mechnum.rods.assembly.checks import (
     points,
 )
 from mechnum.rods.assembly.clamps import chart_from_clamps, peak_moment
-from mechnum.rods.assembly.drawing import draw_parts, drawing_state
+from mechnum.rods.assembly.drawing import draw_atlas, draw_parts, drawing_state, fold_segments
 from mechnum.rods.assembly.drivers import (
     continuation_system,
     follow,
@@ -87,6 +92,7 @@ from mechnum.rods.assembly.results import (
 )
 
 __all__ = [
+    "ANCHOR_SPACING", "Atlas", "AtlasProblem", "atlas_of", "draw_atlas", "fold_segments",
     "MAX_CHECK", "MAX_DENSE_SEGMENTS", "MAX_DIRECTIONS", "MAX_LEVELS", "MAX_NODES", "MAX_POINTS",
     "MAX_RAY_STEPS", "MAX_SEGMENTS", "MAX_STARTS", "PATH_MAXITER", "PATH_TOL", "STATUS_DTYPE",
     "Equilibria", "Layout", "Path", "Shooting", "State", "Trace", "chart_from_clamps",

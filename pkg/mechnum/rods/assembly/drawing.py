@@ -1,5 +1,6 @@
 """What every mechanism built of rods needs to draw itself: the state it is given, checked,
-and its parts drawn, or moved (one frame of an animation)."""
+and its parts drawn, or moved (one frame of an animation); and its atlas (:func:`draw_atlas`),
+the stable count over a grid of its inputs with the folds drawn on it."""
 
 from __future__ import annotations
 
@@ -68,4 +69,103 @@ def draw_parts(ax, parts, arrow, artists, arrow_color):
             artist.set_data(x, y)
     if arrow is not None:
         artists[-1].xy, artists[-1].xyann = tuple(arrow[1]), tuple(arrow[0])
+    return artists
+
+
+def _edges(centres: np.ndarray) -> np.ndarray:
+    """Cell edges around grid ``centres``: the midpoints, and half a step beyond each end."""
+    if len(centres) == 1:
+        return centres[0] + np.array([-0.5, 0.5])
+    middle = 0.5 * (centres[1:] + centres[:-1])
+    return np.concatenate(([2 * centres[0] - middle[0]], middle, [2 * centres[-1] - middle[-1]]))
+
+
+def fold_segments(values: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The cell boundaries between neighbouring grid points whose ``values`` differ, as
+    segments ``(k, 2, 2)`` (the cells of grid point ``(i, j)`` centred at ``(x[i], y[j])``).
+
+    Examples
+    --------
+    >>> fold_segments(np.array([[0, 1], [0, 1]]), np.array([0.0, 1.0]), np.array([0.0, 1.0]))
+    array([[[-0.5,  0.5],
+            [ 0.5,  0.5]],
+    <BLANKLINE>
+           [[ 0.5,  0.5],
+            [ 1.5,  0.5]]])
+    """
+    ex, ey = _edges(x), _edges(y)
+    i, j = np.nonzero(values[1:] != values[:-1])           # between (i, j) and (i + 1, j)
+    across = np.stack((np.column_stack((ex[i + 1], ey[j])),
+                       np.column_stack((ex[i + 1], ey[j + 1]))), axis=1)
+    i, j = np.nonzero(values[:, 1:] != values[:, :-1])     # between (i, j) and (i, j + 1)
+    along = np.stack((np.column_stack((ex[i], ey[j + 1])),
+                      np.column_stack((ex[i + 1], ey[j + 1]))), axis=1)
+    return np.concatenate((across, along))
+
+
+def draw_atlas(ax, atlas, *, trajectory=None, searched: bool = False, cmap: str = "viridis",
+               fold_color: str = "black", colorbar: bool = True) -> dict:
+    """Draw an atlas: its stable count as a map, the folds on it, optionally a trajectory.
+
+    Each grid point is a cell coloured by its number of stable equilibria; the folds (cell
+    edges across which the stable count changes: where a stable assembly appears, disappears
+    or loses stability) are drawn as lines. A trajectory of inputs is drawn over the map, with
+    a cross wherever it passes into a cell of another stable count: where, moving along it,
+    the mechanism may have to jump (it does when the assembly it holds is the one that ends).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    atlas : mechnum.rods.assembly.Atlas
+    trajectory : array_like, shape (n, k), optional
+        Inputs along a path (the atlas's inputs' units: rad, m), projected on its plane.
+    searched : bool, optional
+        Also mark the points where the full search ran.
+    cmap, fold_color : str, optional
+    colorbar : bool, optional
+        Add a colour bar of the stable counts.
+
+    Returns
+    -------
+    dict
+        The artists: "map", "folds", and "colorbar", "searched", "trajectory", "crossings"
+        where drawn.
+    """
+    from matplotlib.axes import Axes
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import BoundaryNorm
+
+    check_type(ax, Axes, "ax")
+    x, y = (np.asarray(a, dtype=float) * atlas.scale for a in atlas.axes)
+    top = int(atlas.stable_counts.max(initial=0))
+    norm = BoundaryNorm(np.arange(top + 2) - 0.5, ncolors=256)
+    artists = {}
+    if x.size and y.size:
+        artists["map"] = ax.pcolormesh(_edges(x), _edges(y), atlas.stable_counts.T, cmap=cmap,
+                                       norm=norm)
+        artists["folds"] = ax.add_collection(LineCollection(
+            fold_segments(atlas.stable_counts, x, y), colors=fold_color, linewidths=1.2))
+        if colorbar:
+            artists["colorbar"] = ax.figure.colorbar(artists["map"], ax=ax,
+                                                     ticks=np.arange(top + 1),
+                                                     label="stable assemblies")
+    if _validate.flag(searched, "searched") and atlas.searched.any():
+        i, j = np.nonzero(atlas.searched)
+        artists["searched"] = ax.plot(x[i], y[j], ".", color="white", ms=3,
+                                      label="full search")[0]
+    if trajectory is not None:
+        path = _validate.array(trajectory, "trajectory", ndim=2)
+        if path.shape[1] != atlas.inputs.shape[-1]:
+            raise ValueError(f"trajectory must have shape (n, {atlas.inputs.shape[-1]}) (the "
+                             f"inputs), got shape {path.shape}")
+        xy = atlas.coordinates(path) * atlas.scale
+        artists["trajectory"] = ax.plot(xy[:, 0], xy[:, 1], color="white", lw=1.5)[0]
+        if x.size and y.size:
+            cell = (np.abs(xy[:, :1] - x).argmin(axis=1), np.abs(xy[:, 1:] - y).argmin(axis=1))
+            change = np.flatnonzero(np.diff(atlas.stable_counts[cell]) != 0)
+            mid = 0.5 * (xy[change] + xy[change + 1])
+            artists["crossings"] = ax.plot(mid[:, 0], mid[:, 1], "x", color="red", ms=7,
+                                           mew=2)[0]
+    ax.set_xlabel(atlas.labels[0])
+    ax.set_ylabel(atlas.labels[1])
     return artists

@@ -131,7 +131,8 @@ def shoot(fun, jac, guess, known, *, width: int, tol: float, maxiter: int):
     return res, known
 
 
-def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, chart=0):
+def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, chart=0,
+           criterion="residual"):
     """Follow a solution of ``fun(u, p) = 0`` along ``params`` (:func:`mechnum.newton.solve_path`),
     and keep it on its branch.
 
@@ -152,8 +153,10 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
         The parameters of every point, for one path or for ``batch`` paths; ``steps`` may be 0.
     u0 : ndarray, shape (n,) or (batch, n)
         A solution at (or near) ``params[0]``.
-    tol, maxiter, domain, resume
-        As in :func:`mechnum.newton.solve_path`.
+    tol, maxiter, domain, resume, criterion
+        As in :func:`mechnum.newton.solve_path` (the residual criterion by default; the step
+        criterion, relative, where the residual's round-off floor varies from point to point,
+        as with rods in strong tension).
     chart : int, optional
         Leading unknowns that are a chart ``(psi_i, t_i)``, whose ``t`` signs must persist.
 
@@ -182,7 +185,7 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     # test is off: near a fold of the mechanism (the workspace's edge) the speed grows without
     # bound along the branch itself, and a false jump would cut the rest of the path
     res = newton.solve_path(f, params, u0, j, tol=tol, maxiter=maxiter, domain=domain,
-                            resume=resume, max_jump=None)
+                            resume=resume, max_jump=None, criterion=criterion)
     ok = np.asarray(res.converged, dtype=bool)
     status = np.asarray(getattr(res, "status", np.where(ok, "converged", "lost")), STATUS_DTYPE)
     x, single = res.x, u0.ndim == 1
