@@ -761,3 +761,11 @@ def test_reproduce_recomputes_the_studys_numbers():
     assert [values[f"iterations, {s} stage at rest"] for s in ("position", "velocity",
                                                                 "acceleration")] == \
         [r.iterations for r in stages]
+
+
+def test_the_evaluators_broadcast_a_batch_of_motor_rates():
+    # it raised numpy's "all the input arrays must have same number of dimensions" before
+    x, (theta2, _, alpha2) = hs.closed_form(hs.STUDY, 1.0), hs.motor(1.0)
+    each = [hs.residual(hs.STUDY, x, theta2, w, alpha2) for w in (-1.0, 0.0, 2.0)]
+    np.testing.assert_array_equal(
+        hs.residual(hs.STUDY, x, theta2, np.array([-1.0, 0.0, 2.0]), alpha2), each)

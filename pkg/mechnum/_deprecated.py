@@ -53,8 +53,8 @@ def mech_at(position: int, mech_type: type) -> Callable[[tuple, dict], bool]:
     ``position``, or, with fewer positional arguments, ``mech`` by keyword.
 
     Anything else there (a number, an array, a tuple of them) is the first argument of the old
-    form, which had the mechanism later. A dataclass of another type, or None, counts as the
-    new form, so that its check names the wrong mechanism instead of misreading it.
+    form, which had the mechanism later. A dataclass of another type, None or a string counts as
+    the new form, so that its check names the wrong mechanism instead of misreading it.
 
     Examples
     --------
@@ -67,7 +67,8 @@ def mech_at(position: int, mech_type: type) -> Callable[[tuple, dict], bool]:
         if len(args) <= position:
             return "mech" in kwargs
         first = args[position]
-        return first is None or isinstance(first, mech_type) or dataclasses.is_dataclass(first)
+        return first is None or isinstance(first, (mech_type, str)) or \
+            dataclasses.is_dataclass(first)
     return is_new
 
 

@@ -187,6 +187,47 @@ def maxiter(value: object, name: str = "maxiter", minimum: int = 1,
     return out
 
 
+def broadcast(**arrays: np.ndarray) -> tuple:
+    """The shape that ``arrays`` (checked arrays, by name) broadcast to.
+
+    Examples
+    --------
+    >>> broadcast(psi=np.zeros(2), k_rel=np.zeros((4, 1)))
+    (4, 2)
+    >>> broadcast(psi=np.zeros(2), k_rel=np.zeros(3))
+    Traceback (most recent call last):
+    ...
+    ValueError: the shapes of psi (2,) and k_rel (3,) do not broadcast to one shape
+    """
+    try:
+        return np.broadcast_shapes(*(np.shape(a) for a in arrays.values()))
+    except ValueError:
+        shapes = " and ".join(f"{name} {np.shape(a)}" for name, a in arrays.items())
+        raise ValueError(f"the shapes of {shapes} do not broadcast to one shape") from None
+
+
+def modes(value: object, name: str = "modes", maximum: int | None = None) -> list:
+    """Distinct buckling modes (or other counts >= 1), from any iterable of integers.
+
+    Examples
+    --------
+    >>> modes((1, 2.0))
+    [1, 2]
+    >>> modes(None)
+    Traceback (most recent call last):
+    ...
+    ValueError: modes must be an iterable of distinct integers >= 1, got None
+    """
+    try:
+        out = [maxiter(m, "mode", maximum=maximum) for m in value]
+    except TypeError:
+        out = None
+    if out is None or len(set(out)) != len(out):
+        raise ValueError(f"{name} must be an iterable of distinct integers >= 1, "
+                         f"got {shown(value)}")
+    return out
+
+
 def flag(value: object, name: str) -> bool:
     """A yes/no option: a ``bool`` (or numpy's), nothing that is merely truthy.
 
@@ -202,6 +243,24 @@ def flag(value: object, name: str) -> bool:
     if not isinstance(value, (bool, np.bool_)):
         raise ValueError(f"{name} must be True or False, got {shown(value)}")
     return bool(value)
+
+
+def function(value: object, name: str, *, optional: bool = False) -> object:
+    """``value`` if it is callable (or None, when ``optional``): a residual, a Jacobian, ...
+
+    Examples
+    --------
+    >>> function(abs, "fun") is abs
+    True
+    >>> function("x**2", "fun")
+    Traceback (most recent call last):
+    ...
+    ValueError: fun must be a function (callable), got 'x**2'
+    """
+    if not (callable(value) or optional and value is None):
+        raise ValueError(f"{name} must be a function (callable){' or None' if optional else ''}"
+                         f", got {shown(value)}")
+    return value
 
 
 def rng(value: object, name: str = "rng") -> np.random.Generator:

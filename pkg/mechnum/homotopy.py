@@ -171,6 +171,7 @@ def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.
     >>> end.s, np.round(end.x.real, 12).tolist(), end.status
     (1.0, [2.0], 'converged')
     """
+    _validate.function(homotopy, "homotopy")
     tol = _validate.tolerance(tol)
     max_steps = _validate.maxiter(max_steps, "max_steps", maximum=MAX_STEPS_LIMIT)
     h = _validate.tolerance(h0, "h0")

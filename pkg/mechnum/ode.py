@@ -122,6 +122,7 @@ def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
     >>> np.round(rk4(lambda s, y: 1j * y, [1.0], [0.0, 0.1])[-1], 6)    # exp(0.1 i)
     array([0.995004+0.099833j])
     """
+    _validate.function(f, "f")
     y = np.asarray(y0)
     if y.dtype.kind not in "biufc":
         raise ValueError(f"y0 must be a real or complex numeric array, got dtype {y.dtype}")
@@ -221,6 +222,7 @@ def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLik
     >>> bool(np.abs(sol.y[:, 0] - np.sin(s)).max() < 1e-7), sol.newton.iterations
     (True, 1)
     """
+    _validate.function(f, "f"), _validate.function(bc, "bc")
     nodes = _nodes(s)
     guess = _validate.array(y_guess, "y_guess", shape=(len(nodes), None))
     n = guess.shape[1]

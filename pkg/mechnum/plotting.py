@@ -120,6 +120,8 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
     >>> plt.close(fig)
     """
     check_axes(ax)
+    if not isinstance(shapes, dict):
+        raise ValueError(f"shapes must be a dict {{name: (points, style)}}, got {shapes!r:.80}")
     if artists is not None and (not isinstance(artists, dict) or set(artists) != set(shapes)):
         raise ValueError(f"artists must be the dict that an earlier draw returned, with the "
                          f"parts {sorted(shapes)}, got {artists!r:.80}")

@@ -156,12 +156,17 @@ def below(value: object, bound: float) -> str:
     '< 1e-14'
     >>> below([np.zeros(3), np.full(6, 1e-30)], 1e-25), below(0.04, 0.5), below(2e-6, 1e-5)
     ('< 1e-25', '< 0.5', '< 1e-5')
+    >>> below(3e-14 + 4e-14j, 1e-13)    # the magnitude of a complex number
+    '< 1e-13'
     """
     bound = _number(bound, "bound")
     if not (np.isfinite(bound) and bound > 0):
         raise ValueError(f"bound must be a finite positive number, got {bound!r}")
     parts = value if isinstance(value, (list, tuple)) else [value]
-    largest = max(np.max(np.abs(np.asarray(p, dtype=float)), initial=0.0) for p in parts)
+    try:
+        largest = max(np.max(np.abs(np.asarray(p)).astype(float), initial=0.0) for p in parts)
+    except (TypeError, ValueError):
+        raise ValueError(f"value must be numbers (arrays), got {value!r:.80}") from None
     if not largest < bound:
         raise AssertionError(f"{largest!r} is not below {bound!r}")
     mantissa, _, exponent = f"{bound:g}".partition("e")
@@ -169,6 +174,8 @@ def below(value: object, bound: float) -> str:
 
 
 def _read(path, columns):
+    if not isinstance(path, (str, PathLike)):
+        raise ValueError(f"path must be a file name (str or path), got {path!r:.80}")
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.DictReader(f)
         if tuple(reader.fieldnames or ()) != columns:
@@ -246,6 +253,11 @@ def check_row(row: dict, value: float | None) -> None:
     ...
     AssertionError: T: published 1.942 agrees with 1.9416259, yet the verdict is not-reproduced
     """
+    if not isinstance(row, dict):
+        raise ValueError(f"row must be a registry row (a dict), got {row!r:.80}")
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
+    value = None if value is None else _number(value)
     name, computed, published = row["quantity"], row["computed"], row["published"]
     if not computed:
         if value is not None:
@@ -337,6 +349,8 @@ def reproduction_table(chapter: str, values: dict,
 
 def _checked_rows(chapter, values, path):
     """The registry rows of ``chapter``, each checked by :func:`check_row` against ``values``."""
+    if not isinstance(values, dict):
+        raise ValueError(f"values must be a dict {{quantity: value}}, got {values!r:.80}")
     rows = read_registry(path, chapter)
     if not rows:
         raise ValueError(f"the registry {path} has no row for the chapter {chapter!r}")

@@ -25,6 +25,8 @@ import math
 import numpy as np
 from flint import acb, arb
 
+from mechnum._validate import shown
+
 PI = arb.pi()
 
 
@@ -37,8 +39,14 @@ def ball(lo, hi=None):
     >>> b.contains(arb(1.0)), b.contains(arb(2.0)), b.contains(arb(2.01))
     (True, True, False)
     """
-    lo = float(lo)
-    hi = lo if hi is None else float(hi)
+    try:
+        if np.iscomplexobj(lo) or np.iscomplexobj(hi):
+            raise TypeError
+        lo = float(lo)
+        hi = lo if hi is None else float(hi)
+    except (TypeError, ValueError):
+        raise ValueError(f"an interval needs two real numbers lo <= hi, got lo={shown(lo)}, "
+                         f"hi={shown(hi)}") from None
     if not lo <= hi:
         raise ValueError(f"an interval needs lo <= hi, got [{lo!r}, {hi!r}]")
     if lo == hi:

@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from flint import arb
 
+from mechnum import _validate
+from mechnum._validate import shown
 from mechnum.certify import krawczyk as kr
 from mechnum.errors import MechnumError
 
@@ -347,6 +349,10 @@ def verify(certificate, residual, jacobian, exclude=None):
     >>> v.count, v.complete
     (2, True)
     """
+    if not isinstance(certificate, Certificate):
+        raise ValueError(f"certificate must be a Certificate, got {shown(certificate)}")
+    _validate.function(residual, "residual"), _validate.function(jacobian, "jacobian")
+    _validate.function(exclude, "exclude", optional=True)
     start = time.perf_counter()
     counter = {"nfev": 0, "njev": 0}
     for b, (box, part) in enumerate(zip(certificate.boxes, certificate.leaves)):

@@ -11,9 +11,15 @@ the eigenvector of the midpoint's smallest eigenvalue, and ``x^T A x`` is enclos
 import numpy as np
 from flint import arb
 
+from mechnum._validate import shown
+
 
 def _entries(matrix):
-    rows = [[v if isinstance(v, arb) else arb(v) for v in row] for row in _rows(matrix)]
+    try:
+        rows = [[v if isinstance(v, arb) else arb(v) for v in row] for row in _rows(matrix)]
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"hessian_ball must be a square matrix of balls or floats, got "
+                         f"{shown(matrix)} ({error})") from None
     n = len(rows)
     if any(len(row) != n for row in rows):
         raise ValueError(f"a square matrix is needed, got {n} rows of lengths "

@@ -198,7 +198,9 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
     >>> r.count, r.complete, r.status, np.round(r.x, 6).tolist()
     (2, True, 'converged', [[-0.707107, -0.707107], [0.707107, 0.707107]])
     """
-    boxes = np.asarray(box, dtype=float)
+    _validate.function(residual, "residual"), _validate.function(jacobian, "jacobian")
+    _validate.function(exclude, "exclude", optional=True)
+    boxes = _validate.array(box, "box", finite=False)
     boxes = boxes[None] if boxes.ndim == 2 else boxes
     if boxes.ndim != 3:
         raise ValueError(f"box must be (n, 2) or (m, n, 2), got shape {boxes.shape}")

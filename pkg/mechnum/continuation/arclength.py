@@ -202,6 +202,7 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
     >>> len(branch.folds), (np.round(branch.fold_points, 10) + 0.0).tolist()
     (2, [[0.0, 1.0], [0.0, -1.0]])
     """
+    _validate.function(fun, "fun"), _validate.function(jac, "jac")
     u = _validate.array(u0, "u0", ndim=1)
     if u.size < 2:
         raise ValueError(f"u0 must hold the unknowns and the parameter, got shape {u.shape}")

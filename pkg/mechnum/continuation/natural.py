@@ -176,6 +176,9 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     >>> path.x[:, 1].round(3).tolist()
     [1.112, 0.782, 0.063, nan, 1.112]
     """
+    _validate.function(fun, "fun")
+    if jac is not True:
+        _validate.function(jac, "jac", optional=True)
     x = _validate.array(x0, "x0", ndim=(1, 2))
     params = _validate.array(params, "params")
     if params.ndim == 0:
@@ -213,6 +216,10 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
         det = np.empty(0)
         if done.size:
             J, nfev, njev = at(res.x[res.converged], p[done])
+            if J.shape[-2:] != (x.shape[-1],) * 2:
+                raise ValueError(f"the Jacobian in x must be square, ({x.shape[-1]}, "
+                                 f"{x.shape[-1]}) for {x.shape[-1]} unknowns: jac (or fun) "
+                                 f"gives shape {J.shape[-2:]}")
             det, path.nfev, path.njev = np.linalg.det(J), path.nfev + nfev, path.njev + njev
         path.accept(i, p, rows, res, det)
         if not resume:

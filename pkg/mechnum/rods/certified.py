@@ -186,7 +186,7 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     if np.hypot(*target) >= L:
         raise ValueError(f"target must be nearer than L = {L} to the clamp, got "
                          f"{target.tolist()}")
-    modes = [_validate.maxiter(m, "mode", maximum=10) for m in modes]
+    modes = _validate.modes(modes, maximum=10)
     parts, rows = [], []
     for mode in modes:
         f, J = pinned_system(EI, L, target, mode)

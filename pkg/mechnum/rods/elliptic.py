@@ -102,6 +102,7 @@ def elliptic_k(psi: ArrayLike, k_rel: ArrayLike) -> tuple[np.ndarray, np.ndarray
     ([-0.75, 0.75], 0.5)
     """
     psi, k_rel = _angles(psi), _validate.array(k_rel, "k_rel")
+    _validate.broadcast(psi=psi, k_rel=k_rel)
     if np.any((k_rel == 0) | (np.abs(k_rel) >= 1)):
         raise ValueError(f"k_rel must satisfy 0 < |k_rel| < 1, got {_validate._shown(k_rel)}")
     k_min = np.abs(np.cos(0.5 * psi))

@@ -153,7 +153,7 @@ def pinned_equilibria(EI: float, L: float, tip: ArrayLike, modes: Iterable[int] 
     tip = _validate.array(tip, "tip", shape=(2,))
     if np.hypot(*tip) >= L:
         raise ValueError(f"tip must be one point closer than L = {L} to the clamp, got {tip!r}")
-    modes = [int(m) for m in as_modes(list(modes)).ravel()]
+    modes = [int(m) for m in as_modes(_validate.modes(modes)).ravel()]
     n_psi = _validate.maxiter(n_psi, "n_psi", maximum=MAX_GRID)
     n_k = _validate.maxiter(n_k, "n_k", maximum=MAX_GRID)
     if n_psi * n_k > MAX_GRID:

@@ -92,11 +92,12 @@ def checked(mech: object, states=(), motor=()) -> list:
         arrays.append(_validate.array(value, name))
         batches.append((name, arrays[-1].shape))
     try:
-        np.broadcast_shapes(*(shape for _, shape in batches))
+        batch = np.broadcast_shapes(*(shape for _, shape in batches))
     except ValueError:
         shown = ", ".join(f"{name} {shape}" for name, shape in batches)
         raise ValueError(f"the batch shapes do not broadcast together: {shown}") from None
-    return arrays
+    return [np.array(np.broadcast_to(a, batch + a.shape[len(s):]))
+            for a, (_, s) in zip(arrays, batches)]
 
 
 def finite(out: np.ndarray, what: str) -> np.ndarray:

@@ -183,7 +183,7 @@ def deflate(c: ArrayLike) -> np.ndarray:
     >>> deflate([1.0, 0, 2, 0, 2, 0, 2, 0, 1]).tolist()   # (1 + t^2)(1 + t^2 + t^4 + t^6)
     [1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0]
     """
-    c = _validate.array(c, "c", finite=False)
+    c = _validate.array(c, "c")
     if c.ndim == 0 or c.shape[-1] != 9:
         raise ValueError(f"c must have shape (..., 9), got shape {c.shape}")
     return _stacked(_deflated(np.moveaxis(c, -1, 0))).reshape(c.shape[:-1] + (7,))

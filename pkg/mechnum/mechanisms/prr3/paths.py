@@ -123,9 +123,8 @@ def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: Ar
     end = _validate.array(end, "end", shape=(3,))
     signs = _validate.array(signs, "signs", shape=(3,))
     bounds = _validate.array(bounds, "bounds", shape=(2, 2))
-    shape = tuple(_validate.maxiter(n, "shape", minimum=2, maximum=MAX_VOXELS) for n in shape)
-    if len(shape) != 3:
-        raise ValueError(f"shape must hold 3 voxel counts, got {shape}")
+    shape = tuple(_validate.maxiter(n, "shape", minimum=2, maximum=MAX_VOXELS)
+                  for n in _validate.array(shape, "shape", shape=(3,)))
     if np.prod(shape) > MAX_VOXELS:
         raise ValueError(f"shape must hold at most {MAX_VOXELS} voxels (a bound on the work), "
                          f"got {shape}")
