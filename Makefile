@@ -80,7 +80,7 @@ lint: $(STAMP)
 	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
 
 explore: $(STAMP)
-	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
+	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests
 
 # Strict nbval: every notebook executed in a fresh kernel, its outputs compared with the committed
 # ones. Each run records how long each notebook took (book/_ext/execution_statistics.py) in
