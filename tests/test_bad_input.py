@@ -48,8 +48,8 @@ NOT_BATCHES = {"mechanisms.finger.synthesize"}  # a fit of at least 3 angle pair
 PASSED_ON = {("plotting.animate", "mech"), ("plotting.animate", "states")}
 OTHERS = (hacksaw.STUDY, prr3.EXAMPLES["Table 5"][0])  # "another mechanism"
 # Files other engineers are rewriting now: their findings are expected failures (xfail).
-ELSEWHERE = ("mechnum.mechanisms.rfr2", "mechnum.mechanisms.pfr3", "mechnum.rods.assembly",
-             "mechnum.rods.growing", "mechnum.rods.regular", "mechnum.newton")
+ELSEWHERE = ("mechnum.rods.assembly", "mechnum.rods.growing", "mechnum.rods.regular",
+             "mechnum.newton")
 # Calls that block inside numpy, where no alarm stops them: not made, counted as hangs.
 NOT_RUN = {("rods.growing.branch_shape", "nodes", "huge"): "np.linspace of 10**9 nodes"}
 

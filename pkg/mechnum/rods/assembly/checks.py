@@ -142,18 +142,28 @@ def points(value, name: str, width: int, *, batch: bool = False) -> np.ndarray:
     return out
 
 
-def grid_axes(x, y, names=("x", "y")):
+def grid_axes(x, y, names=("x", "y"), *, monotonic: bool = False):
     """The axes ``x`` (nx,) and ``y`` (ny,) of a map, checked: an empty axis is valid, a grid of
-    more than :data:`MAX_POINTS` points is not.
+    more than :data:`MAX_POINTS` points is not; with ``monotonic``, each axis must be strictly
+    increasing or decreasing (the neighbours of an atlas are distinct points).
 
     Examples
     --------
     >>> [a.shape for a in grid_axes([], [0.0, 1.0])]
     [(0,), (2,)]
+    >>> grid_axes([0.0, 1.0], [1.0, 1.0], monotonic=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: y must be strictly increasing or decreasing, got [1. 1.]
     """
     x, y = (_validate.array(np.reshape(v, (0,)) if np.size(v) == 0 else v, name, ndim=1)
             for v, name in zip((x, y), names))
     if len(x) * len(y) > MAX_POINTS:
         raise ValueError(f"a grid of {len(x)} x {len(y)} points is more than {MAX_POINTS} "
                          "(a bound on the work)")
+    for v, name in zip((x, y), names):
+        steps = np.diff(v)
+        if monotonic and not (np.all(steps > 0) or np.all(steps < 0)):
+            raise ValueError(f"{name} must be strictly increasing or decreasing, "
+                             f"got {_validate.shown(v)}")
     return x, y
