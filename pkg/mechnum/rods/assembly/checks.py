@@ -71,7 +71,7 @@ def check_modes(modes, rods: int) -> np.ndarray:
     ...
     ValueError: modes must be 2 integers >= 1, got [1.0, 0.0]
     """
-    out = _validate.array(modes, "modes", shape=(rods,))
+    out = _validate.array(modes, "modes", shape=(_validate.maxiter(rods, "rods"),))
     if np.any(out < 1) or np.any(out != np.round(out)):
         raise ValueError(f"modes must be {rods} integers >= 1, got {out.tolist()}")
     return out
@@ -132,6 +132,7 @@ def points(value, name: str, width: int, *, batch: bool = False) -> np.ndarray:
     >>> points([], "thetas", 2).shape
     (0, 2)
     """
+    width = _validate.maxiter(width, "width")
     out = _validate.array(np.reshape(value, (0, width)) if np.size(value) == 0 else value,
                           name, ndim=(2, 3) if batch else 2)
     if out.shape[-1] != width:
