@@ -80,7 +80,7 @@ lint: $(STAMP)
 	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
 
 explore: $(STAMP)
-	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest -W error::RuntimeWarning tests
+	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests
 
 # Strict nbval: every notebook executed in a fresh kernel, its outputs compared with the committed
 # ones. Each run records how long each notebook took (book/_ext/execution_statistics.py) in
@@ -137,7 +137,9 @@ execute: $(STAMP)
 	$(NB_ENV) $(BIN)/python .ci/execute_notebooks.py $(NB)
 
 # The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf, on A4 paper
-# (`make pdf PAPER=letter`: US Letter), then its test, tests/test_pdf.py (not part of make test).
+# (`make pdf PAPER=letter`: US Letter), rendered from the committed outputs (strict nbval checks
+# them) without executing the chapters again, then its test, tests/test_pdf.py (not part of make
+# test).
 # It needs XeLaTeX and its fonts, and poppler's pdftotext for the test, from Debian's packages:
 # TEX_PACKAGES below.
 TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk \
@@ -149,7 +151,8 @@ pdf: downloads
 		command -v pdftotext >/dev/null || { echo "make pdf needs XeLaTeX and poppler:" \
 		"apt-get install $(TEX_PACKAGES)"; exit 1; }
 	@case "$(PAPER)" in a4|letter) ;; *) echo "PAPER is a4 or letter, not $(PAPER)"; exit 1;; esac
-	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) sphinx.config.latex_elements.papersize=$(PAPER)paper
+	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) sphinx.config.latex_elements.papersize=$(PAPER)paper \
+		execute.execute_notebooks=off
 	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
 	MECHNUM_PDF=_build/latex/numerical-methods-for-mechanisms.pdf MECHNUM_PDF_PAPER=$(PAPER) \
 		$(BIN)/pytest -rs tests/test_pdf.py
