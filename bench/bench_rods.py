@@ -250,7 +250,8 @@ def hybr_equilibria(point, modes=(1, 2, 3), cells=12):
             def f(z, sign=sign, mode=mode):
                 if not (0 < z[0] < 2 * np.pi and 0 < z[1] * sign <= regular.T_MAX):
                     return [1e3, 1e3]             # outside the chart: far from any root
-                return regular.closed_form(EI, L, z[0], z[1], mode, jacobian=False).tip - point
+                return regular.closed_form(EI, L, z[0], z[1], mode, jacobian=False,
+                                           check=False).tip - point
 
             r = root(f, start, method="hybr", tol=1e-13)
             if (r.success and np.abs(f(r.x)).max() < 1e-10

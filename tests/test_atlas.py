@@ -223,6 +223,7 @@ def test_the_3pfr_atlas_names_bad_input(mech, modes, executor, message):
     ({"mech": None}, "mech must be a Mechanism"),
     ({"theta1": [[0.1]]}, "theta1"),
     ({"theta2": [np.nan]}, "theta2"),
+    ({"theta2": [0.1, 0.1]}, "theta2 must be strictly increasing or decreasing"),
     ({"modes": (1, 0)}, "modes must be 2 integers"),
     ({"executor": 0}, "executor must be None"),
     ({"executor": True}, "executor must be None"),

@@ -122,6 +122,37 @@ def scalar(value: ArrayLike, name: str, *, positive: bool = False,
     return out
 
 
+def numbers(values: dict, *, positive: tuple = (), nonnegative: tuple = (),
+            scalars: bool = True) -> list:
+    """The named ``values``, checked: finite real floats (with ``scalars=False``, float arrays
+    that broadcast together); those named in ``positive`` ``> 0``, in ``nonnegative`` ``>= 0``.
+
+    The one line of checks of a function whose arguments are plain numbers (the inner
+    functions of :mod:`mechnum.rods`, called from the outside too).
+
+    Examples
+    --------
+    >>> numbers({"EI": 2, "psi": -1.0}, positive=("EI",))
+    [2.0, -1.0]
+    >>> numbers({"a": [1.0, 2.0], "w": [0.5, -0.5]}, positive=("w",), scalars=False)
+    Traceback (most recent call last):
+    ...
+    ValueError: w must be positive, got [ 0.5 -0.5]
+    """
+    out = []
+    for name, value in values.items():
+        x = array(value, name, ndim=0 if scalars else None)
+        for names, ok, word in ((positive, x > 0, "positive"), (nonnegative, x >= 0,
+                                                                "non-negative")):
+            if name in names and not np.all(ok):
+                got = shown(x) if x.ndim else repr(float(x))
+                raise ValueError(f"{name} must be {word}, got {got}")
+        out.append(float(x) if scalars else x)
+    if not scalars:
+        broadcast(**dict(zip(values, out)))
+    return out
+
+
 def positive(value: ArrayLike, name: str) -> np.ndarray:
     """``value`` as a float array whose every entry is finite and positive.
 

@@ -197,7 +197,7 @@ def fd_jacobian(fun: Callable, x: ArrayLike, fx: ArrayLike | None = None) -> np.
     array([[2., 0.],
            [2., 1.]])
     """
-    x = _validate.array(x, "x", ndim=(1, 2))
+    fun, x = _validate.function(fun, "fun"), _validate.array(x, "x", ndim=(1, 2))
     if x.shape[-1] == 0:
         raise ValueError(f"x must have at least one unknown, got shape {x.shape}")
     fx = (_real(fun(x), "fun", x.shape) if fx is None

@@ -21,9 +21,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import elliprd, elliprf
 
-from mechnum import newton
+from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, MechnumError
-from mechnum.rods.rod import Rod
+from mechnum.rods.rod import MAX_NODES, Rod
 
 # The growing branch in Carlson's symmetric form (the cantilever and k_rel_for_force).
 #
@@ -75,7 +75,7 @@ def _folded(psi):
 def growing_branch(a: float, b: float, Lam: float, mode: int = 1, *,
                    tol: float = CLOSED_FORM_TOL,
                    maxiter: int = CLOSED_FORM_MAXITER) -> tuple[float, float, float]:
-    """``(v, s, |k|)`` of the growing branch at ``lambda L = Lam``, unchecked.
+    """``(v, s, |k|)`` of the growing branch at ``lambda L = Lam``.
 
     ``a = cos(psi/2)`` and ``b = sin(psi/2) > 0`` of the force direction; ``v = tanh(zeta)``
     and ``s = sech(zeta)``, so that ``k cos(phi1) = sign(a) b v`` and ``1 - k**2 = (b s)**2``
@@ -90,12 +90,13 @@ def growing_branch(a: float, b: float, Lam: float, mode: int = 1, *,
     >>> round(k, 6), bool(abs(v * v + s * s - 1) < 1e-15)
     (0.850047, True)
     """
+    a, b, Lam = _validate.numbers(dict(a=a, b=b, Lam=Lam), positive=("b",), nonnegative=("Lam",))
     return _branch(a, b, _zeta(a, b, Lam, mode, tol, maxiter))
 
 
 def chart_tip(a: np.ndarray, b: np.ndarray, v: np.ndarray, w: np.ndarray) -> tuple:
     """The tip of growing-branch rods of mode 1 in the regular chart, and its rates, without
-    cancellation or underflow as the load tends to zero (arrays, unchecked).
+    cancellation or underflow as the load tends to zero (arrays: ``b``, ``w > 0``, ``v >= 0``).
 
     In :mod:`mechnum.rods.regular`'s notation (``a = cos(psi/2)``, ``b = sin(psi/2)``,
     ``v = |v|``, ``w = 1 - v**2``, ``m = k**2``, ``p = 1 - k**2``) this branch has ``Lambda = I``
@@ -131,6 +132,8 @@ def chart_tip(a: np.ndarray, b: np.ndarray, v: np.ndarray, w: np.ndarray) -> tup
     >>> round(float(du / (b * b * v * v)), 12), round(float(u_v / (b * b * v)), 12)
     (1.333333333333, 2.666666666667)
     """
+    a, b, v, w = np.broadcast_arrays(*_validate.numbers(
+        dict(a=a, b=b, v=v, w=w), positive=("b", "w"), nonnegative=("v",), scalars=False))
     aa, sa = np.abs(a), np.where(a < 0, -1.0, 1.0)
     m, p = a * a + b * b * v * v, b * b * w
     k, X = np.sqrt(m), w * a * a / m
@@ -260,12 +263,10 @@ def _shape(rod, EI, L, nodes, maxiter):
 
 def closed_form(EI: float, L: float, force: ArrayLike, nodes: int = 2, *,
                 tol: float = CLOSED_FORM_TOL, maxiter: int = CLOSED_FORM_MAXITER) -> Rod:
-    """The growing-branch (mode 1) cantilever under a tip force, in closed form, unchecked.
+    """The growing-branch (mode 1) cantilever under a tip force, in closed form.
 
-    The fast path of :func:`mechnum.rods.cantilever` for callers that have checked their
-    input: ``EI``, ``L`` positive floats, ``force`` a finite 2-vector with ``force[1] != 0``
-    (a purely axial force leaves the rod straight), ``nodes >= 2``; the formulas are those of
-    the module's comments and of :class:`_Branch`.
+    The fast path of :func:`mechnum.rods.cantilever` (``EI``, ``L`` > 0, ``force`` a 2-vector,
+    ``2 <= nodes <= MAX_NODES``), by the formulas of the module's comments and :class:`_Branch`.
 
     Examples
     --------
@@ -273,7 +274,9 @@ def closed_form(EI: float, L: float, force: ArrayLike, nodes: int = 2, *,
     >>> np.round(rod.tip, 5).tolist(), round(float(rod.clamp_moment), 5)
     ([0.94357, 0.30172], 0.94357)
     """
-    nx, ny = float(force[0]), float(force[1])
+    EI, L = _validate.numbers(dict(EI=EI, L=L), positive=("EI", "L"))
+    nx, ny = _validate.array(force, "force", shape=(2,)).tolist()
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
     R = math.hypot(nx, ny)
     half = 0.5 * math.atan2(ny, nx)     # psi / 2, folded into (-pi/2, pi/2]
     sign = 1.0 if half >= 0 else -1.0   # sign(k) = sign(a) = sign(n_y)
@@ -289,7 +292,7 @@ def closed_form(EI: float, L: float, force: ArrayLike, nodes: int = 2, *,
 def branch_shape(EI: float, L: float, psi: float, v: float, w: float, Lam: float,
                  nodes: int) -> np.ndarray:
     """``(x, y, theta, m)`` at ``nodes`` nodes of the growing-branch rod ``(psi, v)``: shape
-    ``(nodes, 4)``, local frame, unchecked.
+    ``(nodes, 4)``, local frame (``2 <= nodes <= MAX_NODES``).
 
     The rod of the regular chart (:mod:`mechnum.rods.regular`) of mode 1 with ``sign(t) =
     sign(cos(psi/2))``, given by ``v`` (``tanh(zeta)`` here), ``w = 1 - v**2`` (given, as it
@@ -305,6 +308,9 @@ def branch_shape(EI: float, L: float, psi: float, v: float, w: float, Lam: float
     >>> bool(np.abs(xy[-1] - end.tip).max() < 1e-15), bool(abs(xy[1, 0] - 0.5) < 1e-15)
     (True, True)
     """
+    EI, L, psi, v, w, Lam = _validate.numbers(dict(EI=EI, L=L, psi=psi, v=v, w=w, Lam=Lam),
+                                              positive=("EI", "L", "w"), nonnegative=("v", "Lam"))
+    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
     a, b = _folded(psi)
     rod = _Branch(a, b, v, math.sqrt(w), Lam, math.cos(psi), math.sin(psi))
     return _shape(rod, EI, L, nodes, CLOSED_FORM_MAXITER)
@@ -448,7 +454,7 @@ def _transverse_table():
 
 def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.ndarray:
     """The closed-form cantilevers through points: the default start of
-    :func:`mechnum.rods.shooting.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3), unchecked.
+    :func:`mechnum.rods.shooting.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3).
 
     A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
     branch) under its tip force. Damped Newton drives the closed form's tip to the point in
@@ -470,6 +476,8 @@ def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.n
     def growing(n):      # the closed form at the load n = (n_x, n_y) L**2 / EI
         return _growing_tip(math.atan2(n[1], n[0]), math.sqrt(math.hypot(n[0], n[1])))
 
+    EI, L, theta0 = _validate.numbers(dict(EI=EI, L=L, theta0=theta0), positive=("EI", "L"))
+    points = _validate.array(points, "points", shape=(None, 2))
     deflections, loads = _transverse_table()
     c, s = math.cos(theta0), math.sin(theta0)
     starts = np.empty((len(points), 3))

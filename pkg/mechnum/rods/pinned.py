@@ -45,11 +45,12 @@ def _polish(EI, L, point, mode, starts, tol, maxiter):
     sign of its ``t``; returns the converged chart points whose tip is within
     :data:`TIP_ACCEPT` ``L``."""
     def fun(z):
-        return (regular.closed_form(EI, L, z[:, 0], z[:, 1], mode, jacobian=False).tip
+        return (regular.closed_form(EI, L, z[:, 0], z[:, 1], mode, jacobian=False, check=False).tip
                 - point) / L
 
     def jac(z):
-        return regular.closed_form(EI, L, z[:, 0], z[:, 1], mode).jacobian[:, :2, :] / L
+        rod = regular.closed_form(EI, L, z[:, 0], z[:, 1], mode, check=False)
+        return rod.jacobian[:, :2, :] / L
 
     roots = [np.empty((0, 2))]
     for sign in (-1.0, 1.0):
@@ -168,7 +169,7 @@ def pinned_equilibria(EI: float, L: float, tip: ArrayLike, modes: Iterable[int] 
         starts = []
         for sign in (-1.0, 1.0):
             P, T = np.meshgrid(psi, sign * t, indexing="ij")
-            tips = regular.closed_form(EI, L, P, T, mode, jacobian=False).tip
+            tips = regular.closed_form(EI, L, P, T, mode, jacobian=False, check=False).tip
             cells = _candidates(tips, tip)
             starts.append(np.column_stack((P[cells], T[cells])))
         z = _distinct(_polish(EI, L, tip, mode, np.concatenate(starts), tol, POLISH_MAXITER))

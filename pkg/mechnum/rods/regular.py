@@ -83,13 +83,14 @@ class RegularRod:
     jacobian: np.ndarray = None
 
 
-def _check(psi, t):
-    psi, t = _validate.array(psi, "psi"), _validate.array(t, "t")
+def _check(psi, t, name="t", bound=f"<= {T_MAX:.6f}"):
+    """``psi`` and ``t`` (or ``k_rel``, ``bound="< 1"``), checked."""
+    psi, t = _validate.array(psi, "psi"), _validate.array(t, name)
     if np.any((psi <= 0) | (psi >= TWO_PI)):
         raise ValueError("psi must lie in the open interval (0, 2 pi), "
                          f"got {_validate._shown(psi)}")
-    if np.any((t == 0) | (np.abs(t) > T_MAX)):
-        raise ValueError(f"t must satisfy 0 < |t| <= {T_MAX:.6f}, got {_validate._shown(t)}")
+    if np.any((t == 0) | ((np.abs(t) > T_MAX) if name == "t" else (np.abs(t) >= 1))):
+        raise ValueError(f"{name} must satisfy 0 < |{name}| {bound}, got {_validate._shown(t)}")
     return psi, t
 
 
@@ -145,12 +146,8 @@ def t_from_k_rel(psi: ArrayLike, k_rel: ArrayLike) -> np.ndarray:
     >>> float(np.round(t_from_k_rel(np.pi, [0.5, -1 + 1e-9]), 6)[1])
     -0.975935
     """
-    psi, k_rel = _validate.array(psi, "psi"), _validate.array(k_rel, "k_rel")
-    if np.any((psi <= 0) | (psi >= TWO_PI)):
-        raise ValueError("psi must lie in the open interval (0, 2 pi), "
-                         f"got {_validate._shown(psi)}")
-    if np.any((k_rel == 0) | (np.abs(k_rel) >= 1)):
-        raise ValueError(f"k_rel must satisfy 0 < |k_rel| < 1, got {_validate._shown(k_rel)}")
+    psi, k_rel = _check(psi, k_rel, "k_rel", "< 1")
+    _validate.broadcast(psi=psi, k_rel=k_rel)
     a, b = np.abs(np.cos(0.5 * psi)), np.sin(0.5 * psi)
     one_minus_kmin = b * b / (1.0 + a)
     k = a + one_minus_kmin * np.abs(k_rel)
@@ -172,9 +169,9 @@ def clamped_pinned_regular(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: Array
     ----------
     EI, L : float or array_like
         Bending stiffness (N m^2) and length (m), positive.
-    psi : array_like
+    psi : array_like, shape (...)
         Direction of the tip force from the clamped tangent, in ``(0, 2 pi)`` (rad).
-    t : array_like
+    t : array_like, shape (...)
         The chart's coordinate, ``0 < |t| <= T_MAX`` (its sign is the study's sign of
         ``k_rel``; see :func:`t_from_k_rel`).
     mode : int or array_like of int, optional
@@ -200,8 +197,7 @@ def clamped_pinned_regular(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: Array
     >>> np.round(rod.tip, 6).tolist(), rod.jacobian.shape
     ([[0.235039, -0.642051], [-0.298731, -0.164104]], (2, 5, 2))
     """
-    EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
-    return closed_form(EI, L, psi, t, mode, jacobian=_validate.flag(jacobian, "jacobian"))
+    return closed_form(EI, L, psi, t, mode, jacobian=jacobian)
 
 
 def _integrals(a, b, v, w, whole=True):
@@ -284,19 +280,23 @@ def _chart(psi, t, mode):
 
 
 def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: ArrayLike = 1,
-                *, jacobian: bool = True) -> RegularRod:
-    """:func:`clamped_pinned_regular` without its checks: the fast path for solvers.
+                *, jacobian: bool = True, check: bool = True) -> RegularRod:
+    """:func:`clamped_pinned_regular`, whose checks ``check=False`` skips: the solvers' fast path.
 
     A solver that keeps its iterates inside the chart's domain (``0 < psi < 2 pi``,
     ``0 < |t| <= T_MAX``, integer ``mode >= 1``, positive ``EI`` and ``L``, shapes that
     broadcast) and calls the closed form thousands of times saves the checks, about a third
-    of the time of a small batch. Outside that domain the result is meaningless (NaN or
-    finite garbage): check once, then call this.
+    of the time of a small batch. Outside that domain the unchecked result is meaningless (NaN
+    or finite garbage): check once, then call this with ``check=False``.
 
     Parameters
     ----------
-    EI, L, psi, t, mode, jacobian
-        As in :func:`clamped_pinned_regular`, as float arrays (or floats).
+    EI, L, jacobian
+        As in :func:`clamped_pinned_regular`.
+    psi, t, mode : array_like, shape (...)
+        As in :func:`clamped_pinned_regular` (float arrays, or floats, when unchecked).
+    check : bool, optional
+        Check the inputs first (a :class:`ValueError` names one outside the domain).
 
     Returns
     -------
@@ -310,6 +310,9 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     >>> bool(np.array_equal(fast.tip, checked.tip)), fast.jacobian.shape
     (True, (2, 5, 2))
     """
+    if _validate.flag(check, "check"):
+        EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
+        jacobian = _validate.flag(jacobian, "jacobian")
     a, b, v, w, j, sgn, sign, v_t = _chart(psi, t, mode)
     waves = _waves(a, b, v, w, j, sgn, jacobian)
     Lam, D = waves[:2]
@@ -362,7 +365,7 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
 def _closed_form(EI, L, psi, t, mode, jacobian):
     """The former private name of :func:`closed_form` (positional ``jacobian``), kept for the
     callers outside :mod:`mechnum.rods` until they call :func:`closed_form`."""
-    return closed_form(EI, L, psi, t, mode, jacobian=jacobian)
+    return closed_form(EI, L, psi, t, mode, jacobian=jacobian, check=False)
 
 
 def place(rod: RegularRod, origin: ArrayLike,
@@ -457,7 +460,7 @@ def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: Array
     """
     EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
     nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
-    end = closed_form(EI, L, psi, t, mode, jacobian=False)
+    end = closed_form(EI, L, psi, t, mode, jacobian=False, check=False)
     psi, t, EI, L, mode = np.broadcast_arrays(psi, t, EI, L, mode)
     a, b, v, w, j, sgn, sign, _ = _chart(psi, t, mode)
     p, m = b * b * w, a * a + v * v * b * b                    # 1 - k**2 and k**2

@@ -25,6 +25,7 @@ from mechnum.rods.assembly import (
     check_equilibrium,
     check_modes,
     check_segments,
+    check_type,
     peak_moment,
 )
 from mechnum.rods.bodies import constrained_index_with_body
@@ -81,6 +82,7 @@ def second_variation(mech: model.Mechanism, lambdas: ArrayLike, z: ArrayLike,
     >>> len(blocks), dense.shape, G.shape
     (3, (3, 3), (6, 15))
     """
+    check_type(mech, model.Mechanism)
     lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
     z, modes = _validate.array(z, "z", shape=(6,)), check_modes(modes, 3)
     segments = _validate.maxiter(segments, "segments", minimum=2, maximum=MAX_SEGMENTS)
@@ -110,6 +112,7 @@ def resolutions(mech: model.Mechanism, forces: ArrayLike):
     >>> resolutions(model.TABLE8, [[0.0, 0.1], [0.2, 0.0], [60.0, 0.0]])
     (340, 680)
     """
+    check_type(mech, model.Mechanism)
     forces = _validate.array(forces, "forces", shape=(3, 2))
     lam_L = np.sqrt(np.max(np.linalg.norm(forces, axis=-1)) / mech.EI) * mech.L
     n = max(SEGMENTS, int(np.ceil(SEGMENTS_PER_DECAY * lam_L)))

@@ -206,6 +206,7 @@ def pins(mech: Mechanism, pose: ArrayLike):
     >>> np.round(pins(SHOOTING_EXAMPLE, SHOOTING_POSE), 6).tolist()[2]
     [-0.173205, 0.1]
     """
+    check_type(mech, Mechanism)
     pose = _validate.array(pose, "pose")
     if pose.shape[-1:] != (3,):
         raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got shape {pose.shape}")
@@ -249,6 +250,7 @@ def check_reach(mech: Mechanism, pose: ArrayLike):
     ...
     mechnum.errors.UnreachablePoseError: pin 1 of the pose [0.0, 2.5, 0.0] is 2.942 m from ...
     """
+    check_type(mech, Mechanism)
     pose = _validate.array(pose, "pose")
     if pose.shape[-1:] != (3,):
         raise ValueError(f"pose must have a last axis of 3 (x, y, phi), got shape {pose.shape}")
@@ -280,7 +282,7 @@ def check_chart(z: ArrayLike) -> np.ndarray:
     ...
     ValueError: chart points (psi1, t1, psi2, t2, psi3, t3) need 0 < psi < 2 pi and 0 < |t| ...
     """
-    z = np.asarray(z, dtype=float)
+    z = _validate.array(z, "z", finite=False)
     if z.shape[-1:] != (6,):
         raise ValueError(f"z must have a last axis of 6 (the chart), got shape {z.shape}")
     outside = ~in_chart(z.reshape(-1, 6))
@@ -332,6 +334,7 @@ def pose_of_tips(mech: Mechanism, tip: ArrayLike):
     >>> np.round(pose_of_tips(TABLE8, pins(TABLE8, [0.1, 0.2, 0.3])), 12).tolist()
     [0.1, 0.2, 0.3]
     """
+    check_type(mech, Mechanism)
     tip = _validate.array(tip, "tip")
     if tip.shape[-2:] != (3, 2):
         raise ValueError(f"tip must have shape (..., 3, 2), got shape {tip.shape}")
@@ -361,6 +364,7 @@ def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1
     >>> fun(z).shape, jac(z).shape, bool(np.abs(fun(z)).max() < 2e-3)   # 4 printed decimals
     ((1, 6), (1, 6, 6), True)
     """
+    check_type(mech, Mechanism)
     lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
     modes = check_modes(modes, 3)
     b = mech.vertices @ [1.0, 1j]
@@ -422,12 +426,13 @@ def full_system(mech: Mechanism, modes: ArrayLike = (1, 1, 1)):
     >>> G.shape, D.shape, bool(np.abs(G).max() < 2e-3)
     ((9,), (9, 12), True)
     """
+    check_type(mech, Mechanism)
     modes = check_modes(modes, 3)
     L, f = mech.L, mech.EI / mech.L ** 2
     guide = np.stack((np.cos(mech.guide_angles), np.sin(mech.guide_angles)), -1)
 
     def system(z, lambdas, pose):
-        z, lambdas, pose = (np.asarray(v, dtype=float) for v in (z, lambdas, pose))
+        pose = _validate.array(pose, "pose")
         tip, force, _, dc = rods(mech, lambdas, z, modes)
         r = pins(mech, pose) - pose[..., None, :2]
         moment = cross(r, force).sum(axis=-1)
@@ -469,7 +474,7 @@ def chart_from_thesis(solutions: ArrayLike):
 
 def thesis_from_chart(z: ArrayLike):
     """The study's ``(psi_i, k_rel_i)`` of chart points ``z`` (..., 6)."""
-    z = np.asarray(z, dtype=float)
+    z = _validate.array(z, "z", finite=False)
     out = z.copy()
     if z.size:
         out[..., 1::2] = regular.k_rel_from_t(z[..., 0::2], z[..., 1::2])

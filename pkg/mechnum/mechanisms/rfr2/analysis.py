@@ -160,7 +160,7 @@ def crossings(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayL
     >>> [a.tolist() for a in crossings(TABLE7, TABLE7_THETA, z)]
     [[0, 1], [[0, 0], [0, 0]]]
     """
-    theta, z = broadcast(theta, np.atleast_2d(np.asarray(chart, dtype=float)))
+    theta, z = broadcast(theta, np.atleast_2d(_validate.array(chart, "chart", finite=False)))
     x, y = shapes(mech, theta.reshape(-1, 2), z.reshape(-1, 4), modes)
     mutual = np.array([crossing.mutual_crossings(x[i, 0], y[i, 0], x[i, 1], y[i, 1],
                                                  shared_tip=True) for i in range(len(x))],
@@ -224,7 +224,7 @@ def verify(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike
     if not IVP_RTOL_RANGE[0] <= rtol <= IVP_RTOL_RANGE[1]:
         raise ValueError(f"rtol must lie in [{IVP_RTOL_RANGE[0]:.3g}, {IVP_RTOL_RANGE[1]:g}] "
                          f"(DOP853's floor, and a check that checks), got {rtol!r}")
-    theta, z = broadcast(theta, np.atleast_2d(np.asarray(chart, dtype=float)))
+    theta, z = broadcast(theta, np.atleast_2d(_validate.array(chart, "chart", finite=False)))
     theta, z = theta.reshape(-1, 2), z.reshape(-1, 4)
     tip, force, moment, _, _ = rods(mech, theta, z, modes, jacobian=False)
     err, tip_m, infl = np.zeros((3, len(z), 2))

@@ -83,7 +83,8 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
     """
     assembly.check_type(mech, Mechanism)
     modes = tuple(int(m) for m in assembly.check_modes(modes, 2))
-    theta1, theta2 = assembly.grid_axes(theta1, theta2, ("theta1", "theta2"))
+    theta1, theta2 = assembly.grid_axes(theta1, theta2, ("theta1", "theta2"),
+                                        monotonic=True)
     grid = np.stack(np.meshgrid(theta1, theta2, indexing="ij"), axis=-1)
 
     def lift(theta, chart):

@@ -28,7 +28,9 @@ import numpy as np
 from flint import arb
 
 from mechnum import _validate, certify
+from mechnum.mechanisms.rfr2.model import Mechanism
 from mechnum.rods import certified, regular
+from mechnum.rods.assembly import check_type
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -56,6 +58,7 @@ def system(mech, theta, modes=(1, 1)):
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True], False)
     """
+    check_type(mech, Mechanism)
     theta = _validate.array(theta, "theta", shape=(2,))
     modes = _modes(modes)
     inv_L, inv_f = 1 / arb(mech.L), arb(mech.L) ** 2 / arb(mech.EI)

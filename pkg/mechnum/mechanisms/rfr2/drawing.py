@@ -57,6 +57,7 @@ def shapes(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike
     >>> x.shape, np.round([x[0, 0], y[0, 0]], 12).tolist(), bool(gap < 1e-5)
     ((2, 201), [-0.3, 0.0], True)
     """
+    check_type(mech, Mechanism)
     nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
     theta, z = broadcast(theta, chart)
     rod = regular.shape(mech.EI, mech.L, z[..., 0::2], z[..., 1::2], check_modes(modes, 2),

@@ -172,8 +172,11 @@ def motor_angles(mech: Mechanism, P: ArrayLike, tip: ArrayLike) -> np.ndarray:
     ...     3).tolist()
     [59.036, 120.964]
     """
-    to_P = np.asarray(P, dtype=float) - mech.origins
-    tip = np.asarray(tip, dtype=float)
+    assembly.check_type(mech, Mechanism)
+    to_P = _validate.array(P, "P", shape=(2,)) - mech.origins
+    tip = _validate.array(tip, "tip")
+    if tip.shape[-2:] != (2, 2):
+        raise ValueError(f"tip must have shape (..., 2, 2), got shape {tip.shape}")
     turn = np.arctan2(to_P[:, 1], to_P[:, 0]) - np.arctan2(tip[..., 1], tip[..., 0])
     return np.angle(np.exp(1j * turn))
 
@@ -202,6 +205,7 @@ def sample(rng: np.random.Generator | int | None, m: int) -> np.ndarray:
     ((3, 4), True)
     """
     m = _validate.maxiter(m, "m", minimum=0, maximum=assembly.MAX_STARTS * assembly.MAX_CHECK)
+    rng = _validate.rng(rng)
     psi = rng.uniform(0.0, regular.TWO_PI, (m, 2))
     t = rng.uniform(-START_T, START_T, (m, 2))
     return np.stack((psi[:, 0], t[:, 0], psi[:, 1], t[:, 1]), axis=-1)

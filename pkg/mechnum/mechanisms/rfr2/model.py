@@ -113,6 +113,7 @@ def in_chart(z: ArrayLike) -> np.ndarray:
     >>> in_chart(np.array([[1.0, 0.5, 2.0, -0.5], [1.0, 0.0, 2.0, 0.5]])).tolist()
     [True, False]
     """
+    z = _validate.array(z, "z", shape=(None, 4), finite=False)
     psi, t = z[:, 0::2], z[:, 1::2]
     return np.all((psi > 0) & (psi < regular.TWO_PI) & (t != 0)
                   & (np.abs(t) <= regular.T_MAX), axis=1)
@@ -133,7 +134,7 @@ def broadcast(theta: ArrayLike, chart: ArrayLike):
     >>> theta.shape, z.shape
     ((2, 2), (2, 4))
     """
-    z, theta = np.asarray(chart, dtype=float), np.asarray(theta, dtype=float)
+    z, theta = _validate.array(chart, "chart", finite=False), _validate.array(theta, "theta")
     if z.shape[-1:] != (4,) or theta.shape[-1:] != (2,):
         raise ValueError(f"chart must have shape (..., 4) and theta (..., 2), got {z.shape} "
                          f"and {theta.shape}")
@@ -141,8 +142,6 @@ def broadcast(theta: ArrayLike, chart: ArrayLike):
     if outside.any():
         raise ValueError("chart points (psi1, t1, psi2, t2) need 0 < psi < 2 pi and "
                          f"0 < |t| <= {regular.T_MAX:.6f}, got {z.reshape(-1, 4)[outside][:2]}")
-    if not np.isfinite(theta).all():
-        raise ValueError(f"theta must be finite, got {theta.ravel()[:4]}")
     try:
         shape = np.broadcast_shapes(z.shape[:-1], theta.shape[:-1])
     except ValueError:
@@ -211,12 +210,13 @@ def full_system(mech: Mechanism, modes: ArrayLike = (1, 1)):
     >>> G.shape, D.shape, bool(np.abs(G).max() < 1e-3)   # the printed digits leave 4e-4
     ((6,), (6, 8), True)
     """
+    check_type(mech, Mechanism)
     modes = check_modes(modes, 2)
     L, f = mech.L, mech.EI / mech.L ** 2
 
     def system(chart, theta, P):
         tip, force, _, d_chart, d_angle = rods(mech, theta, chart, modes)
-        P = np.asarray(P, dtype=float)
+        P = _validate.array(P, "P")
         G = np.concatenate(((tip[..., 0, :] - P) / L, (tip[..., 1, :] - P) / L,
                             (force.sum(axis=-2) - mech.force) / f), axis=-1)
         D = np.zeros(G.shape + (8,))

@@ -58,7 +58,7 @@ def rectangles(base: float, height: float, count: int, divisions: int):
     >>> rectangles(0.2, 0.2, 4, 4).shape
     (65, 2)
     """
-    count, n = _sizes(count, 4 * divisions)
+    count, n = _sizes(count, 4 * _validate.maxiter(divisions, "divisions"))
     n //= 4
     b, h = _validate.scalar(base, "base") / 2, _validate.scalar(height, "height") / 2
     u = np.linspace(-1.0, 1.0, n + 1)[:-1]

@@ -71,7 +71,7 @@ def check_modes(modes, rods: int) -> np.ndarray:
     ...
     ValueError: modes must be 2 integers >= 1, got [1.0, 0.0]
     """
-    out = _validate.array(modes, "modes", shape=(rods,))
+    out = _validate.array(modes, "modes", shape=(_validate.maxiter(rods, "rods"),))
     if np.any(out < 1) or np.any(out != np.round(out)):
         raise ValueError(f"modes must be {rods} integers >= 1, got {out.tolist()}")
     return out
@@ -132,6 +132,7 @@ def points(value, name: str, width: int, *, batch: bool = False) -> np.ndarray:
     >>> points([], "thetas", 2).shape
     (0, 2)
     """
+    width = _validate.maxiter(width, "width")
     out = _validate.array(np.reshape(value, (0, width)) if np.size(value) == 0 else value,
                           name, ndim=(2, 3) if batch else 2)
     if out.shape[-1] != width:
@@ -142,18 +143,28 @@ def points(value, name: str, width: int, *, batch: bool = False) -> np.ndarray:
     return out
 
 
-def grid_axes(x, y, names=("x", "y")):
+def grid_axes(x, y, names=("x", "y"), *, monotonic: bool = False):
     """The axes ``x`` (nx,) and ``y`` (ny,) of a map, checked: an empty axis is valid, a grid of
-    more than :data:`MAX_POINTS` points is not.
+    more than :data:`MAX_POINTS` points is not; with ``monotonic``, each axis must be strictly
+    increasing or decreasing (the neighbours of an atlas are distinct points).
 
     Examples
     --------
     >>> [a.shape for a in grid_axes([], [0.0, 1.0])]
     [(0,), (2,)]
+    >>> grid_axes([0.0, 1.0], [1.0, 1.0], monotonic=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: y must be strictly increasing or decreasing, got [1. 1.]
     """
     x, y = (_validate.array(np.reshape(v, (0,)) if np.size(v) == 0 else v, name, ndim=1)
             for v, name in zip((x, y), names))
     if len(x) * len(y) > MAX_POINTS:
         raise ValueError(f"a grid of {len(x)} x {len(y)} points is more than {MAX_POINTS} "
                          "(a bound on the work)")
+    for v, name in zip((x, y), names):
+        steps = np.diff(v)
+        if monotonic and not (np.all(steps > 0) or np.all(steps < 0)):
+            raise ValueError(f"{name} must be strictly increasing or decreasing, "
+                             f"got {_validate.shown(v)}")
     return x, y

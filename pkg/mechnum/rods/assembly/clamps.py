@@ -5,7 +5,24 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechnum import _validate
 from mechnum.rods import elliptic_parameters, regular
+
+
+def _clamp_states(clamp_angle, clamp_moment, force):
+    """The clamp states of rods, checked (finite; ``force`` with a last axis of 2, one per rod:
+    the angles and moments broadcast to its rods) and broadcast together."""
+    angle, m0 = _validate.array(clamp_angle, "clamp_angle"), _validate.array(clamp_moment,
+                                                                            "clamp_moment")
+    n = _validate.array(force, "force")
+    if n.shape[-1:] != (2,):
+        raise ValueError(f"force must have a last axis of 2, got shape {n.shape}")
+    shape = _validate.broadcast(clamp_angle=angle, clamp_moment=m0, force=n[..., 0])
+    if shape != n.shape[:-1]:
+        raise ValueError(f"clamp_angle {angle.shape} and clamp_moment {m0.shape} must "
+                         f"broadcast to the rods of force {n.shape}")
+    return (np.broadcast_to(angle, shape), np.broadcast_to(m0, shape),
+            np.broadcast_to(n, shape + (2,)))
 
 
 def chart_from_clamps(EI, L, clamp_angle, clamp_moment, force):
@@ -39,8 +56,9 @@ def chart_from_clamps(EI, L, clamp_angle, clamp_moment, force):
     >>> bool(chart[0] == 2 * np.pi), bool(np.isnan(chart[1]))
     (True, True)
     """
+    EI, L = _validate.numbers(dict(EI=EI, L=L), positive=("EI", "L"))
+    clamp_angle, clamp_moment, force = _clamp_states(clamp_angle, clamp_moment, force)
     c, s = np.cos(clamp_angle), np.sin(clamp_angle)
-    force = np.asarray(force, dtype=float)
     local = np.stack((c * force[..., 0] + s * force[..., 1],
                       -s * force[..., 0] + c * force[..., 1]), axis=-1)
     psi, k_rel, modes, _ = elliptic_parameters(EI, L, clamp_moment, local, outside="nan")
@@ -83,11 +101,14 @@ def peak_moment(EI, clamp_moment, force, clamp_angle, modes) -> np.ndarray:
     >>> bool(abs(peak - np.abs(rod.m).max()) < 1e-6), bool(peak > abs(rod.m[0]))
     (True, True)
     """
-    m0, n = np.asarray(clamp_moment, float), np.asarray(force, float)
+    (EI,) = _validate.numbers(dict(EI=EI), positive=("EI",))
+    clamp_angle, m0, n = _clamp_states(clamp_angle, clamp_moment, force)
+    modes = _validate.array(modes, "modes")
+    _validate.broadcast(clamp_moment=m0, modes=modes)
     c, s = np.cos(clamp_angle), np.sin(clamp_angle)
     along = c * n[..., 0] + s * n[..., 1]                        # n . t(0)
     across = c * n[..., 1] - s * n[..., 0]                       # t(0) x n
     crest = np.sqrt(np.maximum(m0 ** 2 + 2 * EI * (along + np.hypot(n[..., 0], n[..., 1])),
                                0.0))
-    passed = (np.asarray(modes) >= 2) | (m0 * across < 0)
+    passed = (modes >= 2) | (m0 * across < 0)
     return np.where(passed, np.maximum(crest, np.abs(m0)), np.abs(m0))

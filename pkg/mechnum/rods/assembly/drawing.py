@@ -23,6 +23,7 @@ def drawing_state(state, chart, modes, rods: int) -> State:
     >>> s.modes
     (1, 1)
     """
+    rods = _validate.maxiter(rods, "rods")
     if isinstance(state, State):
         if chart is not None or modes is not None:
             raise ValueError("give draw a State, or (deprecated) the inputs, chart and modes, "
@@ -93,6 +94,8 @@ def fold_segments(values: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarra
            [[ 0.5,  0.5],
             [ 1.5,  0.5]]])
     """
+    x, y = (_validate.array(v, name, ndim=1) for v, name in ((x, "x"), (y, "y")))
+    values = _validate.array(values, "values", shape=(len(x), len(y)), finite=False)
     ex, ey = _edges(x), _edges(y)
     i, j = np.nonzero(values[1:] != values[:-1])           # between (i, j) and (i + 1, j)
     across = np.stack((np.column_stack((ex[i + 1], ey[j])),

@@ -67,7 +67,8 @@ def continuation_system(system, layout: Layout, along: str):
     >>> fun(u, b).tolist(), jac(u, b)[0].tolist()
     ([[0.0, 0.0, 0.0]], [[1.0, 0.0, -1.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     """
-    c = layout.chart
+    _validate.function(system, "system")
+    c = check_type(layout, Layout, "layout").chart
     if _validate.choice(along, ("pose", "inputs"), "along") == "pose":
         columns = layout.inverse_columns
         both = memoised(lambda u, p: system(u[..., :c], u[..., c:], p))
@@ -175,11 +176,13 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     >>> (tr.status == "converged").tolist(), np.round(tr.x[:2, 0], 12).tolist()
     ([True, True, False], [1.0, 0.5])
     """
-    params, u0 = np.asarray(params, dtype=float), np.asarray(u0, dtype=float)
+    params = _validate.array(params, "params", ndim=(2, 3) if np.size(params) else None)
+    u0 = _validate.array(u0, "u0", ndim=(1, 2))
     resume = _validate.flag(resume, "resume")
     if not len(params):
         return Trace(np.empty((0,) + u0.shape), np.empty((0,) + u0.shape[:-1], STATUS_DTYPE),
                      np.zeros((0,) + u0.shape[:-1], int), 0, 0)
+    fun, jac = _validate.function(fun, "fun"), _validate.function(jac, "jac")
     f, j, counts = _counted(fun, jac)
     # the branch tests are the signs below (and solve_path's own of det J); solve_path's speed
     # test is off: near a fold of the mechanism (the workspace's edge) the speed grows without

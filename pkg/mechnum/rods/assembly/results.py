@@ -15,7 +15,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from mechnum import newton
+from mechnum import _validate, newton
 from mechnum.results import Result
 from mechnum.rods.stability import TwoResolutions
 
@@ -35,6 +35,10 @@ class Layout:
     rods: int
     inputs: int
     pose: int
+
+    def __post_init__(self):
+        for name in ("rods", "inputs", "pose"):
+            object.__setattr__(self, name, _validate.maxiter(getattr(self, name), name))
 
     @property
     def chart(self) -> int:
@@ -89,6 +93,15 @@ def jacobians(A, B, d_inputs, pose_rows):
     >>> float(fk), float(ik), dpose.tolist()
     (2.0, 6.0, [[-3.0]])
     """
+    A, B = (_validate.array(M, name) for M, name in ((A, "A"), (B, "B")))
+    for M, name in ((A, "A"), (B, "B")):
+        if M.ndim < 2 or M.shape[-1] != M.shape[-2]:
+            raise ValueError(f"{name} must be square matrices, shape (..., n, n), got {M.shape}")
+    d_inputs = _validate.array(d_inputs, "d_inputs")
+    if d_inputs.shape[:-1] != A.shape[:-1]:
+        raise ValueError(f"d_inputs must have shape {A.shape[:-1]} + (k,), got {d_inputs.shape}")
+    if not isinstance(pose_rows, slice) and np.asarray(pose_rows).dtype.kind not in "iu":
+        raise ValueError(f"pose_rows must be a slice or integer indices, got {pose_rows!r:.60}")
     dpose = -np.linalg.solve(A, d_inputs)[..., pose_rows, :]
     return np.linalg.det(A), np.linalg.det(B), dpose
 
@@ -190,6 +203,10 @@ def equilibria_message(n: int, found) -> str:
     >>> equilibria_message(3, S(n_starts=200, n_check=2000, new_in_check=0))
     '3 equilibria from 200 starts; the check of 2000 new starts found no other'
     """
+    n = _validate.maxiter(n, "n", minimum=0)
+    if not all(hasattr(found, a) for a in ("n_starts", "n_check", "new_in_check")):
+        raise ValueError(f"found must be a search's roots (n_starts, n_check, new_in_check), "
+                         f"got {found!r:.60}")
     text = f"{n} equilibri{'um' if n == 1 else 'a'} from {found.n_starts} starts"
     if not found.n_check:
         return text + "; no completeness check"
