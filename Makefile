@@ -17,27 +17,41 @@ $(STAMP): environment.txt pkg/pyproject.toml
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
-book: downloads
+# reveal.js for the lectures' slides (book/_ext/slides.py), from the npm registry at the version
+# book/_ext/package-lock.json locks, installed into .venv/npm; the book's build copies what the
+# decks use into _build/html/slides, so that they load nothing from the network.
+NPM := $(VENV)/npm
+REVEAL := $(NPM)/.installed
+export MECHNUM_REVEALJS := $(CURDIR)/$(NPM)/node_modules/reveal.js
+$(REVEAL): book/_ext/package.json book/_ext/package-lock.json $(STAMP)
+	@command -v npm >/dev/null || { echo "the slides need npm (Debian: apt-get install npm)"; \
+		exit 1; }
+	rm -rf $(NPM) && mkdir -p $(NPM)
+	cp book/_ext/package.json book/_ext/package-lock.json $(NPM)/
+	npm ci --prefix $(NPM) --ignore-scripts --no-audit --no-fund --loglevel=error
+	touch $(REVEAL)
+
+book: downloads $(REVEAL)
 	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
 
 # The same book rendered from the outputs committed with the notebooks, executing nothing: what
 # `make test` builds after strict nbval has executed every notebook and checked that its outputs
 # are the committed ones. Its page "Execution statistics" shows strict nbval's measurements.
 COMMITTED_CONFIG := _build/committed_config.yml
-book-committed: downloads
+book-committed: downloads $(REVEAL)
 	$(BIN)/python .ci/book_config.py $(COMMITTED_CONFIG) execute.execute_notebooks=off
 	$(NB_ENV) $(BIN)/jupyter-book build . --config $(COMMITTED_CONFIG) -W -n --keep-going
 
 # What the page "Run the chapters yourself" serves: the package's wheel, and the chapters with
-# what they read (the registry) and cite (references.bib: the entries behind the citation keys).
+# every file they read (the registry, the certificates) and cite (references.bib), as listed in
+# .ci/chapters_zip.py.
 DOWNLOADS := _build/downloads
-CHAPTER_FILES := *.ipynb *.csv references.bib
 downloads: $(STAMP)
 	rm -rf $(DOWNLOADS) pkg/build
 	$(BIN)/python -m pip wheel --quiet --disable-pip-version-check --no-deps \
 		--wheel-dir $(DOWNLOADS) ./pkg
 	rm -rf pkg/build
-	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
+	$(BIN)/python .ci/chapters_zip.py book $(DOWNLOADS)/mechnum-chapters.zip
 
 # The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
 # It is built from a copy of the sources without the solutions (mechnum.exercises.student), so
@@ -46,7 +60,7 @@ downloads: $(STAMP)
 # exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
 STUDENT := _build/student
 STUDENT_SRC := $(STUDENT)/src
-book-student: downloads
+book-student: downloads $(REVEAL)
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
 	cp -r _toc.yml book $(STUDENT_SRC)/
 	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
@@ -55,8 +69,8 @@ book-student: downloads
 		c['execute']['execute_notebooks'] = 'off'; \
 		yaml.safe_dump(c, open('$(STUDENT_SRC)/_config.yml', 'w'))"
 	cp $(DOWNLOADS)/*.whl $(STUDENT_SRC)/$(DOWNLOADS)/
-	cd $(STUDENT_SRC)/book && $(CURDIR)/$(BIN)/python -m zipfile \
-		-c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
+	$(BIN)/python .ci/chapters_zip.py $(STUDENT_SRC)/book \
+		$(STUDENT_SRC)/$(DOWNLOADS)/mechnum-chapters.zip
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
 
 # Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
