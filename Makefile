@@ -8,8 +8,9 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
-	notebooks-other-machine html-check bench execute lab clean certify
+.PHONY: book book-committed book-student student-src downloads grade pdf pdf-answer-key \
+	pdf-student test unit lint explore notebooks notebooks-other-machine html-check bench execute \
+	lab clean certify
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -60,17 +61,19 @@ downloads: $(STAMP)
 # exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
 STUDENT := _build/student
 STUDENT_SRC := $(STUDENT)/src
-book-student: downloads $(REVEAL)
+STUDENT_TITLE := title+= (student edition)
+student-src: downloads
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
-	cp -r _toc.yml book $(STUDENT_SRC)/
+	cp -r _toc.yml CITATION.cff book $(STUDENT_SRC)/
 	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
-	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
-		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
-		c['execute']['execute_notebooks'] = 'off'; \
-		yaml.safe_dump(c, open('$(STUDENT_SRC)/_config.yml', 'w'))"
+	$(BIN)/python .ci/book_config.py $(STUDENT_SRC)/_config.yml "$(STUDENT_TITLE)" \
+		sphinx.config.hide_solutions=true execute.execute_notebooks=off \
+		"sphinx.config.printed_edition=the students' edition, every exercise without its solution"
 	cp $(DOWNLOADS)/*.whl $(STUDENT_SRC)/$(DOWNLOADS)/
 	$(BIN)/python .ci/chapters_zip.py $(STUDENT_SRC)/book \
 		$(STUDENT_SRC)/$(DOWNLOADS)/mechnum-chapters.zip
+
+book-student: student-src $(REVEAL)
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
 
 # Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
@@ -150,26 +153,43 @@ NB ?= $(wildcard book/*.ipynb)
 execute: $(STAMP)
 	$(NB_ENV) $(BIN)/python .ci/execute_notebooks.py $(NB)
 
-# The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf, on A4 paper
-# (`make pdf PAPER=letter`: US Letter), rendered from the committed outputs (strict nbval checks
-# them) without executing the chapters again, then its test, tests/test_pdf.py (not part of make
-# test).
+# The printed book, on A4 paper (`make pdf PAPER=letter`: US Letter), in two editions: the answer
+# key, the whole book with its solutions, _build/latex/numerical-methods-for-mechanisms.pdf, and
+# the students' edition, without a solution, _build/student/_build/latex/
+# numerical-methods-for-mechanisms-student.pdf (both copied into _build/pdf), built side by side;
+# both render the committed outputs (strict nbval checks them) without executing the chapters
+# again; then their test, tests/test_pdf.py (not part of make test).
 # It needs XeLaTeX and its fonts, and poppler's pdftotext for the test, from Debian's packages:
 # TEX_PACKAGES below.
 TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk \
 	fonts-freefont-otf poppler-utils
 PAPER ?= a4
 PDF_CONFIG := _build/pdf_config.yml
-pdf: downloads
+PDF_NAME := numerical-methods-for-mechanisms
+ANSWER_KEY := _build/latex/$(PDF_NAME).pdf
+STUDENT_PDF := $(STUDENT)/_build/latex/$(PDF_NAME)-student.pdf
+pdf:
 	@command -v xelatex >/dev/null && command -v latexmk >/dev/null && \
 		command -v pdftotext >/dev/null || { echo "make pdf needs XeLaTeX and poppler:" \
 		"apt-get install $(TEX_PACKAGES)"; exit 1; }
 	@case "$(PAPER)" in a4|letter) ;; *) echo "PAPER is a4 or letter, not $(PAPER)"; exit 1;; esac
-	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) sphinx.config.latex_elements.papersize=$(PAPER)paper \
-		execute.execute_notebooks=off
-	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
-	MECHNUM_PDF=_build/latex/numerical-methods-for-mechanisms.pdf MECHNUM_PDF_PAPER=$(PAPER) \
+	$(MAKE) -j2 --output-sync=target pdf-answer-key pdf-student
+	mkdir -p _build/pdf && cp $(ANSWER_KEY) $(STUDENT_PDF) _build/pdf/
+	MECHNUM_PDF=$(ANSWER_KEY) MECHNUM_STUDENT_PDF=$(STUDENT_PDF) MECHNUM_PDF_PAPER=$(PAPER) \
 		$(BIN)/pytest -rs tests/test_pdf.py
+
+pdf-answer-key: downloads
+	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) \
+		sphinx.config.latex_elements.papersize=$(PAPER)paper execute.execute_notebooks=off
+	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
+
+pdf-student: student-src
+	$(BIN)/python .ci/book_config.py --from $(STUDENT_SRC)/_config.yml $(STUDENT)/pdf_config.yml \
+		sphinx.config.latex_elements.papersize=$(PAPER)paper \
+		"sphinx.config.latex_documents=[[book/index, $(PDF_NAME)-student.tex, \
+		'Numerical Methods for Mechanisms (student edition)', The mechnum team, manual, false]]"
+	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) \
+		--builder pdflatex --config $(STUDENT)/pdf_config.yml
 
 # JupyterLab with jupyterlab-myst, installed once into .venv from requirements.txt, on the book.
 LAB_STAMP := $(VENV)/.lab-installed

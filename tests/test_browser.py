@@ -338,3 +338,92 @@ def test_the_slide_checks_find_a_broken_slide(browser):
     last, height = slides["slides"][-1], slides["height"]
     assert last["broken"] and last["merror"] and last["tex"] and last["height"] > height
     assert not any(s["broken"] or s["merror"] or s["tex"] for s in slides["slides"][:-1])
+
+
+# The layout a reader needs at a width: the verdict column of every table of verdicts in view
+# without scrolling; every inline formula outside a table either inside its line or scrollable
+# within its own box, and not past the column; every self-check's feedback line wrapped
+LAYOUT = r"""() => {
+    const article = document.querySelector("article").getBoundingClientRect();
+    const out = {verdicts: [], formulas: [], feedback: []};
+    for (const th of document.querySelectorAll("article th")) {
+        if (th.textContent.trim() !== "verdict") continue;
+        const box = th.closest(".pst-scrollable-table-container")
+            || th.closest("table").parentElement;
+        const r = th.getBoundingClientRect(), b = box.getBoundingClientRect();
+        if (r.right > b.right + 1 || r.left < b.left - 1)
+            out.verdicts.push({right: Math.round(r.right), visible: Math.round(b.right)});
+    }
+    for (const m of document.querySelectorAll("article mjx-container:not([display='true'])")) {
+        if (m.closest("table, pre")) continue;
+        const r = m.getBoundingClientRect(), style = getComputedStyle(m);
+        const clips = ["hidden", "clip"].includes(style.overflowX) && style.display !== "inline";
+        if (r.right > article.right + 1 || (clips && m.scrollWidth > m.clientWidth + 1))
+            out.formulas.push({tex: (m.getAttribute("aria-label") || m.textContent).slice(0, 50),
+                               right: Math.round(r.right), column: Math.round(article.right)});
+    }
+    for (const pre of document.querySelectorAll("article div.cell_output pre")) {
+        if (!/^Exercise \d+\.\d+:/.test(pre.textContent)) continue;
+        if (pre.scrollWidth > pre.clientWidth + 1)
+            out.feedback.push({text: pre.textContent.slice(0, 50), width: pre.scrollWidth,
+                               column: pre.clientWidth});
+    }
+    return out;
+}"""
+WIDTHS = (1280, 390)
+"""A desktop's window and a phone's (390 CSS px, a current phone held upright)."""
+
+
+def layout_pages():
+    """The lecture and study pages and the appendix of the book, and the lecture pages of the
+    student edition (whose check cells print "not yet") when it is built."""
+    found = [p for p in pages() if name(p).startswith("book/0") or "published_values" in name(p)]
+    student = os.environ.get("MECHNUM_STUDENT_HTML")
+    if student:
+        found += [Path(student).resolve() / f"{lecture}.html" for lecture in lectures()]
+    return found
+
+
+def layout_id(path):
+    student = os.environ.get("MECHNUM_STUDENT_HTML")
+    if student and path.is_relative_to(Path(student).resolve()):
+        return "student/" + str(path.relative_to(Path(student).resolve()))
+    return name(path)
+
+
+@pytest.fixture(scope="module")
+def layout(browser):
+    """``layout(path, width)``: what :data:`LAYOUT` finds on the page in a window that wide."""
+    found = {}
+
+    def measure(path, width):
+        if (path, width) not in found:
+            visit = Visit(browser, path, width, 900)
+            try:
+                visit.page.wait_for_timeout(100)   # web_layout.js marks after MathJax
+                found[path, width] = visit.page.evaluate(LAYOUT)
+            finally:
+                visit.close()
+        return found[path, width]
+    return measure
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_the_verdict_column_is_in_view(layout, path, width):
+    hidden = layout(path, width)["verdicts"]
+    assert not hidden, f"at {width} px the verdict column needs scrolling to: {hidden}"
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_long_inline_formulas_wrap_or_scroll(layout, path, width):
+    cut = layout(path, width)["formulas"]
+    assert not cut, f"at {width} px inline formulas are cut off: {cut[:3]}"
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_the_feedback_of_a_self_check_wraps(layout, path, width):
+    cut = layout(path, width)["feedback"]
+    assert not cut, f"at {width} px a feedback line is cut off: {cut}"
