@@ -183,11 +183,11 @@ pdf-answer-key: downloads
 		sphinx.config.latex_elements.papersize=$(PAPER)paper execute.execute_notebooks=off
 	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
 
+STUDENT_TEX := [[book/index, $(PDF_NAME)-student.tex, 'Numerical Methods for Mechanisms (student edition)', The mechnum team, manual, false]]
 pdf-student: student-src
 	$(BIN)/python .ci/book_config.py --from $(STUDENT_SRC)/_config.yml $(STUDENT)/pdf_config.yml \
 		sphinx.config.latex_elements.papersize=$(PAPER)paper \
-		"sphinx.config.latex_documents=[[book/index, $(PDF_NAME)-student.tex, \
-		'Numerical Methods for Mechanisms (student edition)', The mechnum team, manual, false]]"
+		"sphinx.config.latex_documents=$(STUDENT_TEX)"
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) \
 		--builder pdflatex --config $(STUDENT)/pdf_config.yml
 

@@ -297,16 +297,35 @@ def test_the_front_matter_gives_edition_licences_citation_and_sources(edition, p
     assert not missing, f"the first pages of the {edition} do not give {missing}"
 
 
-def test_no_page_holds_only_a_heading(pages):
-    """A page whose text, below its running header, is a heading alone (a numbered section
-    title, or a bold heading the appendix gives a table), with what it heads on the next page."""
+HEADING = re.compile(r"^(\d+\.)+\d*\s+\S|^[A-Z]\.\d+(\.\d+)*\s+\S|^\w+: \d+ rows")
+"""A heading as pdftotext prints it: a numbered section's title (``3.4 The problem``, ``A.2
+Findings``), or the bold heading the appendix gives each chapter's table."""
+
+
+def lonely_headings(pages):
+    r"""The pages (numbered from 1) whose text between the running header (the first line) and
+    the running footer (the last) is a heading alone.
+
+    Examples
+    --------
+    >>> lonely_headings(["Book\n3.4 The table\n12 Chapter 3", "Book\n| a | b |\n3.4 x 13",
+    ...                  "Book\n14 Chapter 3"])
+    [1]
+    """
     alone = []
     for k, page in enumerate(pages):
         lines = [line for line in page.strip().splitlines() if line.strip()]
-        body = lines[1:] if len(lines) > 1 else lines   # the running header
-        if 0 < len(body) <= 2 and re.match(r"^(\d+\.)+\d*\s+\S|^[\w]+: \d+ rows", body[0]):
-            alone.append((k + 1, body))
-    assert not alone, f"pages holding only a heading: {alone}"
+        body = lines[1:-1]
+        if 1 <= len(body) <= 2 and HEADING.match(body[0]):
+            alone.append(k + 1)
+    return alone
+
+
+def test_no_page_holds_only_a_heading(pages):
+    """No page holds a heading alone, with what it heads on the next page (a table, whose
+    heading is kept with it)."""
+    alone = lonely_headings(pages)
+    assert not alone, f"pages holding only a heading: {[(k, pages[k - 1][:120]) for k in alone]}"
 
 
 def _hidden_code():

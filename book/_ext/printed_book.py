@@ -16,6 +16,7 @@ The web book and the PDF are built from the same pages; this extension changes o
   cell is), in ``\\small`` type, or ``\\footnotesize`` from :data:`MANY_COLUMNS` columns on;
   it may run over several pages (a ``longtable``, unless it sits in a box such as an
   admonition), and one whose words do not fit an upright line is printed on turned pages;
+  a heading right before a table (its section's title, a bold paragraph) stays on its page;
 * **display formulas fit the line**: one wider than the line is scaled down to its width;
 * **a first page about the edition** after the title page: which edition it is
   (``printed_edition``: the answer key, or the students' edition), its licences, how to cite it
@@ -160,6 +161,18 @@ def _cell_texts(table):
     return [row + [""] * (width - len(row)) for row in rows]
 
 
+def _heading_before(table):
+    """The heading right before a table: its section's title, or a paragraph of bold text
+    alone (as the appendix heads each chapter's table); None if something else comes first."""
+    previous = table.previous_sibling() if table.parent is not None else None
+    if isinstance(previous, nodes.title):
+        return previous
+    if isinstance(previous, nodes.paragraph) and previous.children and all(
+            isinstance(child, nodes.strong) for child in previous.children):
+        return previous
+    return None
+
+
 BOXES = (nodes.Admonition, nodes.sidebar, nodes.topic, nodes.footnote, nodes.table)
 """The nodes that LaTeX sets in a box, where a table can neither break across pages nor turn."""
 
@@ -200,9 +213,17 @@ class PrintedTables(SphinxPostTransform):
             turn = page == "landscape"
             parent = table.parent
             index = parent.index(table)
+            heading = _heading_before(table)
             parent.insert(index + 1, _latex("\\endgroup" + "\\end{landscape}" * turn + "\n"))
-            parent.insert(index, _latex("\\begin{landscape}" * turn + "\\begingroup" + size
-                                        + "\n"))
+            if turn and isinstance(heading, nodes.paragraph):
+                # the heading turns with its table (a turned table starts a page)
+                parent.insert(parent.index(heading), _latex("\\begin{landscape}\n"))
+                parent.insert(index + 1, _latex("\\begingroup" + size + "\n"))
+            else:
+                # no page break between a heading and its table
+                keep = "\\nopagebreak" if heading is not None and not turn else ""
+                parent.insert(index, _latex("\\begin{landscape}" * turn + keep + "\\begingroup"
+                                            + size + "\n"))
 
     @staticmethod
     def _has_own_widths(table):
