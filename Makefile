@@ -187,7 +187,8 @@ STUDENT_TEX := [[book/index, $(PDF_NAME)-student.tex, 'Numerical Methods for Mec
 pdf-student: student-src
 	$(BIN)/python .ci/book_config.py --from $(STUDENT_SRC)/_config.yml $(STUDENT)/pdf_config.yml \
 		sphinx.config.latex_elements.papersize=$(PAPER)paper \
-		"sphinx.config.latex_documents=$(STUDENT_TEX)"
+		"sphinx.config.latex_documents=$(STUDENT_TEX)" \
+		latex.latex_documents.targetname=$(PDF_NAME)-student.tex
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) \
 		--builder pdflatex --config $(STUDENT)/pdf_config.yml
 

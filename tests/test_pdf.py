@@ -349,20 +349,19 @@ def test_no_code_the_web_book_hides_is_printed(pages):
 
 
 def solutions():
-    """``{(lecture, k): lines}``: the distinctive lines of each solution's code in the lecture
-    notebooks (lines of 25 to 70 characters that no other cell of any notebook holds)."""
-    cells = {}
-    elsewhere = set()
+    """``{(lecture, k): lines}``: the distinctive lines of each solution's code in the
+    notebooks: lines of 25 characters or more that no other cell of any notebook holds (as a part
+    of a line, however spaced)."""
+    cells, elsewhere = {}, []
     for notebook in sorted((ROOT / "book").glob("*.ipynb")):
         content = nbformat.read(notebook, as_version=4)
         mine = solution_code(content)
         for k, code in enumerate(mine):
             cells[notebook.stem, k] = code
-        for cell in content.cells:
-            if cell.source not in mine:
-                elsewhere.update(line.strip() for line in cell.source.splitlines())
+        elsewhere += [cell.source for cell in content.cells if cell.source not in mine]
+    others = squeeze("\n".join(elsewhere))
     return {key: [line.strip() for line in code.splitlines()
-                  if 25 <= len(line.strip()) <= 70 and line.strip() not in elsewhere]
+                  if len(line.strip()) >= 25 and squeeze(line) not in others]
             for key, code in cells.items()}
 
 
@@ -372,6 +371,7 @@ def test_the_students_edition_holds_no_solution(edition, pages):
     text = squeeze("".join(pages))
     found = solutions()
     assert {lecture for lecture, _ in found} >= {Path(p).name for p in lectures()}
+    assert all(found.values()), [key for key, lines in found.items() if not lines]
     printed = {key: [line for line in lines if squeeze(line) in text]
                for key, lines in found.items()}
     if edition == "student":
