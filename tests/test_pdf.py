@@ -44,10 +44,10 @@ EDITIONS = {"answer key": os.environ.get("MECHNUM_PDF"),
             "student": os.environ.get("MECHNUM_STUDENT_PDF")}
 PAPER = os.environ.get("MECHNUM_PDF_PAPER", "a4")
 PAGES = range(170, 260)
-"""The page count of each printed book (on A4, when this test was written: 216 pages for the
-answer key, 206 for the students' edition): its chapters and appendices without the API
-reference (142 pages alone), with the registry's appendix as a summary per chapter (88 pages
-when it printed every row)."""
+"""The page count of each printed book (on A4, when this test was written: 235 pages for the
+answer key, 223 for the students' edition): its chapters and appendices without the API
+reference (142 pages alone), with the registry's appendix as a summary per chapter (14 pages;
+88 when it printed every row)."""
 OVERFULL_PT = 20.0
 PAPER_PT = {"a4": (595.3, 841.9), "letter": (612.0, 792.0)}
 NUMBERS = ("ONE", "TWO", "THREE", "FOUR", "FIVE", "SIX", "SEVEN", "EIGHT", "NINE", "TEN",
