@@ -3,8 +3,8 @@
 
 * **Tables of verdicts**: a table with a ``verdict`` column (a reproduction table, the
   appendix's lists of rows) shows its ``verdict`` and ``finding`` right after the ``quantity``
-  (the first questions a reader asks of a row), and its cells wrap anywhere, so that the table
-  fits the column without scrolling sideways (the notebooks' outputs and the printed book keep
+  (the first questions a reader asks of a row), and its other cells wrap anywhere (those two at
+  their hyphens), so that the table fits the column without scrolling sideways (the notebooks' outputs and the printed book keep
   the order the registry gives).
 * **Long inline formulas**: one wider than its line scrolls inside its own box instead of
   being cut off (MathJax 3 does not break a formula across lines); the script marks them.
@@ -61,8 +61,13 @@ class VerdictsFirst(SphinxPostTransform):
             group = next(table.findall(nodes.tgroup))
             specs = [c for c in group.children if isinstance(c, nodes.colspec)]
             rows = list(group.findall(nodes.row))
-            if any(len(row.children) != len(headings) for row in rows) or order == sorted(order):
-                continue              # a spanned cell: left in its order
+            if any(len(row.children) != len(headings) for row in rows):
+                continue              # a spanned cell: left as it is
+            for row in rows:         # a verdict or a finding breaks at its hyphens only
+                for k in (headings.index(name) for name in FIRST if name in headings):
+                    row.children[k]["classes"].append("whole-words")
+            if order == sorted(order):
+                continue
             for parent, children in [(group, specs)] + [(row, list(row.children)) for row in rows]:
                 first = parent.index(children[0])
                 for child in children:
