@@ -116,9 +116,10 @@ notebooks-other-machine: $(STAMP)
 		$(NBVAL) -p no:cacheprovider book
 
 # The tests of the built books: offline pages, rendered TeX, the downloads run in a fresh
-# environment, the student edition hides every solution, every page in headless Chromium
-# (Debian's package chromium; without it those tests are skipped, and said so), and the
-# lectures' execution times that strict nbval measured. Each test module runs whole in one of
+# environment (every notebook of both editions' zips, with the served wheel), the student
+# edition hides every solution, every page and every slide of the lectures' decks in headless
+# Chromium, and the layout at 1280 and 390 px (Debian's package chromium; without it those tests
+# are skipped, and said so), and the lectures' execution times that strict nbval measured. Each test module runs whole in one of
 # two processes (the browser tests visit each page once; the downloads test, the longest, runs
 # beside them).
 html-check: $(STAMP)
