@@ -155,7 +155,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     f, J, rods, exclude = system(mech, theta, modes)
     boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split)
+                         split=exclude.split, scope="all" if around is None else "existence")
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
