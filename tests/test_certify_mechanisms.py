@@ -13,6 +13,7 @@ from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
 from mechnum.rods import balls, certified, regular
+from mechnum.rods.certified import TWO_PI
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 
@@ -121,6 +122,10 @@ def test_the_stored_table7_certificate_verifies_as_existence():
     assert (checked.count, checked.scope, checked.complete) == (3, "existence", None)
     with pytest.raises(certify.CertificateError, match="the caller asks for 'all'"):
         certify.verify(cert, f, J, exclude, domain=chart, scope="all")
+    again = rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA)
+    assert (again.count, again.scope) == (3, "existence")
+    with pytest.raises(certify.CertificateError, match="leaf"):          # other motor angles
+        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA + 0.01)
 
 
 def test_the_stored_table8_certificate_verifies_as_existence():
@@ -131,6 +136,7 @@ def test_the_stored_table8_certificate_verifies_as_existence():
     other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
         certify.verify(cert, other[0], other[1], other[3], domain=certified.branch_boxes(3))
+    assert pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS).count == 9
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])
@@ -162,3 +168,13 @@ def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
             certify.roots(f, J, box)
     with pytest.raises(ValueError, match="both branches"):        # a plain ball across 0
         f([ball(0.1, 0.2), ball(-0.5, 0.0)])
+
+
+def test_boxes_around_points_stay_in_the_chart_and_the_branch():
+    boxes = certified.around_boxes([[0.0, -0.5], [3.0, 1e-9], [TWO_PI, regular.T_MAX]], 1)
+    assert boxes[0, 0, 0] == 0.0 and boxes[0, 1, 1] < 0.0
+    assert boxes[1, 1, 0] == 0.0 and boxes[1, 1, 1] > 1e-9
+    assert boxes[2, 0, 1] == TWO_PI and boxes[2, 1, 1] == regular.T_MAX
+    for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):
+        with pytest.raises(ValueError, match="points of the chart"):
+            certified.around_boxes(points, 1)

@@ -115,12 +115,29 @@ ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
 def around_boxes(points, n_rods):
-    """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``."""
+    """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
+    the chart and to each point's branch (the side of ``t = 0`` it lies on).
+
+    Examples
+    --------
+    >>> around_boxes([[0.0, -0.5]], 1).tolist()
+    [[[0.0, 6.283185307179586e-06], [-0.5000009991677069, -0.4999990008322931]]]
+    """
     points = _validate.array(points, "around", ndim=2)
     if points.shape[1] != 2 * n_rods:
         raise ValueError(f"around must be (k, {2 * n_rods}) chart points, got {points.shape}")
+    psi, t = points[:, 0::2], points[:, 1::2]
+    if np.any((psi < 0) | (psi > TWO_PI) | (np.abs(t) > regular.T_MAX) | (t == 0)):
+        raise ValueError(f"around must be points of the chart (0 <= psi <= 2 pi, "
+                         f"0 < |t| <= T_MAX), got {points.tolist()}")
     scale = np.tile([TWO_PI, regular.T_MAX], n_rods) * AROUND
-    return np.stack((points - scale, points + scale), axis=-1)
+    lo, hi = points - scale, points + scale
+    lo[:, 0::2], hi[:, 0::2] = np.maximum(lo[:, 0::2], 0.0), np.minimum(hi[:, 0::2], TWO_PI)
+    lo[:, 1::2] = np.where(t > 0, np.maximum(lo[:, 1::2], 0.0),
+                           np.maximum(lo[:, 1::2], -regular.T_MAX))
+    hi[:, 1::2] = np.where(t > 0, np.minimum(hi[:, 1::2], regular.T_MAX),
+                           np.minimum(hi[:, 1::2], 0.0))
+    return np.stack((lo, hi), axis=-1)
 
 
 def around_note(around):

@@ -137,6 +137,59 @@ def _reduced(rs):
     return H
 
 
+def chart():
+    """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
+    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
+    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
+    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
+    ``"existence"``: boxes inside them).
+
+    Examples
+    --------
+    >>> chart().shape
+    (8, 6, 2)
+    """
+    return certified.branch_boxes(3)
+
+
+def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *, scope=None):
+    """Re-check a certificate of this mechanism against the caller's own inputs: the system
+    of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
+
+    Parameters
+    ----------
+    certificate : mechnum.certify.Certificate
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,)
+        The slider inputs (m).
+    modes : tuple of int, optional
+        The rods' buckling modes.
+    scope : {"all", "existence"}, optional
+        The scope required (None: the certificate's own).
+
+    Returns
+    -------
+    mechnum.certify.Verified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says for these inputs
+        (:func:`mechnum.certify.verify`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:1]
+    >>> cert = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled).certificate()
+    >>> v = verify_certificate(cert, TABLE8, TABLE8_LAMBDAS)
+    >>> v.count, v.scope, v.complete
+    (1, 'existence', None)
+    """
+    f, J, _, exclude = system(mech, lambdas, modes)
+    return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
+
+
 def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
@@ -176,7 +229,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     """
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, lambdas, modes)
-    boxes = certified.branch_boxes(3) if around is None else certified.around_boxes(around, 3)
+    boxes = chart() if around is None else certified.around_boxes(around, 3)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
                          split=exclude.split, scope="all" if around is None else "existence")
     z = part.x
