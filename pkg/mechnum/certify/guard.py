@@ -106,7 +106,7 @@ def _shown(y):
     return arb.str(y) if isinstance(y, arb) else repr(y)
 
 
-def _certain(symbol, holds, fails):
+def _certain(name, symbol, holds, fails):
     """A comparison of balls that answers only when every point agrees (``holds`` and
     ``fails``: arb's own comparisons, True only where certain)."""
     def compare(self, other):
@@ -119,7 +119,7 @@ def _certain(symbol, holds, fails):
             return False
         raise BallArithmeticError(f"x {symbol} y is not certain for x = {arb.str(self)}, "
                                   f"y = {_shown(other)}: a residual cannot branch on it")
-    compare.__name__ = f"__{symbol}__"
+    compare.__name__ = name
     return compare
 
 
@@ -172,12 +172,12 @@ must stay in ball arithmetic (use the ball's own methods, such as x.sin())
     def __trunc__(self):
         _left("math.trunc()", self)
 
-    __lt__ = _certain("<", arb.__lt__, arb.__ge__)
-    __le__ = _certain("<=", arb.__le__, arb.__gt__)
-    __gt__ = _certain(">", arb.__gt__, arb.__le__)
-    __ge__ = _certain(">=", arb.__ge__, arb.__lt__)
-    __eq__ = _certain("==", arb.__eq__, arb.__ne__)
-    __ne__ = _certain("!=", arb.__ne__, arb.__eq__)
+    __lt__ = _certain("__lt__", "<", arb.__lt__, arb.__ge__)
+    __le__ = _certain("__le__", "<=", arb.__le__, arb.__gt__)
+    __gt__ = _certain("__gt__", ">", arb.__gt__, arb.__le__)
+    __ge__ = _certain("__ge__", ">=", arb.__ge__, arb.__lt__)
+    __eq__ = _certain("__eq__", "==", arb.__eq__, arb.__ne__)
+    __ne__ = _certain("__ne__", "!=", arb.__ne__, arb.__eq__)
     __hash__ = None
 
     @property
