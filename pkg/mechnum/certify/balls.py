@@ -70,7 +70,7 @@ def ball(lo, hi=None):
     return arb(mid, rad)
 
 
-def guarded(box):
+def guarded(box) -> list:
     """The :class:`~mechnum.certify.guard.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
     knowing its ends: what a residual is handed.
 

@@ -220,10 +220,16 @@ for _name, _value in vars(arb).items():
         setattr(Ball, _name, _method(_name))
 
 
-def interval(x):
+def interval(x: arb) -> tuple | None:
     """The exact float ends ``(lo, hi)`` of the box a :class:`Ball` was made from
     (:func:`mechnum.certify.balls.guarded`), or None (a plain ball, or a Ball computed from
-    others)."""
+    others).
+
+    Examples
+    --------
+    >>> interval(Ball(arb(1), box=(1.0, 1.0))), interval(arb(1))
+    ((1.0, 1.0), None)
+    """
     return x.interval if isinstance(x, Ball) else None
 
 
@@ -249,8 +255,17 @@ def _sequence(out, n, name, what):
     return list(out)
 
 
-def values(residual, X, n, *, point=False):
+def values(residual, X: list, n: int, *, point: bool = False) -> list:
     """``residual(X)`` checked: ``n`` balls (plain ``arb``), finite if ``point``.
+
+    Examples
+    --------
+    >>> values(lambda X: [X[0] - 1, 2], [Ball(arb(3))], 2)
+    [2.00000000000000, 2.00000000000000]
+    >>> values(lambda X: [X[0] - 1], [Ball(arb(3))], 2)
+    Traceback (most recent call last):
+    ...
+    mechnum.certify.guard.ResidualError: the residual must return a sequence of 2, got 1
 
     Raises
     ------
@@ -267,16 +282,28 @@ def values(residual, X, n, *, point=False):
     return out
 
 
-def matrix(jacobian, X, n):
-    """``jacobian(X)`` checked: ``n`` rows of ``n`` balls (plain ``arb``)."""
+def matrix(jacobian, X: list, n: int) -> list:
+    """``jacobian(X)`` checked: ``n`` rows of ``n`` balls (plain ``arb``).
+
+    Examples
+    --------
+    >>> matrix(lambda X: [[2 * X[0]]], [Ball(arb(3))], 1)
+    [[6.00000000000000]]
+    """
     rows = _sequence(jacobian(X), n, "the jacobian", "a sequence of rows")
     return [[_component(v, "the jacobian", f"entry ({i}, {j})")
              for j, v in enumerate(_sequence(row, n, "the jacobian", f"a row {i}"))]
             for i, row in enumerate(rows)]
 
 
-def decision(exclude, X):
-    """``exclude(X)`` checked: a plain ``bool`` (numpy's ``bool_`` too)."""
+def decision(exclude, X: list) -> bool:
+    """``exclude(X)`` checked: a plain ``bool`` (numpy's ``bool_`` too).
+
+    Examples
+    --------
+    >>> decision(lambda X: X[0] > 2, [Ball(arb(3))])
+    True
+    """
     out = exclude(X)
     if type(out) is bool or type(out).__name__ == "bool_":
         return bool(out)

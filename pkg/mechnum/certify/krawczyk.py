@@ -58,7 +58,7 @@ def residual_excludes(values):
     return _zero_excluded(values)
 
 
-def midpoint(X):
+def midpoint(X: np.ndarray) -> tuple:
     """The float midpoint of the float box ``X``, as exact balls and as floats."""
     y = 0.5 * X[:, 0] + 0.5 * X[:, 1]
     return [arb(float(v)) for v in y], y
@@ -119,7 +119,7 @@ def krawczyk(fy, J, X, yb, Y):
     return [K[i, 0] for i in range(n)], norm
 
 
-def inside(K, X):
+def inside(K: list, X: np.ndarray) -> bool:
     """Whether every ball of ``K`` lies in the interior of the float box ``X``."""
     return all(k.is_finite() and bool(k.lower() > arb(float(lo)))
                and bool(k.upper() < arb(float(hi))) for k, (lo, hi) in zip(K, X))
@@ -145,18 +145,18 @@ def to_floats(values):
     return np.array([bounds(v) for v in values])
 
 
-def residual_of(residual, X, counter):
+def residual_of(residual, X: np.ndarray, counter: dict) -> list:
     """The residual's enclosure over the float box ``X`` (checked, counted)."""
     counter["nfev"] += 1
     return guard.values(residual, guarded(X), len(X))
 
 
-def excluded_by(exclude, X):
+def excluded_by(exclude, X: np.ndarray) -> bool:
     """The caller's own exclusion test on the float box ``X`` (checked)."""
     return guard.decision(exclude, guarded(X))
 
 
-def linearised(residual, jacobian, X, counter):
+def linearised(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
     """``(J, yb, fy)``: the Jacobian's enclosure over the float box ``X``, its midpoint (exact
     balls) and the residual's enclosure there, the two evaluations counted in ``counter``."""
     n = len(X)
@@ -168,7 +168,7 @@ def linearised(residual, jacobian, X, counter):
     return J, yb, fy
 
 
-def test_box(residual, jacobian, X, counter, exclude=None):
+def test_box(residual, jacobian, X: np.ndarray, counter: dict, exclude=None) -> tuple:
     """Run the tests on the float box ``X``.
 
     Returns ``(test, J, K, value)``: ``test`` is ``"residual"``, ``"exclude"`` (the caller's
@@ -198,7 +198,7 @@ def test_box(residual, jacobian, X, counter, exclude=None):
     return ("contracting" if norm < CONTRACTING else None), J, K, value
 
 
-def krawczyk_test(residual, jacobian, X, counter):
+def krawczyk_test(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
     """One Krawczyk test of the float box ``X``: ``(passed, K)``, ``passed`` True when ``K(X)``
     lies in the interior of ``X`` (exactly one root, in ``K``)."""
     J, yb, fy = linearised(residual, jacobian, X, counter)

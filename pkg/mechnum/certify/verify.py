@@ -39,8 +39,14 @@ def _interiors_meet(a, b):
     return bool(np.all(a[:, 0] < b[:, 1]) and np.all(b[:, 0] < a[:, 1]))
 
 
-def overlapping(boxes):
-    """The indices ``(i, j)`` of two boxes whose interiors meet, or None."""
+def overlapping(boxes: np.ndarray) -> tuple | None:
+    """The indices ``(i, j)`` of two boxes whose interiors meet, or None (faces may touch).
+
+    Examples
+    --------
+    >>> overlapping(np.array([[[0.0, 1.0]], [[1.0, 2.0]], [[1.5, 3.0]]]))
+    (1, 2)
+    """
     for i in range(len(boxes)):
         for j in range(i + 1, len(boxes)):
             if _interiors_meet(boxes[i], boxes[j]):
@@ -48,15 +54,21 @@ def overlapping(boxes):
     return None
 
 
-def sorted_roots(found):
-    """Root enclosures sorted by their midpoints (first coordinate first)."""
+def sorted_roots(found: list) -> list:
+    """Root enclosures sorted by their midpoints (first coordinate first).
+
+    Examples
+    --------
+    >>> [E.tolist() for E in sorted_roots([np.array([[1.0, 2.0]]), np.array([[0.0, 0.5]])])]
+    [[[0.0, 0.5]], [[1.0, 2.0]]]
+    """
     if not found:
         return []
     order = np.lexsort(np.array([E.mean(axis=1) for E in found]).T[::-1])
     return [found[i] for i in order]
 
 
-def distinct_roots(leaves):
+def distinct_roots(leaves) -> tuple:
     """The distinct roots proven by the Krawczyk leaves of one searched box, and the leaves
     whose root cannot be told apart from another's.
 
@@ -69,6 +81,15 @@ def distinct_roots(leaves):
     roots : list of ndarray (n, 2)
         Sorted by their midpoints (first coordinate first).
     undecided : list of (Leaf, str)
+
+    Examples
+    --------
+    >>> from mechnum.certify.certificate import Leaf
+    >>> same = [Leaf([[0.0, 1.0]], "krawczyk", [[0.0, 1.5]], [[0.4, 0.6]]),
+    ...         Leaf([[1.0, 2.0]], "krawczyk", [[0.5, 2.0]], [[0.45, 0.55]])]
+    >>> roots, undecided = distinct_roots(same)
+    >>> [E.tolist() for E in roots], undecided
+    ([[[0.45, 0.55]]], [])
     """
     found, undecided = [], []
     for leaf in leaves:
@@ -88,10 +109,18 @@ def distinct_roots(leaves):
     return sorted_roots([E for E, _ in found]), undecided
 
 
-def covers(leaves, box):
+def covers(leaves, box: np.ndarray) -> bool:
     """Whether leaves in depth-first order merge, two halves at a time, into ``box``: two
     consecutive boxes merge when they differ in exactly one coordinate, where the first ends
-    exactly where the second begins."""
+    exactly where the second begins.
+
+    Examples
+    --------
+    >>> from mechnum.certify.certificate import Leaf
+    >>> halves = [Leaf([[0.0, 0.5]], "residual"), Leaf([[0.5, 1.0]], "residual")]
+    >>> covers(halves, np.array([[0.0, 1.0]])), covers(halves[:1], np.array([[0.0, 1.0]]))
+    (True, False)
+    """
     stack = []
     for leaf in leaves:
         stack.append(leaf.box)

@@ -98,7 +98,7 @@ def combine(parts, solutions, stable, extra=""):
                      stable=list(stable), parts=tuple(parts))
 
 
-def branch_boxes(n_rods):
+def branch_boxes(n_rods: int) -> np.ndarray:
     """The chart's domain for ``n_rods`` rods: one box per sign pattern of the ``t_i``."""
     out = []
     for signs in np.ndindex(*(2,) * n_rods):
@@ -114,7 +114,7 @@ AROUND = 1e-6
 ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
-def around_boxes(points, n_rods):
+def around_boxes(points, n_rods: int) -> np.ndarray:
     """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
     the chart and to each point's branch (the side of ``t = 0`` it lies on).
 
@@ -146,7 +146,7 @@ def around_note(around):
         f"; searched around {len(around)} given points only: the count is a lower bound")
 
 
-def _ends(x):
+def _ends(x: arb) -> tuple:
     """The float interval a ball stands for: the exact box of a ball from
     :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
     own bounds (rounded outward)."""
@@ -154,7 +154,7 @@ def _ends(x):
     return box if box is not None else certify.bounds(arb(x))
 
 
-def branch_of(X, i):
+def branch_of(X: list, i: int) -> int:
     """The sign of ``t`` of rod ``i`` on the box of balls ``X``: the side of ``t = 0`` that the
     box lies on, decided on the box's own float interval (:func:`_ends`), not on its ball,
     whose radius is rounded outward past ``t = 0`` when the box ends there.
@@ -306,7 +306,7 @@ def memoised(rods):
     return cached
 
 
-def enclosed(root):
+def enclosed(root: np.ndarray) -> list:
     """The balls of a root's enclosure ``(n, 2)`` (knowing their float box)."""
     return certify.balls.guarded(root)
 

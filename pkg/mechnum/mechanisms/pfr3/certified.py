@@ -137,7 +137,7 @@ def _reduced(rs):
     return H
 
 
-def chart():
+def chart() -> np.ndarray:
     """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
     (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
     without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
@@ -152,7 +152,8 @@ def chart():
     return certified.branch_boxes(3)
 
 
-def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *, scope=None):
+def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
+                       scope=None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
 

@@ -115,7 +115,7 @@ def tail_excluded(mech, modes=(1, 1)):
     return bool(gap < mech.L * (2.0 - 2.0 * F / R - eps) * (1 - 1e-9))
 
 
-def chart():
+def chart() -> np.ndarray:
     """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
     (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
     without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
@@ -130,7 +130,8 @@ def chart():
     return certified.branch_boxes(2)
 
 
-def verify_certificate(certificate, mech, theta, modes=(1, 1), *, scope=None):
+def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
+                       scope=None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
 
