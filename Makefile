@@ -11,7 +11,7 @@ NB_ENV := env -u MPLBACKEND
 .PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
 	notebooks-other-machine html-check bench execute lab clean certify
 
-$(STAMP): environment.txt pkg/pyproject.toml
+$(STAMP): environment.txt pkg/pyproject.toml course/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
@@ -40,7 +40,7 @@ downloads: $(STAMP)
 	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
 
 # The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
-# It is built from a copy of the sources without the solutions (mechnum.exercises.student), so
+# It is built from a copy of the sources without the solutions (mechnum_course.student), so
 # that the pages, their .ipynb downloads and the served zip hold none; the copy renders the
 # committed outputs (the tests have checked them) instead of executing again, except the
 # exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
@@ -49,7 +49,7 @@ STUDENT_SRC := $(STUDENT)/src
 book-student: downloads
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
 	cp -r _toc.yml book $(STUDENT_SRC)/
-	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
+	$(BIN)/python -m mechnum_course.student $(STUDENT_SRC)/book
 	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
 		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
 		c['execute']['execute_notebooks'] = 'off'; \
@@ -73,11 +73,11 @@ grade: $(STAMP)
 XDIST := -n auto --dist worksteal
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
-		pkg/mechnum tests
+		pkg/mechnum course/mechnum_course tests
 
 # The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
 lint: $(STAMP)
-	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg course tests bench
 
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests

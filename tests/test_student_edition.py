@@ -2,7 +2,7 @@
 and every starter is still there, no solution is, in the pages, in every ``.ipynb`` they offer
 and in the served zip.
 
-The machinery (:mod:`mechnum.exercises.student`) is tested on a small fixture chapter
+The machinery (:mod:`mechnum_course.student`) is tested on a small fixture chapter
 (``tests/fixtures/exercise_chapter.ipynb``: two implement-it-yourself exercises, a prose solution
 and a computed one) and on the real chapters. The built books are compared when both are given,
 ``MECHNUM_BUILT_HTML`` (the book) and ``MECHNUM_STUDENT_HTML`` (the student edition), as
@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from mechnum import exercises
-from mechnum.exercises.student import strip_markdown, student_notebook
+from mechnum_course.student import strip_markdown, student_notebook
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURE = ROOT / "tests" / "fixtures" / "exercise_chapter.ipynb"
@@ -94,7 +94,7 @@ def test_the_fixture_chapter():
         number = cell["metadata"]["mechnum"]["exercise"]
         namespace = {}
         exec(exercises.starter(number), {}, namespace)
-        expected = exercises.check(number, namespace[exercises.reference(number).__name__])
+        expected = exercises.check(number, namespace[exercises.EXERCISES[number].name])
         assert shown(cell) == expected.message
     assert json.loads(json.dumps(student)) == student  # still a notebook (JSON)
 
