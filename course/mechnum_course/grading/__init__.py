@@ -161,8 +161,8 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
     outcome, sources = run_notebook(inside, copy, work, limit=limit, cell_limit=cell_limit,
                                     keep=keep)
     names = {e.name: n for n, e in exercises.EXERCISES.items()}
+    cells = [c.source for c in notebook.cells if c.cell_type == "code"]
     if not sources or outcome["problem"]:
-        cells = [c.source for c in notebook.cells if c.cell_type == "code"]
         fallback = _extract.static(cells, list(names))
         sources = {k: v for k, v in sources.items() if isinstance(v, dict) and "source" in v}
         sources = {**fallback, **sources}
@@ -174,7 +174,8 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
         if "source" not in found or not isinstance(found["source"], str):
             verdicts[number] = ("not gradable", str(found.get("error", "no source"))[:500])
             continue
-        result = _check.grade(number, name, found["source"], Path(tempfile.mkdtemp(
+        source = _extract.with_imports(found["source"], cells)
+        result = _check.grade(number, name, source, Path(tempfile.mkdtemp(
             prefix=f"check-{number}-", dir=work)), keep)
         notes = [str(n) for n in found.get("notes", [])][:5]
         message = result.message + "".join(f" (Note: {n}.)" for n in notes)

@@ -159,12 +159,12 @@ def bundle(namespace, name, folder=""):
             if other in defs or other == alias or other not in function.__globals__:
                 continue
             value = function.__globals__[other]
-            if hasattr(builtins, other) and getattr(builtins, other) is value:
+            if isinstance(value, types.FunctionType) and _is_students(value, folder):
+                visit(value, other)
                 continue
-            if isinstance(value, (types.FunctionType, type)) or callable(value):
-                if isinstance(value, types.FunctionType) and _is_students(value, folder):
-                    visit(value, other)
-                    continue
+            if hasattr(builtins, other):  # IPython's own open, say: the builtin serves
+                continue
+            if isinstance(value, type) or callable(value):
                 text = _imported(value, other)
             else:
                 text = _imported(value, other) or _constant(value, other)
@@ -230,3 +230,44 @@ def static(cells, names):
         found[name] = {"source": body + "\n\n" + defs[name] + "\n",
                        "notes": ["graded from the notebook's text: its kernel did not finish"]}
     return found
+
+
+def _imports(cells):
+    """``{name: import statement}`` of the top-level imports of the code cells' text."""
+    found = {}
+    for text in cells:
+        try:
+            tree = ast.parse(text)
+        except SyntaxError:
+            continue
+        for node in tree.body:
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                for alias in node.names:
+                    name = (alias.asname or alias.name).split(".")[0]
+                    found[name] = ast.get_source_segment(text, node)
+    return found
+
+
+def with_imports(source, cells):
+    """``source`` with the notebook's import statements of the names it uses but does not
+    bind (an import the kernel could not run, such as the instructors' package, is still
+    tried, and refused, where the function runs)."""
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return source
+    bound = set(dir(builtins))
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            bound.add(node.name)
+            bound.update(a.arg for a in ast.walk(node.args) if isinstance(a, ast.arg))
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            bound.update((a.asname or a.name).split(".")[0] for a in node.names)
+        elif isinstance(node, ast.Name) and not isinstance(node.ctx, ast.Load):
+            bound.add(node.id)
+    used = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name) and
+            isinstance(n.ctx, ast.Load)} - bound
+    imports = _imports(cells)
+    extra = list(dict.fromkeys(imports[name] for name in sorted(used) if name in imports))
+    return "\n".join(extra + [source])
+

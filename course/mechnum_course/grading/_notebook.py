@@ -100,7 +100,7 @@ def run(job):
     client = _Client(notebook, timeout=job["cell_limit"], allow_errors=True,
                      interrupt_on_timeout=True, kernel_name="mechnum-sandbox",
                      max_output=job["max_output"], startup_timeout=120,
-                     resources={"metadata": {"path": str(folder)}})
+                     resources={"metadata": {"path": str(Path(job["notebook"]).parent)}})
     client.km = client.create_kernel_manager()
     client.km.transport, client.km.ip = "ipc", str(runtime / "kernel")
     client.km.connection_file = str(runtime / "connection.json")
