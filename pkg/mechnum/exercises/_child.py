@@ -36,8 +36,8 @@ class Outcome:
     changed: tuple = ()
 
 
-def _report(function, args, names, changed_test):
-    """Run the function; the pickled Outcome (in the child)."""
+def report(function, args, names, changed_test):
+    """Run the function; the packed :class:`Outcome` (in the process that runs it)."""
     import copy
 
     before = copy.deepcopy(args)
@@ -48,18 +48,18 @@ def _report(function, args, names, changed_test):
             name, text = type(error).__name__, str(error)[:2000]
         except BaseException:  # noqa: B036 -- a hostile __str__
             name, text = "Exception", "(its message could not be read)"
-        return _pack(Outcome("raised", error=name, message=text))
+        return pack(Outcome("raised", error=name, message=text))
     changed = tuple(n for n, b, a in zip(names, before, args) if changed_test(b, a))
     try:
         data = pickle.dumps(value, protocol=4)
     except BaseException as error:  # noqa: B036
-        return _pack(Outcome("died", message=f"the answer, a {type(value).__name__}, "
+        return pack(Outcome("died", message=f"the answer, a {type(value).__name__}, "
                                     f"cannot be sent back ({type(error).__name__}): return "
                                     "numbers, arrays or tuples of them"))
-    return _pack(Outcome("value", value=data, changed=changed))
+    return pack(Outcome("value", value=data, changed=changed))
 
 
-def _pack(outcome):
+def pack(outcome):
     return pickle.dumps((outcome.kind, outcome.value, outcome.error, outcome.message,
                          tuple(outcome.changed)), protocol=4)
 
@@ -86,7 +86,7 @@ def _in_child(function, args, names, changed_test, write):
         os.setpgid(0, 0)
         sys.stdout = open(1, "w", buffering=1, closefd=False)  # noqa: SIM115
         sys.stderr = open(2, "w", buffering=1, closefd=False)  # noqa: SIM115
-        data = _report(function, args, names, changed_test)
+        data = report(function, args, names, changed_test)
         sys.stdout.flush()
         view = memoryview(data)
         while view:
@@ -163,11 +163,11 @@ def _call_here(function, args, seconds, names, changed_test):
         previous = signal.signal(signal.SIGALRM, stop)
         signal.setitimer(signal.ITIMER_REAL, seconds)
         try:
-            outcome = unpack(_report(function, args, names, changed_test))
+            outcome = unpack(report(function, args, names, changed_test))
         except _TimeUp:
             outcome = Outcome("timeout")
         finally:
             signal.setitimer(signal.ITIMER_REAL, 0)
             signal.signal(signal.SIGALRM, previous)
         return Outcome("timeout") if outcome.error == "_TimeUp" else outcome
-    return unpack(_report(function, args, names, changed_test))
+    return unpack(report(function, args, names, changed_test))
