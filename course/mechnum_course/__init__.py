@@ -14,6 +14,7 @@ True
 """
 
 import copy
+import functools
 import inspect
 import textwrap
 import warnings
@@ -82,13 +83,20 @@ def check(number, answer, *, hidden=True):
     exercise = exercises.EXERCISES[number]
     if not callable(answer):
         return _harness.not_a_function(exercise, answer)
-    cases = exercise.cases() + (HIDDEN[number]() if hidden else [])
-    expected, mistaken = answers(number, cases)
+    cases, probes, expected, mistaken, on_probes = _answered(number, hidden)
     outcomes = ((case, _harness.run(exercise, answer, case)) for case in cases)
-    probes = exercise.probes()
     return _harness.judge(exercise, outcomes, expected, lambda k: mistaken[k],
                           lambda: [(p, _harness.run(exercise, answer, p)) for p in probes],
-                          answers(number, probes)[1])
+                          on_probes)
+
+
+@functools.cache
+def _answered(number, hidden):
+    """The cases and probes of an exercise with the references' and mistakes' answers."""
+    exercise = exercises.EXERCISES[number]
+    cases = exercise.cases() + (HIDDEN[number]() if hidden else [])
+    probes = exercise.probes()
+    return (cases, probes, *answers(number, cases), answers(number, probes)[1])
 
 
 def cells(number):
