@@ -8,8 +8,8 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
-	notebooks-other-machine html-check bench execute lab clean certify
+.PHONY: book book-committed book-student downloads grade nbgrader pdf test unit lint explore \
+	notebooks notebooks-other-machine html-check bench execute lab clean certify
 
 $(STAMP): environment.txt pkg/pyproject.toml course/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -59,12 +59,22 @@ book-student: downloads
 		-c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
 
-# Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
-# and summary.txt are written into the folder; mechnum.exercises.grading says how).
+# Grade a folder of student notebooks: make grade SUBMISSIONS=folder [OUT=folder] (grades.csv,
+# feedback/<student>.md and summary.txt, by default in SUBMISSIONS/grading). Each notebook runs
+# confined, only to extract its functions; each function is graded from its source in a fresh
+# confined process on the public and hidden cases (course/mechnum_course/grading, and the book's
+# page "Grading the exercises", which also gives the command for a container with no network).
 grade: $(STAMP)
-	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; \
-		exit 2; }
-	$(NB_ENV) $(BIN)/python -m mechnum.exercises.grading $(SUBMISSIONS)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>" \
+		"[OUT=<folder>]"; exit 2; }
+	$(NB_ENV) $(BIN)/python -m mechnum_course.grading $(SUBMISSIONS) $(if $(OUT),--out $(OUT))
+
+# The self-checked exercises as an nbgrader course in _build/nbgrader (mechnum_course.nbgrader):
+# source notebooks with solution regions and autograded tests that hold the hidden cases.
+NBGRADER := _build/nbgrader
+nbgrader: $(STAMP)
+	rm -rf $(NBGRADER)
+	$(BIN)/python -m mechnum_course.nbgrader $(NBGRADER)
 
 # The property-based tests draw the same examples on every run (tests/conftest.py), also when
 # pytest-xdist shares them out between the cores; `make explore` draws new ones, to search for

@@ -37,7 +37,7 @@ from mechnum.exercises import _ch1, _ch2, _ch3, _ch4, _ch5, _ch6, _ch7, _data, _
 from mechnum.exercises._harness import TIME_LIMIT, Result
 
 __all__ = ["CHECKS", "EXERCISES", "ROLES", "TIME_LIMIT", "Result", "cells", "check",
-           "check_code", "starter", "statement"]
+           "check_cases", "check_code", "starter", "statement"]
 
 EXERCISES = {e.number: e for e in (
     _ch1.LOOP, _ch1.NEWTON, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING, _ch4.COMPANION,
@@ -101,6 +101,30 @@ def check(number, answer):
     probes = lambda: [(p, _harness.run(exercise, answer, p)) for p in exercise.probes()]  # noqa: E731
     return _harness.judge(exercise, outcomes, expected, lambda k: mistakes[k], probes,
                           probe_mistakes)
+
+
+def check_cases(number, answer, cases, expected):
+    """Run the student's ``answer`` on the given ``cases`` of exercise ``number`` and compare it
+    with their ``expected`` answers (as :func:`check` does with the public ones): an nbgrader
+    test cell holds an exercise's hidden cases and their answers, and calls this.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mechnum import exercises
+    >>> from mechnum.exercises._harness import Case
+    >>> case = Case("y' = y from 1, h = 1", (lambda s, y: y, 0.0, np.array([1.0]), 1.0))
+    >>> exercises.check_cases("3.1", lambda f, s, y, h: y + h * f(s, y), [case],
+    ...                       [np.array([2.708333333333333])]).passed
+    False
+    """
+    exercise = _exercise(number)
+    if not callable(answer):
+        return _harness.not_a_function(exercise, answer)
+    if len(cases) != len(expected):
+        raise ValueError(f"{len(cases)} cases and {len(expected)} expected answers")
+    outcomes = ((case, _harness.run(exercise, answer, case)) for case in cases)
+    return _harness.judge(exercise, outcomes, list(expected), lambda k: {})
 
 
 def starter(number):
