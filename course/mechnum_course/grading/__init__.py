@@ -14,8 +14,9 @@ folder ``name/`` of notebooks and the student's own files. For each notebook:
    instructors' reference or a function its statement forbids fails with that reason.
 
 Nothing stops the run: a file that is not a notebook (not JSON, a folder named ``x.ipynb``, a
-cell without ``source``) is a row with the status ``invalid`` and its reason; a notebook that
-overruns its time is stopped and graded from its text. Written into the output folder (by
+cell without ``source``) is a row with the status ``invalid`` and its reason, and so is a
+notebook that cannot start (its functions are still graded from its text, for the instructor to
+see); a notebook that overruns its time is stopped and graded from its text. Written into the output folder (by
 default ``FOLDER/grading``): ``grades.csv`` (:mod:`._report`), ``feedback/<student>.md`` and
 ``summary.txt``.
 
@@ -180,7 +181,8 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
         notes = [str(n) for n in found.get("notes", [])][:5]
         message = result.message + "".join(f" (Note: {n}.)" for n in notes)
         verdicts[number] = ("pass" if result.passed else "fail", message)
-    status = ("timeout" if "longer than" in outcome["problem"] else
+    status = ("invalid" if outcome["problem"].startswith("the notebook could not run") else
+              "timeout" if "longer than" in outcome["problem"] else
               "errors" if outcome["errors"] or outcome["problem"] else "ok")
     notes = [outcome["problem"]] if outcome["problem"] else []
     if outcome.get("dropped"):

@@ -54,9 +54,9 @@ def _merge(graded, number):
 
 
 def _status(graded):
-    order = ("timeout", "errors", "ok", "invalid")
-    valid = [g["status"] for g in graded if g["status"] != "invalid"]
-    return min(valid, key=order.index) if valid else "invalid"
+    """The worst status of a student's notebooks."""
+    order = ("invalid", "timeout", "errors", "ok")
+    return min((g["status"] for g in graded), key=order.index)
 
 
 def write(rows, out, numbers=None, *, sandbox=0, limits=None):
