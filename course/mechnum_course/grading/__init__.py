@@ -16,9 +16,9 @@ folder ``name/`` of notebooks and the student's own files. For each notebook:
 Nothing stops the run: a file that is not a notebook (not JSON, a folder named ``x.ipynb``, a
 cell without ``source``) is a row with the status ``invalid`` and its reason, and so is a
 notebook that cannot start (its functions are still graded from its text, for the instructor to
-see); a notebook that overruns its time is stopped and graded from its text. Written into the output folder (by
-default ``FOLDER/grading``): ``grades.csv`` (:mod:`._report`), ``feedback/<student>.md`` and
-``summary.txt``.
+see); a notebook that overruns its time is stopped and graded from its text. Written into the
+output folder (by default ``FOLDER/grading``): ``grades.csv`` (:mod:`._report`),
+``feedback/<student>.md`` and ``summary.txt``.
 
 Command line: ``python -m mechnum_course.grading FOLDER [--out FOLDER] [--limit SECONDS]
 [--cell-limit SECONDS] [--exercises 3.1,3.2]``.
