@@ -121,8 +121,12 @@ def check_cases(number, answer, cases, expected):
     exercise = _exercise(number)
     if not callable(answer):
         return _harness.not_a_function(exercise, answer)
-    if len(cases) != len(expected):
-        raise ValueError(f"{len(cases)} cases and {len(expected)} expected answers")
+    if not isinstance(cases, (list, tuple)) or not all(isinstance(c, _harness.Case)
+                                                       for c in cases):
+        raise ValueError(f"cases must be a list of Case, got {type(cases).__name__}")
+    if not isinstance(expected, (list, tuple)) or len(cases) != len(expected):
+        raise ValueError(f"expected must be a list of one answer per case ({len(cases)}), "
+                         f"got {type(expected).__name__}")
     outcomes = ((case, _harness.run(exercise, answer, case)) for case in cases)
     return _harness.judge(exercise, outcomes, list(expected), lambda k: {})
 
