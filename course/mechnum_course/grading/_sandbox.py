@@ -151,6 +151,8 @@ def become_subreaper():
 def descendants(root=None):
     """The ids of every descendant of ``root`` (this process), from ``/proc``."""
     root, children = root or os.getpid(), {}
+    if not Path("/proc").is_dir():  # not Linux: nothing to sweep
+        return []
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit():
             try:
