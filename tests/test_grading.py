@@ -67,17 +67,21 @@ def graded(tmp_path_factory):
     submission(folder / "loop.ipynb", "import numpy as np", RIGHT,
                "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\n"
                "signal.signal(signal.SIGTERM, signal.SIG_IGN)\nwhile True:\n    pass")
+    script = "\n".join([  # leaves its session, then strikes every second for a minute
+        "import os, time", "os.fork() and os._exit(0)", "os.setsid()",
+        f"# vandal-{os.getpid()}", "for _ in range(60):", "    time.sleep(1)",
+        *(f"    try: open({str(target)!r}, 'w').write('gone')\n    except OSError: pass"
+          for target in (folder / "right.ipynb", folder / "grading" / "grades.csv"))])
     submission(folder / "vandal.ipynb", "import numpy as np",
-               f"import subprocess, sys\nsubprocess.Popen([sys.executable, '-c', "
-               f"'import os, time\\nos.fork() and os._exit(0)\\nos.setsid()\\ntime.sleep(3)\\n"
-               f"open({str(folder / 'right.ipynb')!r}, \"w\").write(\"gone\")\\n"
-               f"open({str(folder / 'grading' / 'grades.csv')!r}, \"w\").write(\"x\")\n"
-               f"time.sleep(60)  # vandal-{os.getpid()}'], "
+               f"import subprocess, sys\nsubprocess.Popen([sys.executable, '-c', {script!r}], "
                "start_new_session=True)",
                "import mechnum, pathlib\n"
                "p = pathlib.Path(mechnum.__file__).parent / 'exercises' / '_answers.py'\n"
                "p.write_text(p.read_text() + '\\n')",
                RIGHT)
+    submission(folder / "slow.ipynb", "import numpy as np",
+               "def rk4_step(f, s, y, h):\n    while True:\n"
+               "        np.linalg.eigvals(np.ones((400, 400)))")
     submission(folder / "lambda.ipynb", "import numpy as np\n" + RIGHT.replace(
         "def rk4_step", "def my_step") + "\nrk4_step = lambda f, s, y, h: my_step(f, s, y, h)")
     submission(folder / "executed.ipynb", f"import numpy as np\nexec({RIGHT!r})")
@@ -107,7 +111,7 @@ def graded(tmp_path_factory):
 
 def test_every_row_is_written_in_bounded_time(graded):
     summary, rows, feedback, seconds, _, _ = graded
-    expected = {"right", *CHEATS, "loop", "vandal", "lambda", "executed", "closure",
+    expected = {"right", *CHEATS, "loop", "vandal", "slow", "lambda", "executed", "closure",
                 "notjson", "x", "nosource", "imported"}
     assert set(rows) == expected == set(feedback)
     assert list(next(iter(rows.values())))[:6] == ["student", "status", "total", "maximum",
@@ -149,7 +153,7 @@ def test_the_endless_loop_is_stopped_and_its_function_graded(graded):
 
 
 def test_no_process_outlives_the_grading_and_nothing_was_overwritten(graded):
-    _, rows, _, _, folder, right_before = graded
+    _, rows, feedback, _, folder, right_before = graded
     assert (folder / "right.ipynb").read_bytes() == right_before
     assert (folder / "grading" / "grades.csv").read_text().startswith("student,")
     alive = []
@@ -161,7 +165,15 @@ def test_no_process_outlives_the_grading_and_nothing_was_overwritten(graded):
             continue
     assert not alive, f"the detached process survived the grading: {alive}"
     assert rows["vandal"]["3.1"] == "1"  # its function is still graded
-    assert "PermissionError" in rows["vandal"]["note"] or rows["vandal"]["status"] == "errors"
+    assert rows["vandal"]["status"] == "errors"
+    assert "raised PermissionError" in feedback["vandal"] and "SyntaxError" not in \
+        feedback["vandal"]  # the detached process started; writing the package was refused
+
+
+def test_a_function_stuck_in_a_c_call_is_killed_at_its_time_limit(graded):
+    _, rows, feedback, _, _, _ = graded
+    assert rows["slow"]["3.1"] == "0" and rows["slow"]["status"] == "ok"
+    assert "ran for more than 2 s and was stopped" in feedback["slow"]
 
 
 def test_lambda_import_and_exec_are_graded_and_a_closure_is_not(graded):
