@@ -81,21 +81,24 @@ def run_function(number, name, source, folder, keep=()):
         cwd=folder, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL, env=env, start_new_session=True)
     count = len(exercise.cases()) + len(HIDDEN[number]()) + len(exercise.probes())
-    outcomes, delegated, limit = [], "", STARTUP + exercise.time_limit
+    outcomes, delegated, limit = [], "", STARTUP
     try:
         while len(outcomes) < count:
             record = _read_record(child.stdout.fileno(), time.monotonic() + limit)
-            limit = exercise.time_limit
+            limit = exercise.time_limit  # after the start, each case's own limit
             if record is None:
                 break
             kind, body = record
             if kind == "D":
                 delegated = body.decode(errors="replace")
                 break
-            outcomes.append(_child.unpack(body))
+            if kind == "R":
+                outcomes.append(_child.unpack(body))
     finally:
+        if child.poll() is None:
+            child.kill()
+        child.wait()  # its status, before the sweep reaps what it started
         _sandbox.kill_descendants(keep)
-        child.wait()
         child.stdout.close()
     if child.returncode == DELEGATED_STATUS and not delegated:
         delegated = "a function it may not call"

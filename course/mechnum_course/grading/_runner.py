@@ -59,8 +59,8 @@ def _forbid(dotted):
                 setattr(loaded, key, refused)
 
 
-def _send(data):
-    view = memoryview(b"R" + struct.pack("<I", len(data)) + data)
+def _send(data, kind=b"R"):
+    view = memoryview(kind + struct.pack("<I", len(data)) + data)
     while view:
         view = view[os.write(_OUT, view):]
 
@@ -90,6 +90,7 @@ def main(folder):
         _send(_child.pack(_child.Outcome("raised", error=type(error).__name__,
                                           message=f"(defining the function) {error}"[:2000])))
         return
+    _send(b"", b"S")  # started: the cases' time limits run from here
     for case in cases:
         args = copy.deepcopy(case.args)
         _send(_child.report(function, args, exercise.parameters, _harness.changed))
