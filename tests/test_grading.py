@@ -118,7 +118,7 @@ def test_every_row_is_written_in_bounded_time(graded):
                                                     "3.1", "3.2"]
     assert list(next(iter(rows.values())))[-1] == "note"
     assert seconds < len(expected) * (LIMIT + 30), seconds
-    assert "file-system sandbox: Landlock" in summary
+    assert "file-system sandbox: Landlock" in summary and "WARNING" not in summary
 
 
 def test_the_right_submission_passes(graded):
@@ -218,3 +218,10 @@ def test_bad_input(tmp_path):
     with pytest.raises(ValueError, match="no self-checked exercise 9.9"):
         grading.grade(tmp_path, numbers=["9.9"], limit=20, cell_limit=5)
     assert os.path.isdir(tmp_path)
+
+
+def test_the_sandbox_reads_nothing_of_the_instructors_package():
+    read = _sandbox.config("/nonexistent", cpu=1, memory=1, file_size=1)["read"]
+    assert _sandbox.exposed(read) == []
+    course = Path(mechnum_course.__file__).resolve().parents[1]
+    assert _sandbox.exposed([*read, str(course.parent)]) == [str(course.parent)]

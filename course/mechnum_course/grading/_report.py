@@ -128,6 +128,12 @@ def _summary(table, numbers, rows, sandbox, limits):
     for row in table:
         if row["status"] != "ok":
             lines.append(f"{row['student']}: {row['status']} ({row['note']})")
+    from mechnum_course.grading import _sandbox
+    readable = _sandbox.exposed(_sandbox.config("/nonexistent", cpu=1, memory=1,
+                                                file_size=1)["read"])
+    if readable:
+        lines.append(f"WARNING: the instructors' package is under {readable[0]}, which the "
+                     "sandbox lets a notebook read: install it from course/ (environment.txt)")
     lines.append(f"file-system sandbox: Landlock ABI {sandbox}" if sandbox else
                  "WARNING: this Linux kernel has no Landlock: notebooks could read and write "
                  "outside their folders; grade summative work in a container (the book's page "

@@ -105,6 +105,14 @@ def system_paths():
     return sorted(paths)
 
 
+def exposed(paths):
+    """The instructors' files a confined process could read through ``paths`` (when this
+    package is installed under the system's or the environment's folders, not in ``course/``
+    beside the book, as ``environment.txt`` installs it)."""
+    here = Path(__file__).resolve().parents[1]
+    return [p for p in paths if here.is_relative_to(Path(p).resolve())]
+
+
 def set_limits(cpu, memory, file_size):
     """The resource limits of this process (seconds, bytes, bytes)."""
     for kind, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_AS, memory),
