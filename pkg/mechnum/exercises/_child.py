@@ -83,6 +83,9 @@ def unpack(data):
 
 def _in_child(function, args, names, changed_test, write):
     try:
+        import faulthandler
+
+        faulthandler.disable()  # a crash of the function is reported by the parent, once
         os.setpgid(0, 0)
         sys.stdout = open(1, "w", buffering=1, closefd=False)  # noqa: SIM115
         sys.stderr = open(2, "w", buffering=1, closefd=False)  # noqa: SIM115
