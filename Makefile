@@ -65,7 +65,8 @@ STUDENT_TITLE := title+= (student edition)
 student-src: downloads
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
 	cp -r _toc.yml CITATION.cff book $(STUDENT_SRC)/
-	mkdir -p $(STUDENT_SRC)/course && cp course/rubric.md $(STUDENT_SRC)/course/
+	mkdir -p $(STUDENT_SRC)/course
+	$(BIN)/python -m mechnum_course.student --rubric $(STUDENT_SRC)/course/rubric.md
 	$(BIN)/python -m mechnum_course.student $(STUDENT_SRC)/book
 	$(BIN)/python .ci/book_config.py $(STUDENT_SRC)/_config.yml "$(STUDENT_TITLE)" \
 		sphinx.config.hide_solutions=true execute.execute_notebooks=off \

@@ -375,3 +375,20 @@ def test_no_solution_in_the_student_pages_zip_and_search_index():
     only_in_solutions = (words - shown) & terms(BUILT)
     assert only_in_solutions, "the full edition's index holds no solution word to look for"
     assert not only_in_solutions & terms(STUDENT), sorted(only_in_solutions & terms(STUDENT))
+
+
+def test_the_student_edition_shows_no_rubric(tmp_path):
+    """The rubric says what earns the points of the exercises graded by hand: the student
+    edition's sources hold a stub in its place."""
+    import subprocess
+    import sys
+
+    from mechnum_course.grading import _report
+    recipe = subprocess.run(["make", "-n", "student-src"], cwd=ROOT,
+                            capture_output=True, text=True).stdout
+    assert "cp course/rubric.md" not in recipe and "--rubric" in recipe, recipe
+    stub = tmp_path / "rubric.md"
+    subprocess.run([sys.executable, "-m", "mechnum_course.student", "--rubric", str(stub)],
+                   check=True)
+    text = stub.read_text(encoding="utf-8")
+    assert text and not any(f"`{label}`" in text for label in _report.rubric()), text

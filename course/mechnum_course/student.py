@@ -11,6 +11,10 @@ notebook's starter cell and the check cell (no kernel needed): "not yet", not th
 Run on a folder (every ``.ipynb`` and ``.md`` in it, in place)::
 
     python -m mechnum_course.student book_copy/
+
+The rubric of the exercises graded by hand (``course/rubric.md``, which the instructors' page
+includes) says what earns the points, so it holds answers: the student edition's copy is
+:data:`RUBRIC_STUB` (``python -m mechnum_course.student --rubric copy/course/rubric.md``).
 """
 
 import ast
@@ -23,6 +27,9 @@ from pathlib import Path
 
 import numpy as np
 
+RUBRIC_STUB = ("The rubric of the exercises graded by hand is in the instructors' copy of the "
+               "book's sources, not in the students' edition.\n")
+"""What the student edition shows in place of the rubric."""
 FENCE = re.compile(r"^\s*(`{3,}|:{3,})\{(solution|solution-start|solution-end)\}")
 
 
@@ -160,5 +167,7 @@ def student_folder(folder):
 
 
 if __name__ == "__main__":  # pragma: no cover - the command line of the Makefile
-    for name in sys.argv[1:]:
+    if sys.argv[1] == "--rubric":
+        Path(sys.argv[2]).write_text(RUBRIC_STUB, encoding="utf-8")
+    for name in sys.argv[1:] if sys.argv[1] != "--rubric" else ():
         print(f"student edition of {name}: {student_folder(name)} files without solutions")

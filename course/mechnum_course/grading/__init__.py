@@ -1,7 +1,10 @@
 """Grade a folder of student notebooks (``make grade SUBMISSIONS=folder``).
 
 Each entry of the folder is one student: a notebook ``name.ipynb`` (the student ``name``), or a
-folder ``name/`` of notebooks and the student's own files. For each notebook:
+folder ``name/`` of notebooks and the student's own files (both, if a student hands in both:
+one row). Only regular files are read, each within a size bound (:mod:`._files`): a symbolic
+link, a FIFO or a device is refused with its reason. A student's notebooks share a time budget
+(:data:`STUDENT_LIMIT`). For each notebook:
 
 1. a temporary copy of the student's entry, with the data files the chapters read
    (:data:`DATA_FILES` of ``book/``), is made; the notebook runs there in a fresh kernel
@@ -21,7 +24,7 @@ output folder (by default ``FOLDER/grading``): ``grades.csv`` (:mod:`._report`),
 ``feedback/<student>.md`` and ``summary.txt``.
 
 Command line: ``python -m mechnum_course.grading FOLDER [--out FOLDER] [--limit SECONDS]
-[--cell-limit SECONDS] [--exercises 3.1,3.2]``.
+[--cell-limit SECONDS] [--student-limit SECONDS] [--exercises 3.1,3.2]``.
 """
 
 import json
@@ -35,20 +38,23 @@ from pathlib import Path
 import nbformat
 
 from mechnum import exercises
-from mechnum_course.grading import _check, _extract, _report, _sandbox
+from mechnum_course.grading import _check, _extract, _files, _report, _sandbox
 from mechnum_course.grading._check import RUNNER_CPU
+from mechnum_course.grading._files import MAX_FILE
 
-__all__ = ["CELL_LIMIT", "DATA_FILES", "KERNEL_MEMORY", "MAX_OUTPUT", "NOTEBOOK_LIMIT", "grade"]
+__all__ = ["CELL_LIMIT", "DATA_FILES", "KERNEL_MEMORY", "MAX_OUTPUT", "NOTEBOOK_LIMIT",
+           "STUDENT_LIMIT", "grade"]
 
 NOTEBOOK_LIMIT = 300.0
 """Seconds (wall clock) a notebook may run, its kernel's start included (a chapter runs in
 30 s); its kernel also has this many seconds of CPU."""
+STUDENT_LIMIT = 600.0
+"""Seconds (wall clock) all of one student's notebooks may run together; a notebook beyond
+that budget is not run (its functions are graded from its text)."""
 CELL_LIMIT = 60.0
 """Seconds one cell may run before the kernel is interrupted."""
 KERNEL_MEMORY = 8 * 2 ** 30
 """Bytes of address space of a notebook's kernel."""
-MAX_FILE = 64 * 2 ** 20
-"""The largest file (bytes) a notebook's kernel may write; also the largest notebook read."""
 MAX_OUTPUT = 4 * 2 ** 20
 """Bytes of cell output kept from one notebook; more is dropped (and said so)."""
 BOOK = Path(__file__).resolve().parents[3] / "book"
@@ -61,13 +67,15 @@ def _invalid(reason):
 
 
 def read_notebook(path):
-    """The notebook at ``path``, or the reason it is none (a string)."""
-    if path.is_dir():
+    """The notebook at ``path`` (a regular file, read within :data:`MAX_FILE` bytes, no link
+    followed), or the reason it is none (a string)."""
+    if path.is_dir() and not path.is_symlink():
         return f"{path.name} is a folder, not a notebook"
-    if path.stat().st_size > MAX_FILE:
-        return f"{path.name} is larger than {MAX_FILE // 2 ** 20} MB"
+    text = _files.read(path)
+    if isinstance(text, str):
+        return text
     try:
-        text = path.read_text(encoding="utf-8")
+        text = text.decode("utf-8")
         data = json.loads(text)
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         return f"{path.name} is not a notebook: not JSON ({error})"
@@ -80,29 +88,47 @@ def read_notebook(path):
     return notebook if isinstance(data, dict) else f"{path.name} is not a notebook"
 
 
+def _is_output(entry, out):
+    """Whether ``entry`` is the output folder: an error if a student's work is there."""
+    if entry.absolute() != Path(out).absolute():
+        return False
+    if {p.name for p in entry.iterdir()} - {"grades.csv", "summary.txt", "feedback"}:
+        raise ValueError(f"the output folder {entry} is a student's entry of the submissions "
+                         "folder: choose another (--out, make grade OUT=...)")
+    return True
+
+
 def students(folder, out):
-    """``[(student, [notebooks] or the reason the entry is invalid, entry)]``, by name."""
-    found = []
+    """``[(student, [notebooks] or the reason the entry is invalid, entry)]``, by name; the
+    entries passed over (hidden ones, the output folder), with the reason."""
+    found, passed = [], []
     for entry in sorted(Path(folder).iterdir()):
-        if entry.name.startswith((".", "_")) or entry.resolve() == Path(out).resolve():
+        if entry.name.startswith(".") or _is_output(entry, out):
+            passed.append(f"{entry.name} (" + ("hidden" if entry.name.startswith(".") else
+                                               "the output folder") + ")")
             continue
-        if entry.suffix == ".ipynb":
-            found.append((entry.stem, [entry], entry))
-        elif entry.is_dir():
-            books = sorted(p for p in entry.rglob("*.ipynb")
-                           if ".ipynb_checkpoints" not in p.parts)
-            found.append((entry.name, books or "the folder holds no notebook", entry))
-    return found
+        name = entry.stem if entry.suffix == ".ipynb" else entry.name
+        problem = _files.entry_problem(entry)
+        if problem.endswith("is a regular file, not a notebook or a folder of notebooks"):
+            passed.append(f"{entry.name} (not a notebook)")
+            continue
+        if problem or entry.suffix == ".ipynb":
+            found.append((name, problem or [entry], entry))
+            continue
+        files, refused = _files.walk(entry)
+        books = [entry / p for p in files if p.suffix == ".ipynb" and
+                 ".ipynb_checkpoints" not in p.parts]
+        found.append((name, books or "; ".join(["the folder holds no notebook", *refused]),
+                      entry))
+    return found, passed
 
 
 def _sandbox_copy(entry, work):
-    """A temporary copy of a student's entry and of the chapters' data files."""
+    """A temporary copy of a student's entry (regular files only) and of the chapters' data
+    files; the reasons anything was refused."""
     folder = Path(tempfile.mkdtemp(prefix="nb-", dir=work))
     target = folder / entry.name
-    if entry.is_dir():
-        shutil.copytree(entry, target, symlinks=False, ignore_dangling_symlinks=True)
-    else:
-        shutil.copy(entry, target)
+    refused = _files.copy(entry, target)
     home = target if entry.is_dir() else folder
     for name in DATA_FILES:
         source = BOOK / name
@@ -110,7 +136,7 @@ def _sandbox_copy(entry, work):
             shutil.copytree(source, home / name, dirs_exist_ok=True)
         elif source.exists():
             shutil.copy(source, home / name)
-    return folder
+    return folder, refused
 
 
 def run_notebook(path, copy, work, *, limit, cell_limit, keep):
@@ -121,8 +147,9 @@ def run_notebook(path, copy, work, *, limit, cell_limit, keep):
     env = _check._environment(copy)
     env.pop("MPLBACKEND")
     confinement = _sandbox.config(copy, cpu=limit, memory=KERNEL_MEMORY, file_size=MAX_FILE,
-                                  tcp=True)
+                                  tcp=True, cwd=path.parent)
     job = {"notebook": str(path), "folder": str(copy), "names": names,
+           "launch": _sandbox.launch_folder(work),
            "cell_limit": cell_limit, "max_output": MAX_OUTPUT, "env": env,
            "confinement": confinement, "result": str(result)}
     (result.parent / "job.json").write_text(json.dumps(job), encoding="utf-8")
@@ -153,14 +180,20 @@ def run_notebook(path, copy, work, *, limit, cell_limit, keep):
 
 
 def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
-    """The grades of one notebook: status, note, verdicts, cell errors, notes."""
+    """The grades of one notebook: status, note, verdicts, cell errors, notes; ``limit`` 0:
+    the student's time budget is spent, the notebook is not run."""
     notebook = read_notebook(path)
     if isinstance(notebook, str):
         return _invalid(notebook)
-    copy = _sandbox_copy(entry, work)
-    inside = copy / path.relative_to(entry.parent)
-    outcome, sources = run_notebook(inside, copy, work, limit=limit, cell_limit=cell_limit,
-                                    keep=keep)
+    if limit > 0:
+        copy, refused = _sandbox_copy(entry, work)
+        inside = copy / path.relative_to(entry.parent)
+        outcome, sources = run_notebook(inside, copy, work, limit=limit,
+                                        cell_limit=min(cell_limit, limit), keep=keep)
+    else:
+        refused, sources = [], {}
+        outcome = {"errors": [], "problem": "not run: the student's notebooks spent their "
+                   f"time budget ({STUDENT_LIMIT:g} s); graded from its text"}
     names = {e.name: n for n, e in exercises.EXERCISES.items()}
     cells = [c.source for c in notebook.cells if c.cell_type == "code"]
     if not sources or outcome["problem"]:
@@ -182,9 +215,11 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
         message = result.message + "".join(f" (Note: {n}.)" for n in notes)
         verdicts[number] = ("pass" if result.passed else "fail", message)
     status = ("invalid" if outcome["problem"].startswith("the notebook could not run") else
-              "timeout" if "longer than" in outcome["problem"] else
+              "timeout" if "longer than" in outcome["problem"] or
+              "time budget" in outcome["problem"] else
               "errors" if outcome["errors"] or outcome["problem"] else "ok")
     notes = [outcome["problem"]] if outcome["problem"] else []
+    notes += [f"not copied: {'; '.join(refused)[:1000]}"] if refused else []
     if outcome.get("dropped"):
         notes.append(f"{outcome['dropped']} bytes of output beyond {MAX_OUTPUT // 2 ** 20} MB "
                      "were dropped")
@@ -192,7 +227,8 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
             "errors": outcome["errors"], "notes": notes, "notebook": path.name}
 
 
-def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT, numbers=None):
+def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT, numbers=None,
+          student_limit=STUDENT_LIMIT):
     """Grade every student of ``folder``; write ``grades.csv``, ``feedback/`` and
     ``summary.txt`` into ``out`` (default ``folder/grading``) and return the summary.
 
@@ -204,6 +240,8 @@ def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT, numb
         Where to write the results.
     limit, cell_limit : float
         Seconds per notebook (and CPU seconds of its kernel) and per cell.
+    student_limit : float
+        Seconds all of one student's notebooks may run together.
     numbers : sequence of str, optional
         The exercises graded (default: every exercise that a notebook defines or whose
         starter it holds).
@@ -212,30 +250,35 @@ def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT, numb
     out = Path(out) if out else folder / "grading"
     if not folder.is_dir():
         raise ValueError(f"{folder} is not a folder of notebooks")
-    if not (0 < limit <= 3600 and 0 < cell_limit <= limit):
-        raise ValueError(f"the time limits must be positive, at most an hour, the cell's within "
-                         f"the notebook's; got {limit}, {cell_limit}")
-    entries = students(folder, out)
+    if not (0 < limit <= 3600 and 0 < cell_limit <= limit and 0 < student_limit <= 36000):
+        raise ValueError(f"the time limits must be positive, at most an hour (a student's: ten), "
+                         f"the cell's within the notebook's; got {limit}, {cell_limit}, "
+                         f"{student_limit}")
+    entries, passed = students(folder, out)
     if not entries:
         raise ValueError(f"no notebook (*.ipynb) or student folder in {folder}")
     _sandbox.become_subreaper()
     keep = set(_sandbox.descendants())
-    rows = []
+    rows, spent = {}, {}
     with tempfile.TemporaryDirectory(prefix="mechnum-grade-") as work:
         for student, books, entry in entries:
+            graded = rows.setdefault(student, [])  # alice.ipynb and alice/: one row
             if isinstance(books, str):
-                rows.append((student, [_invalid(books)]))
+                graded.append(_invalid(books))
                 continue
-            graded = []
             for path in books:
+                began, left = time.monotonic(), student_limit - spent.get(student, 0.0)
                 try:
-                    graded.append(grade_notebook(path, entry, Path(work), limit=limit,
-                                                 cell_limit=cell_limit, keep=keep))
+                    graded.append(grade_notebook(path, entry, Path(work), limit=min(
+                        limit, left if left >= 1 else 0), cell_limit=cell_limit, keep=keep))
                 except Exception as error:  # nothing stops the run
                     graded.append(_invalid(f"{path.name} could not be graded "
                                            f"({type(error).__name__}: {error})"))
                 graded[-1].setdefault("notebook", path.name)
-            rows.append((student, graded))
+                spent[student] = spent.get(student, 0.0) + time.monotonic() - began
         _sandbox.kill_descendants(keep)
-    return _report.write(rows, out, numbers, sandbox=_sandbox.landlock_abi(),
-                         limits={"notebook": limit, "cell": cell_limit, "runner": RUNNER_CPU})
+    summary = _report.write(list(rows.items()), out, numbers, sandbox=_sandbox.landlock_abi(),
+                            limits={"notebook": limit, "cell": cell_limit, "student":
+                                    student_limit, "runner": RUNNER_CPU}, passed=passed)
+    _sandbox.remove_pids_groups(everything=True)
+    return summary

@@ -2,7 +2,7 @@
 
 import argparse
 
-from mechnum_course.grading import CELL_LIMIT, NOTEBOOK_LIMIT, grade
+from mechnum_course.grading import CELL_LIMIT, NOTEBOOK_LIMIT, STUDENT_LIMIT, grade
 
 
 def main(argv=None):
@@ -12,11 +12,13 @@ def main(argv=None):
     parser.add_argument("--limit", type=float, default=NOTEBOOK_LIMIT,
                         help="seconds per notebook")
     parser.add_argument("--cell-limit", type=float, default=CELL_LIMIT, help="seconds per cell")
+    parser.add_argument("--student-limit", type=float, default=STUDENT_LIMIT,
+                        help="seconds all of one student's notebooks may run")
     parser.add_argument("--exercises", help="the exercises graded, e.g. 3.1,3.2")
     args = parser.parse_args(argv)
     numbers = args.exercises.split(",") if args.exercises else None
     print(grade(args.folder, args.out, limit=args.limit, cell_limit=args.cell_limit,
-                numbers=numbers), end="")
+                numbers=numbers, student_limit=args.student_limit), end="")
 
 
 if __name__ == "__main__":

@@ -76,24 +76,29 @@ def run_function(number, name, source, folder, keep=()):
     (folder / "sandbox.json").write_text(json.dumps(confinement), encoding="utf-8")
     env = {**_environment(folder), "PYTHONPATH": ""}
     child = subprocess.Popen(
-        [sys.executable, "-m", "mechnum_course.grading._sandbox", str(folder / "sandbox.json"),
-         "--", sys.executable, "-s", str(folder / "runner.py"), str(folder)],
-        cwd=folder, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+        _sandbox.command(folder / "sandbox.json", sys.executable, "-I",
+                         str(folder / "runner.py"), str(folder)),
+        cwd=_sandbox.launch_folder(folder.parent), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL, env=env, start_new_session=True)
     count = len(exercise.cases()) + len(HIDDEN[number]()) + len(exercise.probes())
-    outcomes, delegated, limit = [], "", STARTUP
+    outcomes, delegated, started = [], "", False
+    deadline = time.monotonic() + STARTUP  # absolute: no record but a case's answer moves it
     try:
         while len(outcomes) < count:
-            record = _read_record(child.stdout.fileno(), time.monotonic() + limit)
-            limit = exercise.time_limit  # after the start, each case's own limit
+            record = _read_record(child.stdout.fileno(), deadline)
             if record is None:
                 break
             kind, body = record
             if kind == "D":
                 delegated = body.decode(errors="replace")
                 break
-            if kind == "R":
+            if kind == "S" and not started and not outcomes:
+                started = True
+            elif kind != "R" or (not started and outcomes):
+                break  # not the runner's protocol: the student's code wrote to the channel
+            else:
                 outcomes.append(_child.unpack(body))
+            deadline = time.monotonic() + exercise.time_limit  # the next case's own limit
     finally:
         if child.poll() is None:
             child.kill()
@@ -128,7 +133,8 @@ def _environment(folder):
     tmp.mkdir(exist_ok=True)
     return {**env, "HOME": str(folder), "TMPDIR": str(tmp), "MPLCONFIGDIR": str(tmp),
             "NUMBA_CACHE_DIR": str(tmp), "PYTHONDONTWRITEBYTECODE": "1",
-            "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MPLBACKEND": "Agg"}
+            "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MPLBACKEND": "Agg",
+            "JOBLIB_MULTIPROCESSING": "0"}  # no /dev/shm in the sandbox: joblib runs serially
 
 
 def grade(number, name, source, folder, keep=()):

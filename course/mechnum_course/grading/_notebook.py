@@ -21,7 +21,7 @@ import nbformat
 from nbclient import NotebookClient
 from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
-from mechnum_course.grading import _extract
+from mechnum_course.grading import _extract, _sandbox
 
 
 class _Stuck(Exception):
@@ -58,9 +58,8 @@ def _kernel_spec(folder, confinement):
     (folder / "sandbox.json").write_text(json.dumps(confinement), encoding="utf-8")
     spec = folder / ".jupyter" / "kernels" / "mechnum-sandbox"
     spec.mkdir(parents=True)
-    argv = [sys.executable, "-m", "mechnum_course.grading._sandbox",
-            str(folder / "sandbox.json"), "--", sys.executable, "-s", "-m",
-            "ipykernel_launcher", "-f", "{connection_file}"]
+    argv = _sandbox.command(folder / "sandbox.json", sys.executable, "-s", "-m",
+                            "ipykernel_launcher", "-f", "{connection_file}")
     (spec / "kernel.json").write_text(json.dumps(
         {"argv": argv, "display_name": "sandbox", "language": "python"}), encoding="utf-8")
     startup = folder / ".ipython" / "profile_default" / "startup"
@@ -100,7 +99,7 @@ def run(job):
     client = _Client(notebook, timeout=job["cell_limit"], allow_errors=True,
                      interrupt_on_timeout=True, kernel_name="mechnum-sandbox",
                      max_output=job["max_output"], startup_timeout=120,
-                     resources={"metadata": {"path": str(Path(job["notebook"]).parent)}})
+                     resources={"metadata": {"path": job["launch"]}})  # cwd: the sandbox's
     client.km = client.create_kernel_manager()
     client.km.transport, client.km.ip = "ipc", str(runtime / "kernel")
     client.km.connection_file = str(runtime / "connection.json")

@@ -6,10 +6,12 @@ gradebook imports it: ``student``, ``status`` (``ok``, ``errors``: a cell raised
 self-checked exercises), one column per self-checked exercise (its points: the exercise's
 ``points`` when it passes, else 0), one empty column per exercise without a check of the same
 chapters (``rubric <label>``, for the instructor, by the rubric in ``course/rubric.md``), and
-``note``.
+``note``. A text cell that a spreadsheet would read as a formula (it starts with ``=``, ``+``,
+``-``, ``@``, a tab or a carriage return) is written with a leading ``'``.
 """
 
 import csv
+import os
 import re
 from pathlib import Path
 
@@ -59,9 +61,20 @@ def _status(graded):
     return min((g["status"] for g in graded), key=order.index)
 
 
-def write(rows, out, numbers=None, *, sandbox=0, limits=None):
+def cell(text):
+    """``text`` as a spreadsheet shows it, never as a formula.
+
+    Examples
+    --------
+    >>> cell('=HYPERLINK("http://x")'), cell("alice")
+    ('\'=HYPERLINK("http://x")', 'alice')
+    """
+    return "'" + text if text.startswith(("=", "+", "-", "@", "\t", "\r")) else text
+
+
+def write(rows, out, numbers=None, *, sandbox=0, limits=None, passed=()):
     """Write the three outputs into ``out`` for ``rows`` (``[(student, [graded notebook])]``);
-    the summary."""
+    the summary, which names the entries ``passed`` over."""
     numbers, manual = _columns(rows, numbers)
     maximum = sum(exercises.EXERCISES[n].points for n in numbers)
     out = Path(out)
@@ -72,10 +85,10 @@ def write(rows, out, numbers=None, *, sandbox=0, limits=None):
         points = {n: _points(n, v[0]) for n, v in verdicts.items()}
         notes = "; ".join(f"{g['notebook']}: {g['note']}" if g.get("notebook") else g["note"]
                           for g in graded if g["note"])
-        table.append({"student": student, "status": _status(graded),
+        table.append({"student": cell(student), "status": _status(graded),
                       "total": _number(sum(points.values())), "maximum": _number(maximum),
                       **{n: _number(p) for n, p in points.items()},
-                      **{f"rubric {label}": "" for label in manual}, "note": notes})
+                      **{f"rubric {label}": "" for label in manual}, "note": cell(notes)})
         (out / "feedback" / f"{student}.md").write_text(
             _feedback(student, graded, verdicts, points, maximum, manual), encoding="utf-8")
     fields = ["student", "status", "total", "maximum", *numbers,
@@ -85,6 +98,8 @@ def write(rows, out, numbers=None, *, sandbox=0, limits=None):
         writer.writeheader()
         writer.writerows(table)
     summary = _summary(table, numbers, rows, sandbox, limits or {})
+    if passed:
+        summary += f"not graded: {', '.join(passed)}\n"
     (out / "summary.txt").write_text(summary, encoding="utf-8")
     return summary
 
@@ -134,6 +149,9 @@ def _summary(table, numbers, rows, sandbox, limits):
     if readable:
         lines.append(f"WARNING: the instructors' package is under {readable[0]}, which the "
                      "sandbox lets a notebook read: install it from course/ (environment.txt)")
+    if os.getuid() == 0 and not _sandbox.pids_parent():
+        lines.append("WARNING: run as root without a writable pids control group: a notebook's "
+                     "processes have no bound on their number")
     lines.append(f"file-system sandbox: Landlock ABI {sandbox}" if sandbox else
                  "WARNING: this Linux kernel has no Landlock: notebooks could read and write "
                  "outside their folders; grade summative work in a container (the book's page "

@@ -10,13 +10,17 @@ one record to the grader: what the function did, as :mod:`mechnum.exercises._chi
 The grader reads each record within the case's time limit, or kills this process.
 
 Before the student's source runs, every function it may not call (the package's own solution of
-the exercise, the library functions its statement forbids) is replaced, wherever a module holds
-it, by one that ends this process at once with :data:`DELEGATED` as its exit status, and any
-import of the instructors' package does the same: an answer that delegates fails, whatever it
-catches.
+the exercise, the library functions its statement forbids; a name's last part may be a pattern,
+``scipy.linalg._flapack.?geqrf``) is replaced, wherever a module holds it, by one that ends this
+process at once with :data:`DELEGATED` as its exit status, and any import of the instructors'
+package does the same; so does running again a module that holds a forbidden function
+(``importlib.reload``, an import after its removal from ``sys.modules``, ``exec`` of its file) or
+code compiled from a forbidden function's text (an audit hook, which no Python code can
+remove): an answer that delegates fails, whatever it catches.
 """
 
 import copy
+import fnmatch
 import importlib.abc
 import json
 import os
@@ -42,21 +46,40 @@ def _delegated(name):
 
 
 def _forbid(dotted):
-    """Replace the function named ``dotted`` in every loaded module that holds it."""
+    """Replace the functions named ``dotted`` in every loaded module that holds them; the
+    files and the code of those written in Python."""
     import importlib
 
-    module, _, attribute = dotted.rpartition(".")
-    try:
-        original = getattr(importlib.import_module(module), attribute)
-    except (ImportError, AttributeError):
-        return
+    module, _, pattern = dotted.rpartition(".")
+    held = importlib.import_module(module)
+    files, codes = set(), set()
+    for attribute in fnmatch.filter(list(vars(held)), pattern):
+        original = getattr(held, attribute)
 
-    def refused(*args, **kwargs):
-        _delegated(dotted)
-    for loaded in list(sys.modules.values()):
-        for key, value in list(getattr(loaded, "__dict__", {}).items()):
-            if value is original:
-                setattr(loaded, key, refused)
+        def refused(*args, _name=f"{module}.{attribute}", **kwargs):
+            _delegated(_name)
+        for loaded in list(sys.modules.values()):
+            for key, value in list(getattr(loaded, "__dict__", {}).items()):
+                if value is original:
+                    setattr(loaded, key, refused)
+        code = getattr(original, "__code__", None)
+        if code is not None:
+            files.add(code.co_filename)
+            codes.add((code.co_name, code.co_code))
+    return files, codes
+
+
+def _watch(files, codes):
+    """An audit hook that ends this process if a module holding a forbidden function runs
+    again, or code holding a forbidden function's code runs."""
+    def holds(code):
+        return (code.co_filename in files or (code.co_name, code.co_code) in codes or
+                any(holds(c) for c in code.co_consts if type(c) is type(code)))
+
+    def hook(event, args):
+        if event == "exec" and type(args[0]) is type(hook.__code__) and holds(args[0]):
+            _delegated(f"a new copy of {args[0].co_filename}")
+    sys.addaudithook(hook)
 
 
 def _send(data, kind=b"R"):
@@ -80,8 +103,12 @@ def main(folder):
     exercise = exercises.EXERCISES[job["number"]]
     cases = exercise.cases() + hidden.HIDDEN[job["number"]]() + list(exercise.probes())
     sys.meta_path.insert(0, _Refuse())
+    files, codes = set(), set()
     for dotted in job["forbidden"]:
-        _forbid(dotted)
+        found = _forbid(dotted)
+        files |= found[0]
+        codes |= found[1]
+    _watch(files, codes)
     namespace = {"__name__": "submission"}
     try:
         exec(compile(job["source"], "<submission>", "exec"), namespace)

@@ -5,11 +5,14 @@ its own session (``setsid``) by this module's command line, which limits it and 
 itself with the real command (``exec``), so that the limits hold for everything it starts:
 
 * resource limits (``setrlimit``): CPU seconds, address space, the size of a file it writes,
-  no core file, and (for an ordinary user) a bound on its processes;
+  no core file, and a bound on its processes and threads, :data:`MAX_PROCESSES`: for an
+  ordinary user ``RLIMIT_NPROC``; for root, whom Linux exempts from it, a ``pids`` control
+  group of its own (:func:`pids_parent`; without one the grader's summary warns);
 * ``no_new_privs`` and, where the Linux kernel has it (Landlock, Linux 5.13 and later), a
-  file-system sandbox: it reads only the system, the Python environment and the student's
-  package, and writes only in its own temporary folder; it cannot read the instructors'
-  package or the other submissions. From Landlock's ABI 4 the runner of a function opens and
+  file-system sandbox: it reads only the system (of ``/dev`` only :data:`DEVICES`), the Python
+  environment and the student's package, and writes only in its own temporary folder; it
+  cannot read the instructors' package, the other submissions, a disk, or ``/dev/shm`` (no
+  channel from one notebook to the next). From Landlock's ABI 4 the runner of a function opens and
   accepts no TCP connection (a kernel needs TCP on the loopback for its own threads); from ABI 6
   neither sends a signal to a process outside its sandbox.
 
@@ -17,7 +20,10 @@ The grader is a *child subreaper* (``prctl``): a process that leaves its session
 (a double fork, ``setsid``) still belongs to the grader, and :func:`kill_descendants` ends them
 all, the kernel included, after each notebook.
 
-Command line: ``python -m mechnum_course.grading._sandbox CONFIG.json -- COMMAND ...``.
+Command line: ``python -I -m mechnum_course.grading._sandbox CONFIG.json -- COMMAND ...``
+(:func:`command`), started in an empty folder nobody may write (:func:`launch_folder`): no
+module of the student's folder can run before the confinement is in place; the command then
+starts in the configuration's ``cwd``.
 """
 
 import ctypes
@@ -34,6 +40,12 @@ _CREATE_RULESET, _ADD_RULE, _RESTRICT_SELF = 444, 445, 446  # x86-64 and aarch64
 _PR_SET_NO_NEW_PRIVS, _PR_SET_CHILD_SUBREAPER = 38, 36
 _READ = 1 << 0 | 1 << 2 | 1 << 3  # execute, read a file, read a directory
 _FILE_ONLY = 1 << 0 | 1 << 1 | 1 << 2 | 1 << 14 | 1 << 15
+DEVICES = ("/dev/null", "/dev/zero", "/dev/full", "/dev/random", "/dev/urandom")
+"""The only files of ``/dev`` a confined process reads."""
+MAX_PROCESSES = 256
+"""The processes (and threads) a confined process may run (beyond its user's others, where the
+bound is ``RLIMIT_NPROC``)."""
+PIDS = Path("/sys/fs/cgroup/pids")
 
 
 class _Ruleset(ctypes.Structure):
@@ -100,7 +112,7 @@ def system_paths():
     """What any Python process reads: the system's folders and the Python environment."""
     import sysconfig
 
-    paths = {"/usr", "/lib", "/lib64", "/bin", "/etc", "/proc", "/sys", "/dev", "/opt",
+    paths = {"/usr", "/lib", "/lib64", "/bin", "/etc", "/proc", "/sys", "/opt", *DEVICES,
              sys.prefix, sys.base_prefix, sysconfig.get_paths()["purelib"]}
     return sorted(paths)
 
@@ -113,16 +125,49 @@ def exposed(paths):
     return [p for p in paths if here.is_relative_to(Path(p).resolve())]
 
 
-def set_limits(cpu, memory, file_size):
-    """The resource limits of this process (seconds, bytes, bytes)."""
+def set_limits(cpu, memory, file_size, pids=None):
+    """The resource limits of this process (seconds, bytes, bytes) and the bound on its
+    processes: ``RLIMIT_NPROC`` (:data:`MAX_PROCESSES` more than its user has), or for root
+    a new group under the ``pids`` control group ``pids``."""
     for kind, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_AS, memory),
                         (resource.RLIMIT_FSIZE, file_size), (resource.RLIMIT_CORE, 0)):
         value = int(value)
         resource.setrlimit(kind, (value, value))
-    if os.getuid() != 0:  # a bound on processes counts all of this user's (root is exempt)
+    if os.getuid() != 0:
         mine = sum(1 for p in Path("/proc").iterdir() if p.name.isdigit() and
                    _owner(p) == os.getuid())
-        resource.setrlimit(resource.RLIMIT_NPROC, (mine + 256, mine + 256))
+        resource.setrlimit(resource.RLIMIT_NPROC, (mine + MAX_PROCESSES,) * 2)
+    elif pids:
+        group = Path(pids) / str(os.getpid())
+        group.mkdir()
+        (group / "pids.max").write_text(str(MAX_PROCESSES))
+        (group / "cgroup.procs").write_text(str(os.getpid()))
+
+
+def pids_parent():
+    """This grader's ``pids`` control group (made on first use), under which each confined
+    process of a grader run as root gets a group of its own; "" where there is none to make
+    (not root, or no writable ``pids`` controller)."""
+    parent = PIDS / f"mechnum-grade-{os.getpid()}"
+    if os.getuid() != 0 or not os.access(PIDS, os.W_OK):
+        return ""
+    try:
+        parent.mkdir(exist_ok=True)
+    except OSError:
+        return ""
+    return str(parent)
+
+
+def remove_pids_groups(everything=False):
+    """Remove the empty groups of :func:`pids_parent` (and, ``everything``, the parent)."""
+    parent = PIDS / f"mechnum-grade-{os.getpid()}"
+    if not parent.is_dir():
+        return
+    for group in [*(p for p in parent.iterdir() if p.is_dir()), *([parent] * everything)]:
+        try:
+            group.rmdir()
+        except OSError:
+            pass
 
 
 def _owner(path):
@@ -134,20 +179,38 @@ def _owner(path):
 
 def confine(config):
     """Limit this process as ``config`` says (see :func:`config`); the Landlock ABI used."""
-    set_limits(config["cpu"], config["memory"], config["file_size"])
+    set_limits(config["cpu"], config["memory"], config["file_size"], config.get("pids"))
     return landlock(config["read"], config["write"], config.get("tcp", False))
 
 
-def config(folder, *, cpu, memory, file_size, read=(), tcp=False):
-    """The confinement of a process working in ``folder``: its limits, what it may read (the
-    system, the Python environment, the student's package ``mechnum``) and write, and whether
-    it may use TCP (a Jupyter kernel's threads talk through TCP on the loopback)."""
+def config(folder, *, cpu, memory, file_size, read=(), tcp=False, cwd=None):
+    """The confinement of a process working in ``folder`` (and started in ``cwd``, by default
+    ``folder``): its limits, what it may read (the system, the Python environment, the
+    student's package ``mechnum``) and write, and whether it may use TCP (a Jupyter kernel's
+    threads talk through TCP on the loopback)."""
     import mechnum
 
     package = str(Path(mechnum.__file__).resolve().parents[1])
     return {"cpu": cpu, "memory": memory, "file_size": file_size, "tcp": tcp,
-            "read": [*system_paths(), package, *read],
-            "write": [str(folder), os.devnull, "/dev/shm"]}  # joblib's semaphores
+            "read": [*system_paths(), package, *read], "write": [str(folder), os.devnull],
+            "cwd": str(cwd or folder), "pids": pids_parent()}
+
+
+def launch_folder(work):
+    """An empty folder in ``work`` that no one but root may write: where a confined process
+    starts (its ``cwd`` before it is confined)."""
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="launch-", dir=work)
+    os.chmod(folder, 0o555)
+    return folder
+
+
+def command(config_file, *argv):
+    """The command line that starts ``argv`` confined by ``config_file``: an isolated Python
+    (``-I``: no user site, no ``PYTHON*`` variable, not the current folder on ``sys.path``)."""
+    return [sys.executable, "-I", "-m", "mechnum_course.grading._sandbox", str(config_file),
+            "--", *argv]
 
 
 def become_subreaper():
@@ -194,6 +257,7 @@ def kill_descendants(keep=(), rounds=50):
                 pass
         time.sleep(0.02)
         reap(keep)
+    remove_pids_groups()
     return len(killed)
 
 
@@ -213,6 +277,7 @@ def main(argv):
     split = argv.index("--")
     settings = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
     os.environ["MECHNUM_SANDBOX"] = str(confine(settings))
+    os.chdir(settings["cwd"])
     os.execv(argv[split + 1], argv[split + 1:])
 
 

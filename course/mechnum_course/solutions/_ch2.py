@@ -106,15 +106,27 @@ def _transposed_r(A, b):
     return np.linalg.solve(R.T, Q.T @ b)
 
 
+_LIBRARY_LEAST_SQUARES = (
+    *(f"numpy.linalg.{name}" for name in ("qr", "lstsq", "pinv", "svd")),
+    *(f"numpy.linalg._umath_linalg.{name}" for name in ("qr_*", "lstsq", "svd*")),
+    "numpy.linalg.lapack_lite.[dz]*",
+    *(f"scipy.linalg.{name}" for name in ("qr", "qr_multiply", "rq", "lstsq", "pinv", "svd")),
+    *(f"scipy.linalg._flapack.?{name}" for name in ("geq*", "gel*", "ger*", "orm*", "org*",
+                                                      "unm*", "ung*", "ges[dv]d*", "larf*",
+                                                      "tpq*", "gemq*")),
+    "scipy.sparse.linalg.lsqr", "scipy.sparse.linalg.lsmr", "scipy.optimize.lsq_linear")
+"""Library routes to a least-squares solution or a QR factorization: the exercise asks for
+Householder reflections written by hand."""
+
 SOLUTIONS = {
     "2.1": Solution(one_sor_sweep, {"a Jacobi sweep": _jacobi,
                                     "the relaxation without (1 - omega) x_i": _unrelaxed_old_value,
                                     "an off-by-one sweep": _short_sweep,
                                     "a backward sweep": _backward},
-                    forbidden=("mechnum.linear.sweep_by_components",)),
+                    forbidden=("mechnum.linear.sweep_by_components",
+                               "mechnum.linear._sweeps.splitting")),
     "2.2": Solution(lstsq_householder, {"the normal equations": _normal_equations,
                                         "b left without its reflections": _no_qt,
                                         "a transposed R": _transposed_r},
-                    forbidden=("numpy.linalg.qr", "numpy.linalg.lstsq", "numpy.linalg.pinv",
-                               "scipy.linalg.qr", "scipy.linalg.lstsq", "scipy.linalg.pinv")),
+                    forbidden=_LIBRARY_LEAST_SQUARES),
 }

@@ -104,9 +104,10 @@ SOLUTIONS = {
                                 "the coefficients in descending order": _descending,
                                 "a sign": _sign},
                     forbidden=("mechnum.polynomials.companion", "mechnum.polynomials.roots",
-                               "numpy.roots")),
+                               "numpy.roots", "numpy.polynomial.polynomial.polycompanion",
+                               "numpy.polynomial.polynomial.Polynomial")),
     "4.2": Solution(prr3_newton_step, {"a transposed Jacobian": _transposed_jacobian,
                                        "the factor 2 of the Jacobian": _no_factor_two,
                                        "a sign": _plus},
-                    forbidden=()),
+                    forbidden=("mechnum.mechanisms.prr3.direct._newton_step",)),
 }

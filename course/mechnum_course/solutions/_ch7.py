@@ -98,5 +98,7 @@ SOLUTIONS = {
     "7.2": Solution(force_by_virtual_power, {"the Coriolis term left out": _no_coriolis,
                                              "a sign of gravity": _gravity_sign,
                                              "the inertia couples left out": _no_couples},
-                    forbidden=("mechnum.mechanisms.actuator.virtual_power_force",)),
+                    forbidden=("mechnum.mechanisms.actuator.virtual_power_force",
+                               "mechnum.mechanisms.actuator.kane_force",
+                               "mechnum.mechanisms.actuator.lagrange_force")),
 }

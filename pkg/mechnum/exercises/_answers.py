@@ -60,21 +60,53 @@ class Integer:
         raise WrongForm(f"{what} is {_describe(value)}, not an integer")
 
 
+MAX_DEPTH = 32
+"""The deepest nesting of lists or tuples an array answer may have."""
+MAX_ENTRIES = 2 ** 20
+"""The most entries (numbers and lists, counted where they appear) an array answer may have: a
+list that holds itself, or lists shared many times over, are refused, not expanded."""
+
+
+def _entries(value, what):
+    """Check that the nested lists or tuples ``value`` hold only real numbers or real arrays,
+    within :data:`MAX_DEPTH` and :data:`MAX_ENTRIES`."""
+    todo, count = [(value, 1)], 0
+    while todo:
+        item, depth = todo.pop()
+        count += 1
+        if count > MAX_ENTRIES:
+            raise WrongForm(f"{what} has more than {MAX_ENTRIES} entries (a list that holds "
+                            "itself, or is shared over and over?)")
+        if type(item) in (list, tuple):
+            if depth > MAX_DEPTH:
+                raise WrongForm(f"{what} nests lists more than {MAX_DEPTH} deep")
+            todo.extend((entry, depth + 1) for entry in item)
+        elif type(item) is np.ndarray:
+            count += item.size
+            Array().convert(item, f"an entry of {what}")
+        else:
+            _number(item, f"an entry of {what}")
+
+
 class Array:
     """An array of real numbers (an ndarray, or nested lists or tuples of real numbers), read as
-    float64; ``shape`` (optional) is checked by the comparison, which knows the expected one."""
+    float64; ``shape`` (optional) is checked by the comparison, which knows the expected one.
+
+    Examples
+    --------
+    >>> Array().convert([[1, 2.5]], "x")
+    array([[1. , 2.5]])
+    >>> looped = []
+    >>> looped.append(looped)
+    >>> Array().convert(looped, "x")
+    Traceback (most recent call last):
+    ...
+    mechnum.exercises._answers.WrongForm: x nests lists more than 32 deep
+    """
 
     def convert(self, value, what):
         if type(value) in (list, tuple):
-            flat = list(value)
-            while flat:
-                item = flat.pop()
-                if type(item) in (list, tuple):
-                    flat.extend(item)
-                elif type(item) is np.ndarray:
-                    flat.extend(self.convert(item, what).ravel().tolist())
-                else:
-                    _number(item, f"an entry of {what}")
+            _entries(value, what)
             value = np.array(value, dtype=float) if value else np.zeros(0)
         if type(value) is not np.ndarray:
             return np.array(_number(value, what))

@@ -59,14 +59,10 @@ def _companion_cases():
                                              -4]).real[::-1],))]
 
 
-def _eigenvalues_compare(expected, got):
-    if got.shape != expected.shape:
-        return f"the matrix has shape {got.shape}, expected {expected.shape}"
-    want, have = (np.sort_complex(np.linalg.eigvals(M)) for M in (expected, got))
-    return close(want.real, have.real, rtol=1e-8, atol=1e-10,
-                 what="the real parts of the sorted eigenvalues") or close(
-        want.imag, have.imag, rtol=1e-8, atol=1e-10,
-        what="the imaginary parts of the sorted eigenvalues")
+def _matrix_compare(expected, got):
+    """The matrix itself, entry by entry: any matrix with the same eigenvalues (its
+    transpose, a similar one) is not the companion matrix the statement defines."""
+    return close(expected, got, rtol=1e-12, atol=1e-14, what="the matrix")
 
 
 COMPANION = Exercise(
@@ -77,7 +73,7 @@ COMPANION = Exercise(
         "`prr3.polynomial`): ones below the diagonal and $-c_k/c_n$ in the last column. Show "
         "that its characteristic polynomial is the polynomial divided by $c_n$, and compare "
         "its eigenvalues with `np.roots(c[::-1])` on the degree-8 polynomial of Table 6."),
-    starter=COMPANION_STARTER, cases=_companion_cases, compare=_eigenvalues_compare,
+    starter=COMPANION_STARTER, cases=_companion_cases, compare=_matrix_compare,
     returns=Array(),
     mistakes=(Mistake("no division by the leading coefficient", "the last column is "
                       "-c_k / c_n: the eigenvalues are the roots only of the monic polynomial."),
