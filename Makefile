@@ -9,7 +9,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
 .PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
-	notebooks-other-machine html-check bench execute lab clean certify
+	notebooks-other-machine html-check bench execute lab clean certify mutate
 
 $(STAMP): environment.txt pkg/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -125,6 +125,15 @@ test: $(STAMP)
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
 		--benchmark-columns=min,median,max,rounds
+
+# Mutation testing of the methods layer with mutmut (bench/mutation/mutate.py: the modules are
+# listed in bench/mutation/modules.toml, the equivalent mutants with their reasons in
+# equivalents.toml): each module's mutants against its own tests, then the report
+# bench/mutation.md, which tests/test_mutation_report.py checks against the modules as they are.
+# Hours on two cores, so not part of `make test`; `make mutate MODULES="newton ode"` runs some.
+MODULES ?=
+mutate: $(STAMP)
+	nice -n 5 $(BIN)/python bench/mutation/mutate.py run $(MODULES)
 
 # Recompute every stored certificate (interval proofs of equilibria) into book/certificates/.
 certify: $(STAMP)
