@@ -114,6 +114,41 @@ def test_numerically_singular_jacobian_is_refused():
         solve(lambda x: J @ x - np.array([1.0, 2.0]), [0.0, 0.0], lambda x: J)
 
 
+@pytest.mark.parametrize("d, delta, flagged", [(1e-3, 2.0 ** -52, True), (1.0, 1e-12, False)])
+def test_the_trust_test_flags_a_step_of_no_digit_and_only_such_a_step(d, delta, flagged):
+    # What it protects: the threshold of the singular-Jacobian test, a growth of the step past
+    # 1/eps = 4.5e15 times the residual (no digit of the step is left). Rows (1, 1) and
+    # d (1, 1 + delta) with f = (0, -1): the step is about 1/(d delta), so the measured growth
+    # is 9e18 for d = 1e-3, delta = eps (a thousand times past the bound, a thousand times
+    # short of a bound a million times laxer) and 2e12 for delta = 1e-12 (a thousand times
+    # inside it, a thousand times past a bound a million times stricter): that honest step,
+    # cond 4e12, is taken.
+    A = np.array([[1.0, 1.0], [d, d * (1 + delta)]])
+    b = np.array([0.0, -1.0])
+    if flagged:
+        with pytest.raises(SingularJacobianError, match=r"condition number >= 9\.\d+e\+18"):
+            solve(lambda x: A @ x + b, [0.0, 0.0], lambda x: A)
+    else:
+        res = solve(lambda x: A @ x + b, [0.0, 0.0], lambda x: A, criterion="residual",
+                    tol=1e-3)
+        assert res.converged and res.iterations == 1
+
+
+@pytest.mark.parametrize("scale", [1e-12, 1e12])
+def test_the_relative_residual_rule_ignores_the_units_of_f(scale):
+    # What it protects: relative=True measures ||f|| against ||f(x0)||, so a badly scaled
+    # system stops where a well scaled one does. f = scale (x^2 - 2) from x0 = 1: with
+    # scale 1e-12, |f(x0)| = 1e-12 is already below an absolute tol of 1e-8 (an absolute test
+    # would return the seed, 41 % off); with scale 1e12, round-off in f is about 1e-3, so an
+    # absolute 1e-8 is never met.
+    res = solve(lambda x: scale * (x ** 2 - 2), [1.0], lambda x: np.diag(2 * scale * x),
+                tol=1e-8, criterion="residual", relative=True)
+    assert res.converged and res.iterations >= 3
+    assert res.residual_norms[-1] <= 1e-8 * scale
+    # |x^2 - 2| <= 1e-8 bounds the error by 1e-8 / (2 sqrt 2) < 1e-8 sqrt 2
+    np.testing.assert_allclose(res.x, [np.sqrt(2)], rtol=1e-8)
+
+
 def atan_system(x):
     """Newton on arctan(x) = 0 diverges from |x0| > 1.39 (the iterates alternate and grow)."""
     return np.arctan(x)
@@ -499,6 +534,19 @@ def test_damping_with_max_step_measures_armijo_against_the_full_step():
                 tol=1e-12)
     assert res.converged and abs(res.x[0]) < 1e-12
     assert res.step_norms.max() <= 0.1 * (1 + 1e-12) and res.iterations > 490
+
+
+def test_damping_refuses_a_full_step_that_increases_the_residual():
+    # What it protects: Armijo's sufficient decrease, ||f|| <= (1 - 1e-4 alpha) ||f(x)||.
+    # arctan's Newton iteration has a 2-cycle at +-1.3917452; from 1e-5 beyond it the full step
+    # lands at -(1.3917452 + 2.6e-5), where |f| is larger by a relative 6e-6 only: a line
+    # search that accepted a step that does not decrease ||f|| would take it (and cycle
+    # outwards); Armijo's halves it, to about 0, the root.
+    res = solve(atan_system, [1.3917452002707 + 1e-5], atan_jac, damping=True)
+    assert res.converged and abs(res.x[0]) < 1e-12
+    assert res.residual_norms[1] < res.residual_norms[0]
+    assert np.all(np.diff(res.residual_norms) <= 0)
+    assert res.step_norms[0] < 0.6 * res.full_step_norms[0]  # the first step was halved
 
 
 def test_the_default_step_test_is_relative():
