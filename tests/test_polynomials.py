@@ -191,3 +191,32 @@ def test_five_dense_quadratics_have_a_mixed_volume_of_32():
 def test_bad_input_of_the_new_checks(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+@pytest.mark.parametrize("j", [-600, -400, 400, 600])
+@pytest.mark.parametrize("unit", [
+    [1.0, -2.0, 0.5],                  # three real roots of different signs and sizes
+    [1.0, 1j, -0.5 + 0.25j],           # complex roots: complex coefficients
+    [1.0, np.exp(2j * np.pi / 3), np.exp(-2j * np.pi / 3)],   # t^3 - 1: zero middle coefficients
+])
+def test_roots_beyond_the_companions_range_are_scaled_exactly(j, unit):
+    # What it protects: the scaled route of roots, for polynomials whose companion entries
+    # -c_k / c_n overflow or underflow (its roots R u_i are beyond 2^+-340 in size): t and the
+    # coefficients are rescaled by powers of two, so only exponents change. Coefficients
+    # a R^(3-k) with R = 2^j, a = 2^(-3j/2) are normal floats (2^+-900); the companion's entries
+    # R^(3-k) are not (2^+-1200 and more). The roots found are R times those of the unscaled
+    # polynomial, to the unscaled problem's round-off (1e-12 relative: simple roots, well apart).
+    base = P.polyfromroots(np.array(unit, dtype=complex))
+    powers = -3 * j // 2 + (3 - np.arange(4)) * j          # a R^(3-k) = 2^powers, exactly
+    c = np.ldexp(base.real, powers) + 1j * np.ldexp(base.imag, powers)
+    if np.all(c.imag == 0):
+        c = c.real
+    assert np.abs(c[c != 0]).min() > np.finfo(float).tiny and np.abs(c).max() < 2.0 ** 1000
+    unscaled = poly.roots(base.real if np.all(base.imag == 0) else base)
+    expected = np.sort_complex(np.ldexp(unscaled.real, j) + 1j * np.ldexp(unscaled.imag, j))
+    assert_allclose(np.sort_complex(poly.roots(c)), expected, rtol=1e-12)
+    # in a batch with an ordinary polynomial, each row gets its own roots
+    batch = poly.roots(np.stack([c, np.array([2.0, -3.0, 1.0, 1.0])]))
+    assert_allclose(np.sort_complex(batch[0]), expected, rtol=1e-12)
+    assert_allclose(np.sort_complex(batch[1]), np.sort_complex(poly.roots([2.0, -3.0, 1.0, 1.0])),
+                    rtol=1e-12)

@@ -150,7 +150,8 @@ def _source_of(mutant):
 
 def _message_lines(path, function):
     """The stripped source lines of `function` in `path` that lie inside the message of a raise
-    or of a warnings.warn call: text a reader sees, which no result depends on."""
+    or of a warnings.warn call, or that name an argument to a check of ``mechnum._validate`` (the
+    name its message gives): text a reader sees, which no result depends on."""
     tree = ast.parse(path.read_text())
     lines = path.read_text().splitlines()
     cls, _, name = function.rpartition(".")
@@ -162,17 +163,20 @@ def _message_lines(path, function):
             if not (isinstance(fn, ast.FunctionDef) and fn.name == name):
                 continue
             for inner in ast.walk(fn):
-                call = None
+                texts = []
                 if isinstance(inner, ast.Raise) and isinstance(inner.exc, ast.Call):
-                    call = inner.exc
+                    texts = inner.exc.args[:1]
                 elif isinstance(inner, ast.Call) and getattr(inner.func, "attr", getattr(
                         inner.func, "id", None)) == "warn":
-                    call = inner
-                if call is None or not call.args:
-                    continue
-                message = call.args[0]
-                found |= {lines[i - 1].strip()
-                          for i in range(message.lineno, message.end_lineno + 1)}
+                    texts = inner.args[:1]
+                elif isinstance(inner, ast.Call) and isinstance(inner.func, ast.Attribute) and \
+                        getattr(inner.func.value, "id", None) == "_validate":
+                    # the checks of mechnum._validate take the argument's name for their message
+                    texts = [a for a in inner.args[1:] + [k.value for k in inner.keywords]
+                             if isinstance(a, ast.Constant) and isinstance(a.value, str)]
+                for text in texts:
+                    found |= {lines[i - 1].strip()
+                              for i in range(text.lineno, text.end_lineno + 1)}
     return found
 
 
