@@ -97,9 +97,9 @@ def roots(c: ArrayLike) -> np.ndarray:
     far that moves each root is :func:`root_condition`.
 
     Where the companion matrix would overflow or underflow (coefficients of very different
-    sizes, as ``1e300 + 1e-300 t``, or roots below ``1e-100``), the polynomial is first scaled, ``t = 2^e u`` with ``e`` from
-    Fujiwara's bound on the roots' size, which is exact (only exponents change); its roots are
-    then of order one.
+    sizes, as ``1e300 + 1e-300 t``, or roots below ``1e-100``), the polynomial is first scaled,
+    ``t = 2^e u`` with ``e`` from Fujiwara's bound on the roots' size, which is exact (only
+    exponents change); its roots are then of order one.
 
     Parameters
     ----------
