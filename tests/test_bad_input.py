@@ -458,6 +458,9 @@ REPRODUCERS = [
     ("rods.assembly.peak_moment(1.0, np.nan, [0.0, 1.0], 0.0, 1)", "clamp_moment must be finite"),
     ("rods.assembly.Layout(rods=np.nan, inputs=2, pose=2)", "rods must be an integer"),
     ("rfr2.motor_angles(rfr2.TABLE7, [np.nan, 0.5], np.ones((2, 2)))", "P must be finite"),
+    ("rfr2.atlas(rfr2.TABLE7, [1e300], [0.0, 0.1])", "within 4 pi rad"),
+    ("rfr2.atlas(rfr2.TABLE7, [36.0, 38.0], [0.5, 0.6])", r"in degrees\? np.radians"),
+    ("pfr3.atlas(pfr3.TABLE8, [[[0.0, 0.0, 0.0], [1e300, 0.0, 0.0]]])", r"within 1e\+100 m"),
 ]
 
 
@@ -469,6 +472,33 @@ def test_a_fixed_finding_gives_a_named_error(source, words):
     with pytest.raises((ValueError, AssertionError), match=words):
         eval(source, names)
     plt.close("all")
+
+
+def test_more_workers_than_cores_are_cut_to_the_cores_with_a_warning():
+    # executor=4096 on a two-core machine used to start 4096 processes' worth of work at once
+    from mechnum.rods.assembly import parallel
+    cores = parallel.local_cores()
+    with pytest.warns(UserWarning, match=f"executor={cores + 4094} asks for more workers than "
+                                         f"the {cores} cores this process may use"):
+        assert parallel.checked(cores + 4094) == cores
+    with pytest.warns(UserWarning, match="running"):
+        assert parallel.run(abs, [-1, 2, -3], executor=cores + 1) == [1, 2, 3]
+    assert parallel.checked(cores) == cores and parallel.workers(cores) == cores
+
+
+@pytest.mark.parametrize("scale", [1e300, -1e300, 1.7e308])
+def test_prr3_far_poses_overflow_to_their_signed_limits_not_nan(scale):
+    # 1e300 in a pose or an input: the squares overflow, to the sign the mathematics gives (a
+    # pose that far is unreachable: radicands -inf, loop residuals +inf, branch inputs NaN, the
+    # documented "cannot reach"), never NaN in the first two, and no warning leaks
+    g = prr3.EXAMPLES["Table 5"][0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for pose in ([scale, scale, 0.0], [scale, -scale, 1.0]):
+            assert np.all(prr3.radicands(g, pose) == -np.inf)
+            assert np.all(prr3.loop_residuals(g, pose, [0.5, 0.5, 0.5]) == np.inf)
+            assert np.all(np.isnan(prr3.branch_inputs(g, pose)))
+        assert np.all(prr3.loop_residuals(g, [0.5, 0.5, 0.0], np.full(3, scale)) == np.inf)
 
 
 def main():

@@ -214,9 +214,9 @@ def test_roots_beyond_the_companions_range_are_scaled_exactly(j, unit):
     assert np.abs(c[c != 0]).min() > np.finfo(float).tiny and np.abs(c).max() < 2.0 ** 1000
     unscaled = poly.roots(base.real if np.all(base.imag == 0) else base)
     expected = np.sort_complex(np.ldexp(unscaled.real, j) + 1j * np.ldexp(unscaled.imag, j))
-    assert_allclose(np.sort_complex(poly.roots(c)), expected, rtol=1e-12)
+    assert_allclose(np.sort_complex(poly.roots(c)), expected, rtol=1e-12)  # round-off, above
     # in a batch with an ordinary polynomial, each row gets its own roots
     batch = poly.roots(np.stack([c, np.array([2.0, -3.0, 1.0, 1.0])]))
-    assert_allclose(np.sort_complex(batch[0]), expected, rtol=1e-12)
+    assert_allclose(np.sort_complex(batch[0]), expected, rtol=1e-12)  # as above
     assert_allclose(np.sort_complex(batch[1]), np.sort_complex(poly.roots([2.0, -3.0, 1.0, 1.0])),
                     rtol=1e-12)
