@@ -355,6 +355,45 @@ def cubic_pair_jac(z):
                      np.stack([zero, 2 * z[:, 1]], -1)], axis=1)
 
 
+def test_solve_all_accounts_for_its_work():
+    # What it protects: a search's evidence is its accounting. n_starts and n_check starts were
+    # run (a status each), fun and jac were called nfev and njev times (the final residual check
+    # included), and the message says how many roots from how many starts, by status.
+    calls = {"fun": 0, "jac": 0}
+
+    def fun(z):
+        calls["fun"] += 1
+        return cubic_pair(z)
+
+    def jac(z):
+        calls["jac"] += 1
+        return cubic_pair_jac(z)
+
+    sample = lambda rng, m: rng.uniform(-2, 2, (m, 2))  # noqa: E731
+    found = solve_all(fun, sample, jac, n_starts=30, check=2, rng=5)
+    assert (found.n_starts, found.n_check, len(found.status), found.iterations.shape) == (
+        30, 60, 90, (90,))
+    assert (found.nfev, found.njev) == (calls["fun"], calls["jac"])
+    counts = {str(s): int(c) for s, c in zip(*np.unique(found.status, return_counts=True))}
+    assert found.message == (f"6 roots from 90 starts ({counts}); "
+                             f"{found.new_in_check} new in the check")
+    assert found.new_in_check == 0 and found.complete
+    # the defaults: a thousand starts and ten times as many in the check
+    assert solve_all(cubic_pair, sample, cubic_pair_jac, rng=5).n_starts == 1000
+
+
+@pytest.mark.parametrize("options, words", [
+    ({"n_starts": 10_000_001}, "n_starts"), ({"n_starts": 1000, "check": 10_000}, "check"),
+    ({"halvings": 53}, "halvings"), ({"same": 0.0}, "same"), ({"sample": "a"}, "sample must be"),
+])
+def test_solve_all_bounds_its_work(options, words):
+    # every argument that sets an amount of work is bounded (STARTS_LIMIT starts in all,
+    # HALVINGS_LIMIT halvings), and refused before any work
+    arguments = {"sample": lambda rng, m: rng.uniform(-2, 2, (m, 2))} | options
+    with pytest.raises(ValueError, match=words):
+        solve_all(cubic_pair, arguments.pop("sample"), cubic_pair_jac, **arguments)
+
+
 def test_solve_all_finds_every_root_of_a_polynomial_system():
     found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
                       n_starts=300, rng=1)

@@ -10,7 +10,8 @@ as they are now: each module's files are recorded with a content hash, so a modu
 without a new run fails that test.
 
     python bench/mutation/mutate.py run [MODULE ...]     # mutate (all modules by default)
-    python bench/mutation/mutate.py retry MODULE ...     # rerun the survivors, keep the rest
+    python bench/mutation/mutate.py retry MODULE ...     # keep the results of unchanged code,
+                                                         # run the new mutants and the survivors
     python bench/mutation/mutate.py report               # render the report again
     python bench/mutation/mutate.py survivors MODULE     # the surviving mutants' diffs
 """
@@ -226,20 +227,22 @@ def run(names, retry=False):
     for name in names:
         spec = table[name]
         files = source_files(spec)
+        mutated = content_hash(files)  # what is copied now is what the report will cover
         where = _scratch(name, spec, fresh=not retry)
         start = time.monotonic()
+        # mutmut keeps the results of the functions that did not change; a retry then runs the
+        # survivors again (against the tests as they are now)
+        _mutmut(where, ["run"])
         if retry:
             survivors = [m for m, s in _outcomes(where, files).items() if s == SURVIVED]
             if survivors:
                 _mutmut(where, ["run", *survivors])
-        else:
-            _mutmut(where, ["run"])
         seconds = time.monotonic() - start
         outcomes = _outcomes(where, files)
         survivors = {m: _diff(where, m) for m, s in sorted(outcomes.items()) if s == SURVIVED}
         previous = results.get(name, {})
         results[name] = {
-            "files": files, "sha256": content_hash(files),
+            "files": files, "sha256": mutated,
             "counts": {s: sum(v == s for v in outcomes.values())
                        for s in sorted(set(outcomes.values()))},
             "survivors": [{"mutant": m, "function": function_of(m), "diff": d,
