@@ -80,6 +80,37 @@ def test_finite_difference_jacobian_is_the_default():
     np.testing.assert_allclose(J, circle_line_jac([0.3, -0.7]), atol=1e-7, rtol=0)
 
 
+@pytest.mark.parametrize("x", [0.5, -0.25, 3.0, 1e6])
+def test_fd_jacobian_step_is_sqrt_eps_relative(x):
+    # What it protects: the forward-difference step h = sqrt(eps) max(1, |x|), which balances
+    # truncation (h |f''| / 2) against round-off (eps |f| / h). For f = x^2 the difference
+    # quotient is exactly 2 x + h: its error measures h itself, which must be sqrt(eps) for
+    # |x| <= 1 and sqrt(eps) |x| beyond (a step that did not grow with x would vanish in x + h
+    # at 1e6). The bound allows a quarter of h for the rounding of x + h and of the quotient.
+    h = np.sqrt(np.finfo(float).eps) * max(1.0, abs(x))
+    J = fd_jacobian(lambda z: z ** 2, np.array([x]))
+    assert abs(J[0, 0] - 2 * x - h) <= 0.25 * h
+
+
+BIG = np.sqrt(np.finfo(float).max) * (1 - 1e-9)  # BIG^2 is a float, (BIG (1 + 1.5e-8))^2 is not
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: fd_jacobian(None, np.ones(2)), "fun must be"),
+    (lambda: fd_jacobian(lambda z: z, np.ones((2, 2, 2))), "x must"),
+    (lambda: fd_jacobian(lambda z: z, np.ones(0)), "x must have at least one unknown"),
+    (lambda: fd_jacobian(lambda z: z[:1], np.ones(2)), "fun returned shape"),
+    (lambda: fd_jacobian(lambda z: z ** 2, np.array([BIG, 1.0])), "not finite"),
+])
+def test_fd_jacobian_refuses_what_it_cannot_difference(call, words):
+    # z^2 is finite at BIG, not at BIG + h (it passes the largest float): a named error, and no
+    # overflow warning leaks (the mutation runs turn RuntimeWarnings into errors, as make explore does)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        with pytest.raises((ValueError, NonFiniteError), match=words):
+            call()
+
+
 def test_fd_jacobian_of_a_batch():
     x = np.array([[0.3, -0.7], [1.0, 2.0]])
     J = fd_jacobian(lambda z: np.stack([z[:, 0] ** 2, z[:, 0] * z[:, 1]], axis=-1), x)
