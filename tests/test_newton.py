@@ -104,7 +104,7 @@ BIG = np.sqrt(np.finfo(float).max) * (1 - 1e-9)  # BIG^2 is a float, (BIG (1 + 1
 ])
 def test_fd_jacobian_refuses_what_it_cannot_difference(call, words):
     # z^2 is finite at BIG, not at BIG + h (it passes the largest float): a named error, and no
-    # overflow warning leaks (the mutation runs turn RuntimeWarnings into errors, as make explore does)
+    # overflow warning leaks (the mutation runs make RuntimeWarnings errors, as make explore does)
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         with pytest.raises((ValueError, NonFiniteError), match=words):
