@@ -2,8 +2,8 @@
 
 A function's baseline is its first call in its docstring example; for a function whose docstring
 shows no call, the call of :data:`EXPLICIT`, or else its first call made by the package itself
-while the examples of :data:`EXPLICIT` and the docstrings of :data:`CALLERS` run (the building
-blocks of ``rods.assembly``). Each argument in turn gets the bad values of :func:`families`, and
+while :data:`CALLS` and the docstring examples of :data:`CALLERS` run (the building blocks of
+``rods.assembly``). Each argument in turn gets the bad values of :func:`families`, and
 the batches are emptied; every call runs under an alarm, warnings as errors, and is ``ok`` (an
 error raised by a ``raise`` of mechnum, or an empty result for an empty batch), ``raw`` (any other
 exception), ``hang`` (> 2 s, or 5 baselines), ``silent`` (NaN or inf in a result that says it
@@ -70,8 +70,14 @@ EXPLICIT = {  # name: "(args), {kwargs}"
     "mechanisms.pfr3.Mechanism": "(pfr3.TABLE8.origins, pfr3.TABLE8.guide_angles,"
                                  " pfr3.TABLE8.clamp_angles, pfr3.TABLE8.a), {}",
 }
-# The modules whose docstring examples call the building blocks of rods.assembly.
-CALLERS = ("mechnum.mechanisms.rfr2", "mechnum.mechanisms.pfr3")
+# What calls the building blocks of rods.assembly (which no docstring example calls): these
+# statements, then the docstring examples of these functions, each chosen for one block (the
+# whole modules' examples would take minutes).
+CALLS = ("rfr2.atlas(rfr2.TABLE7, np.radians([36.0]), np.radians([56.0, 58.0]), executor=1)"
+         ".draw(plt.subplots()[1])",)
+CALLERS = ("rfr2.forward_elliptic", "rfr2.forward_path", "rfr2.forward_map", "rfr2.jacobians",
+           "rfr2.singular_points", "rfr2.workspace", "rfr2.forward_shooting", "rfr2.draw",
+           "rfr2.stability", "rfr2.verify")
 
 
 def public_functions():
@@ -301,12 +307,12 @@ _RECORDED = {}
 
 
 def recorded(name):
-    """The first call of public function ``name`` that the package makes itself, while the
-    sources of :data:`EXPLICIT` and the docstring examples of :data:`CALLERS` run (recorded
-    once for every function that has no baseline of its own), or None."""
+    """The first call of public function ``name`` that the package makes itself, while
+    :data:`CALLS` and the docstring examples of :data:`CALLERS` run (recorded once for every
+    function that has no baseline of its own), or None."""
     if not _RECORDED:
-        targets = {n: f for n, f in FUNCTIONS.items() if inspect.isfunction(f)
-                   and n not in EXPLICIT and baseline(f) is None}
+        targets = {n: f for n, f in FUNCTIONS.items() if n.startswith("rods.assembly.")
+                   and inspect.isfunction(f) and n not in EXPLICIT and baseline(f) is None}
         _RECORDED.update(dict.fromkeys(targets))
         patched = []
 
@@ -323,20 +329,22 @@ def recorded(name):
         try:
             with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                for n, source in EXPLICIT.items():
-                    args, kwargs = eval(source, _names())
-                    FUNCTIONS[n](*args, **kwargs)
-                modules = sorted(m for m in sys.modules if m.startswith(CALLERS))
-                for module in map(importlib.import_module, modules):
-                    for test in doctest.DocTestFinder().find(module, globs=vars(module).copy()):
-                        if all(_RECORDED.values()):
-                            break
+                for source in CALLS:
+                    eval(source, _names())
+                for caller in CALLERS:
+                    where, _, attribute = f"mechnum.mechanisms.{caller}".rpartition(".")
+                    obj = getattr(importlib.import_module(where), attribute)
+                    module = sys.modules[obj.__module__]
+                    for test in doctest.DocTestFinder(recurse=False).find(
+                            obj, module=module, globs=vars(module).copy()):
                         for example in test.examples:
                             try:
                                 exec(compile(example.source, "<example>", "exec"), test.globs)
                             except Exception:  # noqa: BLE001 (an example showing an error)
                                 pass
                     plt.close("all")
+                    if all(_RECORDED.values()):
+                        break
         finally:
             for home, attribute, f in patched:
                 setattr(home, attribute, f)
