@@ -1,6 +1,7 @@
 """Tests of mechnum.linear: textbook systems, every public function's bad input, and
 properties checked by hypothesis (200 examples each) over the valid domain and its edges."""
 
+import warnings
 from fractions import Fraction
 
 import numpy as np
@@ -892,3 +893,21 @@ def test_a_sparse_matrix_of_float16_is_accepted():
         checked = check_matrix(A)
         assert checked.dtype == np.float64
         assert_allclose(checked.toarray(), TRI_A, rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("scale", [2.0 ** -1040, 1e-300, 1e300])
+def test_scale_invariant_quantities_ignore_the_scale(scale):
+    # cond(c A) = cond(A) and SOR's iteration matrix of c A is that of A: with subnormal (2^-1040)
+    # or huge entries the inverse and D^-1 overflowed (cond came out inf, optimal_omega raised
+    # numpy's LinAlgError). A power of two keeps every digit; 1e-300 and 1e300 round each entry
+    # once, so the results agree to a few ulps (rtol 1e-14).
+    A = np.array([[4.0, 1.0, 0.0], [1.0, 4.0, 1.0], [0.0, 1.0, 4.0]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        for p in (1, 2, np.inf, "fro"):
+            assert linear.condition_number(scale * A, p) == pytest.approx(
+                linear.condition_number(A, p), rel=1e-14)
+        assert_allclose(linear.sor_spectral_radii(scale * A, [1.0, 1.2]),
+                        linear.sor_spectral_radii(A, [1.0, 1.2]), rtol=1e-14)  # as above
+        assert linear.optimal_omega(scale * A).x == pytest.approx(  # as above
+            linear.optimal_omega(A).x, rel=1e-14)
