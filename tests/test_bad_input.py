@@ -497,18 +497,20 @@ def test_more_workers_than_cores_are_cut_to_the_cores_with_a_warning():
 
 
 @pytest.mark.parametrize("scale", [1e300, -1e300, 1.7e308])
-def test_prr3_far_poses_overflow_to_their_signed_limits_not_nan(scale):
-    # 1e300 in a pose or an input: the squares overflow, to the sign the mathematics gives (a
-    # pose that far is unreachable: radicands -inf, loop residuals +inf, branch inputs NaN, the
-    # documented "cannot reach"), never NaN in the first two, and no warning leaks
+def test_prr3_far_poses_are_named_where_their_squares_overflow(scale):
+    # 1e300 in a pose or an input gave inf, then NaN, from the functions that square distances:
+    # now a ValueError names the argument; the workspace and the inverse problem, which only ask
+    # whether a pose is reachable, still answer "no" for any finite pose (and no warning leaks)
     g = prr3.EXAMPLES["Table 5"][0]
+    far = [scale, 0.5, 0.0]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        for pose in ([scale, scale, 0.0], [scale, -scale, 1.0]):
-            assert np.all(prr3.radicands(g, pose) == -np.inf)
-            assert np.all(prr3.loop_residuals(g, pose, [0.5, 0.5, 0.5]) == np.inf)
-            assert np.all(np.isnan(prr3.branch_inputs(g, pose)))
-        assert np.all(prr3.loop_residuals(g, [0.5, 0.5, 0.0], np.full(3, scale)) == np.inf)
+        for call in (lambda: prr3.radicands(g, far), lambda: prr3.branch_inputs(g, far),
+                     lambda: prr3.loop_residuals(g, far, [0.5, 0.5, 0.5]),
+                     lambda: prr3.loop_residuals(g, [0.5, 0.5, 0.0], far)):
+            with pytest.raises(ValueError, match=r"must lie within 1e\+100 m of the origin"):
+                call()
+        assert not prr3.workspace(g, scale, scale, 0.0) and prr3.inverse(g, far).shape == (0, 3)
 
 
 def main():
