@@ -73,6 +73,83 @@ EXPLICIT = {  # name: "(args), {kwargs}"
     "mechanisms.pfr3.Mechanism": "(pfr3.TABLE8.origins, pfr3.TABLE8.guide_angles,"
                                  " pfr3.TABLE8.clamp_angles, pfr3.TABLE8.a), {}",
 }
+# The open findings of the scaled families (subnormal, 1e-300, 1e300), first tried now: numpy's
+# overflow and invalid-value warnings leak (a RuntimeWarning, raised as an error here) where
+# these functions square, divide or multiply scaled numbers without scaling first, and a few
+# return NaN as if converged. Each is an expected failure until fixed (strict: a function fixed
+# must leave the list); any other bad outcome of these functions fails as usual.
+SCALED_OPEN = frozenset((
+    'mechanisms.finger.lengths_from_coefficients',
+    'mechanisms.finger.linkage_from_coefficients',
+    'certify.roots',
+    'continuation.pseudo_arclength',
+    'continuation.solve_path',
+    'linear.conjugate_gradient',
+    'linear.gauss_seidel',
+    'linear.iterative_refinement',
+    'linear.jacobi',
+    'linear.least_squares',
+    'linear.sor',
+    'linear.sor_sweep',
+    'linear.sweep_by_components',
+    'mechanisms.actuator.forward',
+    'mechanisms.actuator.positions',
+    'mechanisms.actuator.stroke_kinematics',
+    'mechanisms.finger.synthesize',
+    'mechanisms.hacksaw.solve_simultaneous',
+    'mechanisms.pfr3.chart_from_thesis',
+    'mechanisms.pfr3.crossings',
+    'mechanisms.pfr3.forward_path',
+    'mechanisms.pfr3.index',
+    'mechanisms.pfr3.inverse_map',
+    'mechanisms.pfr3.inverse_path',
+    'mechanisms.pfr3.jacobians',
+    'mechanisms.pfr3.orientation',
+    'mechanisms.pfr3.recover_inputs',
+    'mechanisms.pfr3.resolutions',
+    'mechanisms.pfr3.second_variation',
+    'mechanisms.pfr3.shapes',
+    'mechanisms.pfr3.shooting_guess',
+    'mechanisms.pfr3.stability',
+    'mechanisms.pfr3.strain',
+    'mechanisms.pfr3.thesis_residual',
+    'mechanisms.pfr3.verify',
+    'mechanisms.pfr3.within_study_reach',
+    'mechanisms.pfr3.workspace',
+    'mechanisms.rfr2.chart_from_thesis',
+    'mechanisms.rfr2.crossings',
+    'mechanisms.rfr2.eigenvalues',
+    'mechanisms.rfr2.forward_map',
+    'mechanisms.rfr2.forward_path',
+    'mechanisms.rfr2.index',
+    'mechanisms.rfr2.inverse',
+    'mechanisms.rfr2.inverse_path',
+    'mechanisms.rfr2.jacobians',
+    'mechanisms.rfr2.recover_inputs',
+    'mechanisms.rfr2.residual',
+    'mechanisms.rfr2.rods',
+    'mechanisms.rfr2.shapes',
+    'mechanisms.rfr2.shooting_guess',
+    'mechanisms.rfr2.stability',
+    'mechanisms.rfr2.strain',
+    'mechanisms.rfr2.thesis_from_chart',
+    'mechanisms.rfr2.verify',
+    'mechanisms.rfr2.workspace',
+    'newton.broyden',
+    'newton.fd_jacobian',
+    'newton.solve',
+    'newton.solve_batch',
+    'polynomials.root_condition',
+    'rods.assembly.chart_from_clamps',
+    'rods.assembly.peak_moment',
+    'rods.clamped_pinned',
+    'rods.k_rel_for_force',
+    'rods.regular.clamped_pinned_regular',
+    'rods.regular.closed_form',
+    'rods.regular.k_rel_from_t',
+    'rods.regular.shape',
+    'rods.regular.t_from_k_rel',
+))
 # What calls the building blocks of rods.assembly (which no docstring example calls): these
 # statements, then the docstring examples of these functions, each chosen for one block (the
 # whole modules' examples would take minutes).
@@ -433,6 +510,11 @@ def test_bad_input_gets_a_named_error(name):
     bad = [row for row in rows if row[2] in BAD]
     if bad and FUNCTIONS[name].__module__.startswith(ELSEWHERE):
         pytest.xfail(f"{FUNCTIONS[name].__module__} is being rewritten elsewhere: {bad}")
+    if name in SCALED_OPEN:
+        assert not [row for row in bad if row[1] not in SCALED], "\n".join(map(str, bad))
+        if not bad:
+            pytest.fail(f"{name} has no open finding any more: remove it from SCALED_OPEN")
+        pytest.xfail(f"open findings of the scaled families: {bad}")
     assert not bad, "\n".join(map(str, bad))
 
 
