@@ -905,6 +905,7 @@ def test_scale_invariant_quantities_ignore_the_scale(scale):
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         for p in (1, 2, np.inf, "fro"):
+            # a few ulps, as above
             assert linear.condition_number(scale * A, p) == pytest.approx(
                 linear.condition_number(A, p), rel=1e-14)
         assert_allclose(linear.sor_spectral_radii(scale * A, [1.0, 1.2]),
