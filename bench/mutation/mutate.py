@@ -5,7 +5,7 @@ Each module of ``modules.toml`` is mutated alone, in a scratch copy of the packa
 doctests (mutmut 3 runs, for a mutant of a function, only the tests that called that function on
 the clean code; pytest stops at the first failure). The results are written to ``results.json``
 and rendered, with the equivalent mutants of ``equivalents.toml`` (each with its reason), into
-``bench/mutation.md``. ``tests/test_mutation_report.py`` checks that the report covers the modules
+``bench/mutation.md``. ``bench/mutation/test_report.py`` checks that the report covers the modules
 as they are now: each module's files are recorded with a content hash, so a module changed
 without a new run fails that test.
 
@@ -323,7 +323,7 @@ def render():
         for survivor, _ in alive:
             details.append(f"- **survived**, `{survivor['function']}` ({survivor['mutant']})\n")
             details.append("  ```diff\n" + _indent(survivor["diff"]) + "\n  ```")
-    out += ["", "Each module's files and their SHA-256 (`tests/test_mutation_report.py` checks "
+    out += ["", "Each module's files and their SHA-256 (`bench/mutation/test_report.py` checks "
             "them against the files as they are):", ""]
     for name in table:
         if name in results:
