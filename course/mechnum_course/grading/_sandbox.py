@@ -26,6 +26,7 @@ module of the student's folder can run before the confinement is in place; the c
 starts in the configuration's ``cwd``.
 """
 
+import atexit
 import ctypes
 import json
 import os
@@ -151,10 +152,12 @@ def pids_parent():
     parent = PIDS / f"mechnum-grade-{os.getpid()}"
     if os.getuid() != 0 or not os.access(PIDS, os.W_OK):
         return ""
-    try:
-        parent.mkdir(exist_ok=True)
-    except OSError:
-        return ""
+    if not parent.is_dir():
+        try:
+            parent.mkdir()
+        except OSError:
+            return ""
+        atexit.register(remove_pids_groups, everything=True)
     return str(parent)
 
 
