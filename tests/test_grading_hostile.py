@@ -242,7 +242,7 @@ def sandboxed(folder, code):
         cwd=_sandbox.launch_folder(folder.parent) if hasattr(_sandbox, "launch_folder")
         else folder, capture_output=True, text=True, timeout=60, env={"PATH": "/usr/bin"})
     if hasattr(_sandbox, "remove_pids_groups"):
-        _sandbox.remove_pids_groups(everything=True)
+        _sandbox.remove_pids_groups()
     return done.stdout + done.stderr
 
 

@@ -280,5 +280,4 @@ def grade(folder, out=None, *, limit=NOTEBOOK_LIMIT, cell_limit=CELL_LIMIT, numb
     summary = _report.write(list(rows.items()), out, numbers, sandbox=_sandbox.landlock_abi(),
                             limits={"notebook": limit, "cell": cell_limit, "student":
                                     student_limit, "runner": RUNNER_CPU}, passed=passed)
-    _sandbox.remove_pids_groups(everything=True)
     return summary

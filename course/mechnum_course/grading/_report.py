@@ -149,7 +149,7 @@ def _summary(table, numbers, rows, sandbox, limits):
     if readable:
         lines.append(f"WARNING: the instructors' package is under {readable[0]}, which the "
                      "sandbox lets a notebook read: install it from course/ (environment.txt)")
-    if os.getuid() == 0 and not _sandbox.pids_parent():
+    if os.getuid() == 0 and not _sandbox.pids_prefix():
         lines.append("WARNING: run as root without a writable pids control group: a notebook's "
                      "processes have no bound on their number")
     lines.append(f"file-system sandbox: Landlock ABI {sandbox}" if sandbox else

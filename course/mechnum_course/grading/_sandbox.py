@@ -7,7 +7,7 @@ itself with the real command (``exec``), so that the limits hold for everything 
 * resource limits (``setrlimit``): CPU seconds, address space, the size of a file it writes,
   no core file, and a bound on its processes and threads, :data:`MAX_PROCESSES`: for an
   ordinary user ``RLIMIT_NPROC``; for root, whom Linux exempts from it, a ``pids`` control
-  group of its own (:func:`pids_parent`; without one the grader's summary warns);
+  group of its own (:func:`pids_prefix`; without one the grader's summary warns);
 * ``no_new_privs`` and, where the Linux kernel has it (Landlock, Linux 5.13 and later), a
   file-system sandbox: it reads only the system (of ``/dev`` only :data:`DEVICES`), the Python
   environment and the student's package, and writes only in its own temporary folder; it
@@ -26,7 +26,6 @@ module of the student's folder can run before the confinement is in place; the c
 starts in the configuration's ``cwd``.
 """
 
-import atexit
 import ctypes
 import json
 import os
@@ -129,7 +128,7 @@ def exposed(paths):
 def set_limits(cpu, memory, file_size, pids=None):
     """The resource limits of this process (seconds, bytes, bytes) and the bound on its
     processes: ``RLIMIT_NPROC`` (:data:`MAX_PROCESSES` more than its user has), or for root
-    a new group under the ``pids`` control group ``pids``."""
+    a new ``pids`` control group named ``pids-<its pid>``."""
     for kind, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_AS, memory),
                         (resource.RLIMIT_FSIZE, file_size), (resource.RLIMIT_CORE, 0)):
         value = int(value)
@@ -139,38 +138,33 @@ def set_limits(cpu, memory, file_size, pids=None):
                    _owner(p) == os.getuid())
         resource.setrlimit(resource.RLIMIT_NPROC, (mine + MAX_PROCESSES,) * 2)
     elif pids:
-        group = Path(pids) / str(os.getpid())
+        group = Path(f"{pids}-{os.getpid()}")
         group.mkdir()
         (group / "pids.max").write_text(str(MAX_PROCESSES))
         (group / "cgroup.procs").write_text(str(os.getpid()))
 
 
-def pids_parent():
-    """This grader's ``pids`` control group (made on first use), under which each confined
-    process of a grader run as root gets a group of its own; "" where there is none to make
-    (not root, or no writable ``pids`` controller)."""
-    parent = PIDS / f"mechnum-grade-{os.getpid()}"
+def pids_prefix():
+    """The name prefix of this grader's ``pids`` control groups: each confined process of a
+    grader run as root makes ``<prefix>-<its pid>``; "" where there is none to make (not
+    root, or no writable ``pids`` controller)."""
     if os.getuid() != 0 or not os.access(PIDS, os.W_OK):
         return ""
-    if not parent.is_dir():
-        try:
-            parent.mkdir()
-        except OSError:
-            return ""
-        atexit.register(remove_pids_groups, everything=True)
-    return str(parent)
+    return str(PIDS / f"mechnum-grade-{os.getpid()}")
 
 
-def remove_pids_groups(everything=False):
-    """Remove the empty groups of :func:`pids_parent` (and, ``everything``, the parent)."""
-    parent = PIDS / f"mechnum-grade-{os.getpid()}"
-    if not parent.is_dir():
-        return
-    for group in [*(p for p in parent.iterdir() if p.is_dir()), *([parent] * everything)]:
-        try:
-            group.rmdir()
-        except OSError:
-            pass
+def remove_pids_groups():
+    """Remove the control groups of this grader's confined processes that hold no process
+    (the kernel lets a group go a moment after its last process is reaped)."""
+    for group in PIDS.glob(f"mechnum-grade-{os.getpid()}-*") if PIDS.is_dir() else ():
+        for _ in range(50):
+            try:
+                group.rmdir()
+                break
+            except OSError:
+                if (group / "tasks").read_text().strip():
+                    break
+                time.sleep(0.02)
 
 
 def _owner(path):
@@ -196,7 +190,7 @@ def config(folder, *, cpu, memory, file_size, read=(), tcp=False, cwd=None):
     package = str(Path(mechnum.__file__).resolve().parents[1])
     return {"cpu": cpu, "memory": memory, "file_size": file_size, "tcp": tcp,
             "read": [*system_paths(), package, *read], "write": [str(folder), os.devnull],
-            "cwd": str(cwd or folder), "pids": pids_parent()}
+            "cwd": str(cwd or folder), "pids": pids_prefix()}
 
 
 def launch_folder(work):
