@@ -147,7 +147,8 @@ def grade(number, name, source, folder, keep=()):
     outcomes, delegated = run_function(number, name, source, folder, keep)
     if delegated:
         what = ("the instructors' reference solution" if delegated.startswith("mechnum_course")
-                else delegated if delegated.startswith("a function") else f"`{delegated}`")
+                else delegated if delegated.startswith(("a function", "a new copy"))
+                else f"`{delegated}`")
         return exercises.Result(number, False, f"Exercise {number}: fail. Your `{name}` calls "
                                 f"{what}, the solution the exercise asks you to write (or a "
                                 "function its statement forbids): write it yourself.")

@@ -78,7 +78,8 @@ def _watch(files, codes):
 
     def hook(event, args):
         if event == "exec" and type(args[0]) is type(hook.__code__) and holds(args[0]):
-            _delegated(f"a new copy of {args[0].co_filename}")
+            name = os.path.basename(args[0].co_filename)
+            _delegated(f"a new copy of the module {name} (reloaded, or its text run again)")
     sys.addaudithook(hook)
 
 
