@@ -17,8 +17,12 @@ def main(argv=None):
     parser.add_argument("--exercises", help="the exercises graded, e.g. 3.1,3.2")
     args = parser.parse_args(argv)
     numbers = args.exercises.split(",") if args.exercises else None
-    print(grade(args.folder, args.out, limit=args.limit, cell_limit=args.cell_limit,
-                numbers=numbers, student_limit=args.student_limit), end="")
+    try:
+        summary = grade(args.folder, args.out, limit=args.limit, cell_limit=args.cell_limit,
+                        numbers=numbers, student_limit=args.student_limit)
+    except ValueError as error:  # a bad folder or argument, before anything ran
+        parser.error(str(error))
+    print(summary, end="")
 
 
 if __name__ == "__main__":
