@@ -172,7 +172,8 @@ def run_notebook(path, copy, work, *, limit, cell_limit, keep):
         if not isinstance(sources, dict):
             raise ValueError
     except (OSError, ValueError, KeyError, TypeError):
-        outcome, sources = {"errors": [], "problem": "", "dropped": 0}, {}
+        outcome, sources = {"errors": [], "problem": "the notebook could not run (its runner "
+                            "ended without a result)", "dropped": 0}, {}
     if timed_out:
         outcome["problem"] = f"the notebook ran longer than {limit:g} s and was stopped"
     outcome["seconds"] = time.monotonic() - began
@@ -188,8 +189,8 @@ def grade_notebook(path, entry, work, *, limit, cell_limit, keep):
     if limit > 0:
         copy, refused = _sandbox_copy(entry, work)
         inside = copy / path.relative_to(entry.parent)
-        outcome, sources = run_notebook(inside, copy, work, limit=limit,
-                                        cell_limit=min(cell_limit, limit), keep=keep)
+        outcome, sources = run_notebook(inside, copy, work, limit=limit, cell_limit=max(
+            1, int(min(cell_limit, limit))), keep=keep)  # whole seconds, as nbclient takes
     else:
         refused, sources = [], {}
         outcome = {"errors": [], "problem": "not run: the student's notebooks spent their "
