@@ -20,7 +20,7 @@ import timeit
 import numpy as np
 
 from mechnum.mechanisms import prr3
-from mechnum.mechanisms.prr3 import EXAMPLES
+from mechnum.mechanisms.prr3.study import EXAMPLES
 
 GEOMETRY, LAMBDAS = EXAMPLES["Table 5"]
 ONE_POSE_RATIO = 20  # one input: at most this many np.roots of the degree-8 polynomial
@@ -76,7 +76,7 @@ def medians(first, second, number, rounds=ROUNDS):
 def test_forward_one_input_against_np_roots(benchmark, capsys):
     octic = prr3.polynomial(GEOMETRY, LAMBDAS)[::-1]
     sol = benchmark(prr3.forward, GEOMETRY, LAMBDAS)
-    assert sol.poses.shape == (2, 3)
+    assert sol.x.shape == (2, 3)
     mine, roots = medians(lambda: prr3.forward(GEOMETRY, LAMBDAS), lambda: np.roots(octic), 1,
                           ONE_CALL_ROUNDS)
     ratio = mine / roots
@@ -108,7 +108,7 @@ def test_inverse_problem_table_3(benchmark):
 
 
 def test_workspace_grid_51_51_14(benchmark):
-    geometry = prr3.WORKSPACE_GEOMETRY  # the study's workspace script
+    geometry = prr3.study.WORKSPACE_GEOMETRY  # the study's workspace script
     x = np.linspace(-3, 6, 51)
     psi = np.arange(14) * 0.15 * np.pi
     X, Y, PSI = np.meshgrid(x, x, psi, indexing="ij")

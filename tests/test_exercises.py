@@ -529,11 +529,11 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 
 def test_references_of_chapter_4_agree_with_the_package():
-    geometry, lam = prr3.EXAMPLES["Table 6"]
+    geometry, lam = prr3.study.EXAMPLES["Table 6"]
     C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.forward(geometry, lam).poses
+    poses = prr3.forward(geometry, lam).x
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):

@@ -5,7 +5,6 @@ here every function is checked by a defining property (a round trip, a residual,
 with hypothesis over the valid domain and just outside it.
 """
 
-import sys
 
 import matplotlib
 import numpy as np
@@ -18,14 +17,16 @@ from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import hacksaw, prr3
-from mechnum.mechanisms.prr3 import EXAMPLES, Geometry, annex_i
+from mechnum.mechanisms.prr3 import Geometry
+from mechnum.mechanisms.prr3 import _annex_i as annex_i
+from mechnum.mechanisms.prr3 import _direct as DIRECT
+from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, annex_i_terms, reproduce
 from mechnum.newton import fd_jacobian
 from mechnum.plotting import animate
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 
-DIRECT = sys.modules["mechnum.mechanisms.prr3.direct"]
 FIG = plt.subplots()  # the axes of the drawing tests, closed at the end of the module
 MANY = settings(max_examples=200, deadline=None,
                 suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
@@ -226,7 +227,7 @@ def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
     assume(abs(np.cos(pose[2] / 2)) > 0.05)  # t = tan(psi/2) of order 1
     # a self-motion (the polynomial vanishes identically but for round-off; make explore found
     # two): forward reports a continuum, and no relative bound on C's values can hold
-    if prr3.forward(g, lam).continuum:
+    if prr3.forward(g, lam).status == "singular":
         assert scale <= 1e-12 * (1 + np.ptp(lam) + g.L + g.a) ** 8
         return
     t = np.tan(pose[2] / 2)
@@ -287,7 +288,7 @@ def test_annex_i_as_printed_against_the_expansion():
                              - L ** 2 * D ** 2), t)
     names = {str(v): v for v in (*K, *Q, L, lam)}
     wrong = {}
-    for k, printed in prr3.annex_i_terms().items():
+    for k, printed in annex_i_terms().items():
         expansion = sp.Poly(poly.coeff_monomial(t ** k), *names.values())
         assert len(printed) == len(expansion.terms())
         monomials = [sp.Mul(*(names[n] ** p for n, p in powers.items()))
@@ -332,12 +333,12 @@ def test_direct_returns_the_pose_of_every_inverse_solution(case):
     assert np.all(sol.residuals <= 1e-6)
     # the loops close to 1e-6 L^2 (in m^2): near a direct singularity, where the polish stops,
     # that is all (L = 2, pose (1.750846179, 0, 2^-9): 2.9e-6 m^2 = 7e-7 L^2)
-    assert_allclose(prr3.loop_residuals(g, sol.poses, lam[sol.input_index]), 0,
+    assert_allclose(prr3.loop_residuals(g, sol.x, lam[sol.input_index]), 0,
                     atol=1e-6 * g.L ** 2)
-    assert np.all((sol.poses[:, 2] >= 0) & (sol.poses[:, 2] < 2 * np.pi))
+    assert np.all((sol.x[:, 2] >= 0) & (sol.x[:, 2] < 2 * np.pi))
     for k in range(8):  # the pose itself, unless it is near a direct singularity, where two
         if abs(prr3.jacobian_dets(g, pose, lam[k])[1]) > REGULAR:  # roots nearly merge
-            assert pose_gap(sol.poses[sol.input_index == k], pose, g.L).min() < 1e-9
+            assert pose_gap(sol.x[sol.input_index == k], pose, g.L).min() < 1e-9
 
 
 @MANY
@@ -346,11 +347,11 @@ def test_direct_on_a_batch_equals_direct_on_each_input(lam):
     g = TABLE_5
     batch = np.reshape(lam, (-1, 3))
     sol = prr3.forward(g, batch)
-    assert sol.poses.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
+    assert sol.x.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
     for k, one in enumerate(batch):
         alone = prr3.forward(g, one)
         assert alone.counts.shape == () and alone.counts == sol.counts[k]
-        assert_allclose(alone.poses, sol.poses[sol.input_index == k], rtol=0, atol=1e-12)
+        assert_allclose(alone.x, sol.x[sol.input_index == k], rtol=0, atol=1e-12)
         assert np.all(alone.residuals <= 1e-6)
 
 
@@ -367,7 +368,7 @@ def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
     lam = prr3.inverse(g, pose)[rng.integers(8)]
     found = homotopy.solve(prr3.equations(g, lam), rng=k)
     real = prr3.solutions_from_equations(g, found.real(1e-7))
-    poses = prr3.forward(g, lam).poses
+    poses = prr3.forward(g, lam).x
     assert len(poses) == len(real) >= 2
     for p in real:
         assert pose_gap(poses, p).min() < 1e-7
@@ -386,8 +387,8 @@ def test_direct_does_not_depend_on_the_unit_of_length(scale):
     g, lam = EXAMPLES["Table 6"]
     big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
                    H3=g.H3 * scale)
-    base = prr3.forward(g, lam).poses
-    poses = prr3.forward(big, np.multiply(lam, scale)).poses
+    base = prr3.forward(g, lam).x
+    poses = prr3.forward(big, np.multiply(lam, scale)).x
     assert_allclose(poses[:, :2] / scale, base[:, :2], rtol=0, atol=1e-12)
     assert_allclose(poses[:, 2], base[:, 2], rtol=0, atol=1e-12)
 
@@ -396,7 +397,7 @@ def test_pose_at_psi_pi_is_found_whatever_the_leading_coefficient():
     g = EXAMPLES["Table 3"][0]
     pose = np.array([1.25, -0.75, np.pi])
     for lam in prr3.inverse(g, pose):
-        assert pose_gap(prr3.forward(g, lam).poses, pose).min() < 1e-12
+        assert pose_gap(prr3.forward(g, lam).x, pose).min() < 1e-12
 
 
 def test_pose_where_the_elimination_is_singular_is_still_found():
@@ -405,16 +406,16 @@ def test_pose_where_the_elimination_is_singular_is_still_found():
     lam = prr3.inverse(g, pose)[0]
     assert lam[0] + lam[1] == pytest.approx(g.B2 - g.a)
     sol = prr3.forward(g, lam)
-    hit = np.argmin(pose_gap(sol.poses, pose))
-    assert pose_gap(sol.poses, pose)[hit] < 1e-9
+    hit = np.argmin(pose_gap(sol.x, pose))
+    assert pose_gap(sol.x, pose)[hit] < 1e-9
     assert sol.elimination_singular[hit] and not sol.singular[hit]
 
 
 def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
     pose, lam = singular_pose()
     sol = prr3.forward(TABLE_5, lam)
-    hit = np.argmin(pose_gap(sol.poses, pose))
-    assert pose_gap(sol.poses, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
+    hit = np.argmin(pose_gap(sol.x, pose))
+    assert pose_gap(sol.x, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
     assert sol.singular[hit]
 
 
@@ -426,7 +427,7 @@ def test_a_self_motion_is_reported_as_a_continuum():
     for psi in (0.3, 2.0, 4.0):
         assert_allclose(prr3.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
     sol = prr3.forward(g, [lam, [2.0, 0.5, 0.2]])
-    assert sol.continuum.tolist() == [True, False] and sol.counts.tolist() == [0, 2]
+    assert sol.status.tolist() == ["singular", "converged"] and sol.counts.tolist() == [0, 2]
 
 
 def test_polish_leaves_a_singular_pose_and_far_jumps_alone():
@@ -448,7 +449,7 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     seeds = np.vstack([pose + rng.normal(0, 1e-3, 3), np.column_stack(
         [rng.uniform(-1, 5, 20), rng.uniform(-2, 3, 20), rng.uniform(0, 2 * np.pi, 20)])])
     newton = prr3.forward_by_newton(g, lam, seeds)
-    poly = prr3.forward(g, lam).poses
+    poly = prr3.forward(g, lam).x
     assume(abs(prr3.jacobian_dets(g, pose, lam)[1]) > REGULAR)  # else Newton is only linear
     assert pose_gap(newton, pose).min() < 1e-8  # the start next to the pose converges to it
     for p in newton:
@@ -500,7 +501,7 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     # R6: no geometry, or another mechanism's
     lambda g: prr3.forward(None, [0.4, 0.1, 0.6]),
     lambda g: prr3.vertices(None, [0.6, 0.4, 0.0]),
-    lambda g: prr3.radicands(hacksaw.STUDY, [0.6, 0.4, 0.0]),
+    lambda g: prr3.radicands(hacksaw.Geometry(), [0.6, 0.4, 0.0]),
     lambda g: prr3.inverse(None, [0.6, 0.4, 0.0]),
     lambda g: prr3.singular_points(None, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5]),
     lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], kind="both"),
@@ -521,7 +522,7 @@ def test_an_empty_batch_is_valid_everywhere():
     g = TABLE_5
     empty = np.empty((0, 3))
     sol = prr3.forward(g, empty)
-    assert sol.poses.shape == (0, 3) and sol.counts.shape == (0,)
+    assert sol.x.shape == (0, 3) and sol.counts.shape == (0,)
     assert prr3.branch_inputs(g, empty).shape == (0, 3)
     assert prr3.radicands(g, empty).shape == (0, 3)
     assert prr3.loop_residuals(g, empty, empty).shape == (0, 3)
@@ -553,9 +554,6 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
     assert len(ax.lines) + len(ax.patches) == count
     legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]
     np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, other), rtol=1e-15, atol=1e-15)
-    with pytest.warns(DeprecationWarning, match=r"draw\(ax, pose, lambdas, geometry\)"):
-        old = prr3.draw(ax, pose, lam, g)
-    assert sorted(old) == sorted(prr3.draw(ax, g, (lam, pose)))
     plt.close(fig)
 
 
@@ -568,7 +566,7 @@ def test_animate_moves_the_platform_along_a_path():
 
 
 def test_reproduce_gives_every_quantity_of_the_chapter():
-    values = prr3.reproduce()
+    values = reproduce()
     assert all(np.isfinite(v) for v in values.values())
     assert values["Table 3 number of solutions"] == 8 == values["Table 4 number of solutions"]
 
@@ -588,10 +586,10 @@ def test_mode_change_path_joins_two_assembly_modes_of_one_input():
     g, signs = TABLE_5, (1, 1, 1)
     lam0 = np.array([3.1266, 1.8887, 3.6427])
     sol = prr3.forward(g, lam0)
-    start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
-    assert_allclose(prr3.branch_inputs(g, sol.poses[[1, 3]], signs), [lam0, lam0], rtol=0,
+    start, end = sol.x[1], sol.x[3]  # the same working mode and sign of det J
+    assert_allclose(prr3.branch_inputs(g, sol.x[[1, 3]], signs), [lam0, lam0], rtol=0,
                     atol=1e-9)
-    path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
+    path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]]).x
     assert_allclose(path[[0, -1]], [start, end], rtol=0, atol=1e-12)
     _assert_singularity_free(path, g, signs)
 
@@ -615,11 +613,14 @@ SAME_SIGN_POSES = _assemblable_poses()
 
 @settings(max_examples=200, deadline=None)
 @given(side=st.integers(0, 1), i=st.integers(0, 10 ** 6), j=st.integers(0, 10 ** 6))
-def test_mode_change_path_is_singularity_free_or_none(side, i, j):
+def test_mode_change_path_is_singularity_free_or_undecided(side, i, j):
     g, signs, pool = TABLE_5, (1, 1, 1), SAME_SIGN_POSES[side]
     a, b = pool[i % len(pool)], pool[j % len(pool)]
-    path = prr3.mode_change_path(g, a, b, signs, bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(12, 6, 24))
-    if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
+    found = prr3.mode_change_path(g, a, b, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
+                                  shape=(12, 6, 24))
+    assert found.status in ("converged", "undecided") and found.converged == (len(found.x) > 0)
+    path = found.x
+    if found.converged:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
         assert pose_gap(path[0], a)[0] < 1e-12 and pose_gap(path[-1], b)[0] < 1e-12
         _assert_singularity_free(path, g, signs)
 
@@ -697,44 +698,11 @@ def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, se
 
 
 def test_inverse_singular_points_are_where_a_leg_turns_tangent():
-    ws = prr3.WORKSPACE_GEOMETRY
+    ws = WORKSPACE_GEOMETRY
     found = prr3.singular_points(ws, [0.5, 0.0, 0.3], [0.5, 1.5, 0.3], kind="inverse")
     assert len(found) >= 1
     for p in found:  # some radicand vanishes there
         assert np.abs(prr3.radicands(ws, p)).min() < 1e-12
-
-
-# --- deprecated forms -------------------------------------------------------------------------
-
-G6, LAM6 = EXAMPLES["Table 6"]
-POSE3 = EXAMPLES["Table 3"][1]
-OLD_FORMS = [  # the old call, and the new one it must equal
-    (lambda: prr3.direct(LAM6, G6).poses, lambda: prr3.forward(G6, LAM6).poses),
-    (lambda: prr3.direct(LAM6, geometry=G6, imag_tol=1e-5).poses,
-     lambda: prr3.forward(G6, LAM6, imag_tol=1e-5).poses),
-    (lambda: prr3.direct(G6, LAM6).poses, lambda: prr3.forward(G6, LAM6).poses),
-    (lambda: prr3.direct_by_newton(LAM6, G6, [[1.2, 0.6, 0.2]]),
-     lambda: prr3.forward_by_newton(G6, LAM6, [[1.2, 0.6, 0.2]])),
-    (lambda: prr3.direct_by_newton(LAM6, G6, starts=[[1.2, 0.6, 0.2]], tol=1e-10),
-     lambda: prr3.forward_by_newton(G6, LAM6, seeds=[[1.2, 0.6, 0.2]], tol=1e-10)),
-    (lambda: prr3.inverse(POSE3, G6), lambda: prr3.inverse(G6, POSE3)),
-    (lambda: prr3.branch_inputs(POSE3, G6, (1, 1, 1)), lambda: prr3.branch_inputs(
-        G6, POSE3, (1, 1, 1))),
-    (lambda: prr3.workspace(0.6, 0.4, 0.0, G6), lambda: prr3.workspace(G6, 0.6, 0.4, 0.0)),
-    (lambda: prr3.polynomial(LAM6, G6), lambda: prr3.polynomial(G6, LAM6)),
-    (lambda: prr3.loop_residuals(POSE3, LAM6, G6), lambda: prr3.loop_residuals(G6, POSE3, LAM6)),
-    (lambda: prr3.jacobian_dets(POSE3, LAM6, G6), lambda: prr3.jacobian_dets(G6, POSE3, LAM6)),
-    (lambda: prr3.vertices(POSE3, G6), lambda: prr3.vertices(G6, POSE3)),
-    (lambda: prr3.solutions_from_equations([[0.5, 0.25, 0.0, 1.0]], G6),
-     lambda: prr3.solutions_from_equations(G6, [[0.5, 0.25, 0.0, 1.0]])),
-]
-
-
-@pytest.mark.parametrize("old, new", OLD_FORMS)
-def test_old_forms_warn_and_give_the_new_forms_answer(old, new):
-    with pytest.warns(DeprecationWarning, match="deprecated and will be removed in 0.3"):
-        before = old()
-    np.testing.assert_array_equal(np.asarray(before), np.asarray(new()))
 
 
 def test_the_drawing_figure_closes():

@@ -21,13 +21,13 @@ from mechnum.published import VERDICTS, check_row, read_findings, read_registry
 BOOK = Path(__file__).resolve().parents[1] / "book"
 REGISTRY = BOOK / "published_values.csv"
 MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
-    "01_newton_hacksaw": "mechnum.mechanisms.hacksaw",
-    "02_linear_systems_finger": "mechnum.mechanisms.finger",
+    "01_newton_hacksaw": "mechnum.mechanisms.hacksaw.study",
+    "02_linear_systems_finger": "mechnum.mechanisms.finger.study",
     "03_elastica": "mechnum.mechanisms.elastica",
-    "04_rigid_3prr": "mechnum.mechanisms.prr3",
+    "04_rigid_3prr": "mechnum.mechanisms.prr3.study",
     "05_flexible_2rfr": "mechnum.mechanisms.rfr2",
     "06_flexible_3pfr": "mechnum.mechanisms.pfr3",
-    "07_actuator_force": "mechnum.mechanisms.actuator",
+    "07_actuator_force": "mechnum.mechanisms.actuator.study",
 }
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 BOUND = re.compile(r"^<\d(\.\d*)?[eE]-\d+$")  # a round-off-level value: "<1e-13"

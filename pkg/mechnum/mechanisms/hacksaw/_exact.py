@@ -14,17 +14,16 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated
-from mechnum.mechanisms.hacksaw import kernels
-from mechnum.mechanisms.hacksaw.model import (
+from mechnum.mechanisms.hacksaw import _kernels as kernels
+from mechnum.mechanisms.hacksaw._model import (
     ALPHA_MAX,
-    STUDY,
     Geometry,
     checked,
     checked_motor,
     finite,
     motor,
 )
+from mechnum.results import Assemblies, Result
 
 # Positions that close the position constraints to 1e-8 of the mechanism's size are a
 # configuration (a Newton solution stopped at the study's step of 1e-6 closes them to about
@@ -32,12 +31,6 @@ from mechnum.mechanisms.hacksaw.model import (
 POSITION_RTOL = 1e-8
 
 
-def _old_closed_form(t=None, geometry=STUDY, **options):
-    return (geometry, t), options
-
-
-@_deprecated.old_form(_old_closed_form, old="closed_form(t, geometry)",
-                      new="closed_form(mech, t)", is_new=_deprecated.mech_at(0, Geometry))
 def closed_form(mech: Geometry, t: ArrayLike | None = None, *,
                 motor_state: tuple | None = None, alpha_max: float = ALPHA_MAX) -> np.ndarray:
     """The exact kinematics in the study's assembly mode at times ``t`` (or at motor states).
@@ -73,6 +66,7 @@ def closed_form(mech: Geometry, t: ArrayLike | None = None, *,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> np.round(closed_form(STUDY, 0.0)[:3], 6)
     array([-0.099672, -0.468422,  2.873694])
     """
@@ -85,7 +79,7 @@ def closed_form(mech: Geometry, t: ArrayLike | None = None, *,
     return finite(x, "the closed-form kinematics")
 
 
-def forward(mech: Geometry, motor_state: tuple) -> np.ndarray:
+def forward(mech: Geometry, motor_state: tuple) -> Assemblies:
     """Every assembly mode of the saw at the motor states: the forward problem, in closed form.
 
     For a crank angle the coupler meets the guide at two points: mode 0, the study's, with
@@ -101,8 +95,9 @@ def forward(mech: Geometry, motor_state: tuple) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape: the broadcast shape ``+ (2, 9)``
-        The nine unknowns of mode 0 and of mode 1.
+    mechnum.results.Assemblies
+        ``x``, of shape (the broadcast shape) ``+ (2, 9)``: the nine unknowns of mode 0 and of
+        mode 1; ``inputs``, of that shape ``+ (3,)``: the motor states.
 
     Raises
     ------
@@ -111,8 +106,9 @@ def forward(mech: Geometry, motor_state: tuple) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> both = forward(STUDY, (0.0, 0.0, 0.0))
-    >>> np.round(both[:, :3], 4).tolist()    # r1, theta1, theta3 of each mode
+    >>> np.round(both.x[:, :3], 4).tolist()    # r1, theta1, theta3 of each mode
     [[-0.0997, -0.4684, 2.8737], [0.2431, 0.1862, 0.2679]]
     """
     checked(mech)
@@ -120,10 +116,11 @@ def forward(mech: Geometry, motor_state: tuple) -> np.ndarray:
     with np.errstate(over="ignore", invalid="ignore"):
         x = np.stack([kernels.closed_form(mech, th2, w2, a2, mode) for mode in kernels.MODES],
                      axis=-2)
-    return finite(x, "the closed-form kinematics")
+    return Assemblies.of(finite(x, "the closed-form kinematics"),
+                         np.stack(np.broadcast_arrays(th2, w2, a2), axis=-1),
+                         int(np.prod(x.shape[:-2])), len(kernels.MODES))
 
 
-@_deprecated.mech_moved(Geometry, to=2, default=STUDY)
 def solve_rates(mech: Geometry, q: ArrayLike,
                 motor_state: tuple) -> tuple[np.ndarray, np.ndarray]:
     """Velocities and accelerations at the positions ``q``: two linear solves, no iteration.
@@ -158,6 +155,7 @@ def solve_rates(mech: Geometry, q: ArrayLike,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> x = closed_form(STUDY, 1.0)
     >>> v, a = solve_rates(STUDY, x[:3], motor(1.0))
     >>> bool(np.allclose(np.concatenate([v, a]), x[3:], rtol=1e-13, atol=1e-13))
@@ -176,17 +174,19 @@ def solve_rates(mech: Geometry, q: ArrayLike,
     return finite(v, "the velocities"), finite(a, "the accelerations")
 
 
-@dataclass(frozen=True)
-class SingularPoints:
+@dataclass(frozen=True, kw_only=True)
+class SingularPoints(Result):
     """The crank angles where the saw is singular (radians in ``[0, 2 pi)``, increasing).
 
     Attributes
     ----------
-    dead : ndarray, shape (k,)
-        Dead points: the coupler perpendicular to the guide (``cos(theta3) = 0``), where the
-        two assembly modes meet and the rate equations are singular (the forward problem's
+    x : ndarray, shape (k,)
+        The dead points: the coupler perpendicular to the guide (``cos(theta3) = 0``), where
+        the two assembly modes meet and the rate equations are singular (the forward problem's
         singularity). They exist only for a short coupler, ``r3 <= r1y + r2``; there the crank
         cannot turn round.
+    status, message, iterations, nfev, njev
+        ``"converged"``, and no work: a closed form.
     limits : ndarray, shape (2, k)
         For each assembly mode, the limit positions: the crank and the coupler aligned, where
         the slider stops and turns back (the inverse problem's singularity, the ends of the
@@ -194,7 +194,6 @@ class SingularPoints:
         exists.
     """
 
-    dead: np.ndarray
     limits: np.ndarray
 
 
@@ -222,8 +221,9 @@ def singular_points(mech: Geometry) -> SingularPoints:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> points = singular_points(STUDY)
-    >>> points.dead.size, np.degrees(points.limits).round(2).tolist()
+    >>> points.x.size, np.degrees(points.limits).round(2).tolist()
     (0, [[169.42, 331.73], [10.58, 208.27]])
     """
     g = mech
@@ -244,7 +244,10 @@ def singular_points(mech: Geometry) -> SingularPoints:
             theta2 = along + np.pi if folded and g.r3 > g.r2 else along
             limits[1 - right if turned else right].append(theta2)  # mode 1: cos(theta3) > 0
     limits = np.array([_angles(m) for m in limits]).reshape(2, -1)
-    return SingularPoints(np.unique(_angles(dead)), limits)
+    dead = np.unique(_angles(dead))
+    return SingularPoints(x=dead, status="converged", iterations=0, nfev=0, njev=0,
+                          message=f"{dead.size} dead points, {limits.shape[1]} limit positions "
+                                  "per mode, in closed form", limits=limits)
 
 
 def _angles(values):

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
-from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator, checked
-from mechnum.mechanisms.actuator.velocities import (  # kinematics: for the examples
+from mechnum import _validate
+from mechnum.mechanisms.actuator._model import G_MATHCAD, Actuator, checked
+from mechnum.mechanisms.actuator._velocities import (  # kinematics: for the examples
     MODELS,
     Kinematics,
     centres_of_mass,
@@ -63,6 +63,7 @@ def kane_force(kin: Kinematics, g: float = G_MATHCAD) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> round(float(kane_force(kinematics(ANNEX, 0.0))), 5)
     43.14926
     """
@@ -115,6 +116,7 @@ def virtual_power_force(kin: Kinematics, g: float = G_MATHCAD,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> round(float(virtual_power_force(kinematics(ANNEX, 0.0))), 5)
     43.14926
     >>> kin = kinematics(ANNEX, 0.25)                 # at rest: Mathcad's cos(pi/2) is not 0 either
@@ -196,6 +198,7 @@ def lagrange_terms(kin: Kinematics, g: float = G_MATHCAD,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> terms = lagrange_terms(stroke_kinematics(ANNEX, 0.6))      # rocker crank at right angles
     >>> round(float(terms.mass), 6), round(float(terms.potential_slope / G_MATHCAD), 6)
     (17.36, 4.4)
@@ -247,6 +250,7 @@ def lagrange_force(kin: Kinematics, g: float = G_MATHCAD,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> kin = kinematics(ANNEX, [0.0, 0.25])
     >>> np.round(lagrange_force(kin), 5).tolist()
     [43.14926, 29.35295]
@@ -299,6 +303,7 @@ def energy(kin: Kinematics, g: float = G_MATHCAD) -> "Energy":
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> e = energy(kinematics(ANNEX, 0.0))
     >>> round(float(e.kinetic), 6), round(float(e.potential), 5)
     (0.137069, 40.20726)
@@ -326,7 +331,6 @@ class ForwardDynamics:
     a_dot: np.ndarray
 
 
-@_deprecated.mech_moved(Actuator, to=4, name="mech", default=ANNEX)
 def forward_dynamics(mech: Actuator, force: Callable, t: ArrayLike, a0: float, v0: float,
                      model: str = "exact", g: float = G_MATHCAD) -> ForwardDynamics:
     """The motion that a given actuator force produces, by RK4 (forward dynamics).
@@ -366,6 +370,7 @@ def forward_dynamics(mech: Actuator, force: Callable, t: ArrayLike, a0: float, v
     --------
     The force of the prescribed stroke, applied to the mechanism, gives that stroke back:
 
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> t = np.linspace(0.0, 1.0, 101)
     >>> a0, v0, _ = ANNEX.stroke(0.0)
     >>> motion = forward_dynamics(ANNEX, lambda s: lagrange_force(kinematics(ANNEX, s)), t, a0, v0)

@@ -8,13 +8,12 @@ figures and animations (:func:`mechnum.plotting.animate`).
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate, plotting
-from mechnum.mechanisms.hacksaw.model import STUDY, Geometry, checked
+from mechnum import _validate, plotting
+from mechnum.mechanisms.hacksaw._model import Geometry, checked
 
 DRAW_PAD = 0.25  # blank border around a drawing, in crank lengths: room for the joints' dots
 
 
-@_deprecated.mech_moved(Geometry, to=2, default=STUDY)
 def joints(mech: Geometry, x: ArrayLike, theta2: ArrayLike) -> tuple[np.ndarray, ...]:
     """The crank pivot ``O``, crank pin ``A`` and slider pin ``B`` of the states ``x``.
 
@@ -34,6 +33,7 @@ def joints(mech: Geometry, x: ArrayLike, theta2: ArrayLike) -> tuple[np.ndarray,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form
     >>> O, A, B = joints(STUDY, closed_form(STUDY, 0.0), 0.0)
     >>> A.tolist(), round(float(B[1]), 12)
@@ -48,12 +48,6 @@ def joints(mech: Geometry, x: ArrayLike, theta2: ArrayLike) -> tuple[np.ndarray,
     return np.zeros_like(A), A, B
 
 
-def _old_draw(ax, x, theta2, geometry=STUDY, **options):
-    return (ax, geometry, (theta2, x)), options
-
-
-@_deprecated.old_form(_old_draw, old="draw(ax, x, theta2, geometry)",
-                      new="draw(ax, mech, (theta2, x))", is_new=_deprecated.mech_at(1, Geometry))
 def draw(ax: object, mech: Geometry, state: tuple, *, artists: dict | None = None,
          legend: bool = True) -> dict:
     """Draw the saw in one state on the axes ``ax``, or move a drawing made before to it.
@@ -86,6 +80,7 @@ def draw(ax: object, mech: Geometry, state: tuple, *, artists: dict | None = Non
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()

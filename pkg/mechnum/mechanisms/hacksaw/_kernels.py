@@ -2,7 +2,7 @@
 
 Each function takes the mechanism (a :class:`~mechnum.mechanisms.hacksaw.Geometry`) first and
 float arrays (or NumPy scalars) that the caller has checked: the public evaluators
-(:mod:`~mechnum.mechanisms.hacksaw.equations`) check, then call these; the solvers call them
+(``hacksaw``'s equations module) check, then call these; the solvers call them
 inside Newton's loop, where checks would only cost time. ``crank`` is ``(sin, cos)(theta2)``
 (:func:`crank`), fixed while Newton iterates, and ``sines`` the sines and cosines of
 ``theta1`` and ``theta3`` (:func:`trig`), if known. Nothing here validates its input.
@@ -10,7 +10,7 @@ inside Newton's loop, where checks would only cost time. ``crank`` is ``(sin, co
 Examples
 --------
 >>> import numpy as np
->>> from mechnum.mechanisms.hacksaw import STUDY
+>>> from mechnum.mechanisms.hacksaw.study import STUDY
 >>> x = closed_form(STUDY, 0.0, 0.0, 0.0)
 >>> bool(np.abs(residual(STUDY, x, crank(0.0), 0.0, 0.0)).max() < 1e-15)
 True

@@ -2,21 +2,14 @@
 
 import numpy as np
 
-from mechnum import _deprecated, _validate, plotting
-from mechnum.mechanisms.actuator.loop import forward
-from mechnum.mechanisms.actuator.model import ANNEX, Actuator, checked
+from mechnum import _validate, plotting
+from mechnum.mechanisms.actuator._model import Actuator, checked
 
 # A state whose angles miss the loop's closure by more than this (relative to the pivots'
 # distance) is no configuration of the mechanism: drawn, it would show links that do not meet.
 _CLOSURE_RTOL = 1e-6
 
 
-def _old_draw(ax, a, mech=ANNEX, artists=None):
-    return (ax, mech, (a, forward(mech, a)[0])), {"artists": artists}
-
-
-@_deprecated.old_form(_old_draw, old="draw(ax, a, mech)", new="draw(ax, mech, (a, angles))",
-                      is_new=_deprecated.mech_at(1, Actuator))
 def draw(ax: object, mech: Actuator, state: tuple, *, artists: dict | None = None) -> dict:
     """Draw the mechanism in one state, or move a drawing made before to it.
 
@@ -50,12 +43,14 @@ def draw(ax: object, mech: Actuator, state: tuple, *, artists: dict | None = Non
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
+    >>> from mechnum.mechanisms.actuator import forward
     >>> import matplotlib.pyplot as plt
     >>> fig, ax = plt.subplots()
-    >>> parts = draw(ax, ANNEX, (0.6, forward(ANNEX, 0.6)[0]))
+    >>> parts = draw(ax, ANNEX, (0.6, forward(ANNEX, 0.6).x[0]))
     >>> np.round(parts["rod"].get_xydata(), 6).tolist()      # from the piston to A
     [[0.0, 0.6], [0.0, 1.0]]
-    >>> parts = draw(ax, ANNEX, (0.62, forward(ANNEX, 0.62)[0]), artists=parts)
+    >>> parts = draw(ax, ANNEX, (0.62, forward(ANNEX, 0.62).x[0]), artists=parts)
     >>> plt.close(fig)
     """
     plotting.check_axes(ax)

@@ -10,10 +10,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
+from mechnum import _validate
 from mechnum.errors import SingularJacobianError
-from mechnum.mechanisms.actuator.loop import triangle
-from mechnum.mechanisms.actuator.model import ANNEX, Actuator, checked
+from mechnum.mechanisms.actuator._loop import triangle
+from mechnum.mechanisms.actuator._model import Actuator, checked
 
 MODELS = ("exact", "annex")
 """The velocity coefficients: the loop's own, or the annex's approximations."""
@@ -21,8 +21,6 @@ MODELS = ("exact", "annex")
 # a dead stroke (a + l = d +- b, where the round-off of the law of cosines, amplified by d / b,
 # leaves sin(delta) itself no correct digit, and 1/sin(delta) with it).
 _DEAD_POINT, _DEAD_STROKE = np.sqrt(np.finfo(float).eps), 64 * np.finfo(float).eps
-# The old forms took the mechanism after the stroke (or the time), with the annex's as default.
-_MOVED = {"mech_type": Actuator, "name": "mech", "default": ANNEX}
 
 
 @dataclass(frozen=True)
@@ -85,7 +83,6 @@ def checked_kinematics(kin: object) -> Kinematics:
     return kin
 
 
-@_deprecated.mech_moved(to=3, **_MOVED)
 def stroke_kinematics(mech: Actuator, a: ArrayLike, a_dot: ArrayLike = 0.0,
                       a_ddot: ArrayLike = 0.0, model: str = "exact") -> "Kinematics":
     """Positions, velocity coefficients and their derivatives at given strokes and rates.
@@ -121,6 +118,7 @@ def stroke_kinematics(mech: Actuator, a: ArrayLike, a_dot: ArrayLike = 0.0,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> kin = stroke_kinematics(ANNEX, 0.6, a_dot=0.1)
     >>> round(float(kin.k4), 6), round(float(kin.omega4), 6)
     (4.0, 0.4)
@@ -158,7 +156,6 @@ def kinematics_at(mech: Actuator, a: np.ndarray, a_dot: np.ndarray, a_ddot: np.n
     return Kinematics(mech, model, a, a_dot, a_ddot, th2, th4, k2, k4, dk2, dk4)
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def kinematics(mech: Actuator, t: ArrayLike, model: str = "exact") -> "Kinematics":
     """Positions, velocity coefficients and their derivatives at the instants ``t``.
 
@@ -184,6 +181,7 @@ def kinematics(mech: Actuator, t: ArrayLike, model: str = "exact") -> "Kinematic
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> kin = kinematics(ANNEX, 0.0)
     >>> round(float(kin.omega2), 6) + 0.0, round(float(kin.omega4), 6)
     (0.0, 0.502655)
@@ -242,6 +240,7 @@ def partial_velocities(kin: Kinematics) -> PartialVelocities:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> pv = partial_velocities(kinematics(ANNEX, 0.0))
     >>> (np.round(pv.v, 6) + 0.0).tolist()   # G2 at rest; G3 up the cylinder; G4 up, g4 k4
     [0j, 1j, 2.4j]
@@ -279,6 +278,7 @@ def centres_of_mass(kin: Kinematics) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> (np.round(centres_of_mass(kinematics(ANNEX, 0.0)), 6) + 0.0).tolist()
     [0.3j, 0.8j, (0.35+1j)]
     """

@@ -11,13 +11,12 @@ crank are aligned, are :func:`singular_points`.
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
+from mechnum import _validate
 from mechnum.errors import UnreachablePoseError
-from mechnum.mechanisms.actuator.model import ANNEX, Actuator, checked
+from mechnum.mechanisms.actuator._model import Actuator, checked
 from mechnum.newton import solve
+from mechnum.results import Assemblies
 
-# The old forms took the mechanism after the stroke, with the annex's as default.
-_MOVED = {"mech_type": Actuator, "name": "mech", "default": ANNEX}
 # The law of cosines at a dead point (a + l = d +- b) rounds to a cosine a few units of
 # round-off of its terms beyond +-1 (d^2 + b^2 + L^2 over 2 d b, for phi): within 8 eps of them,
 # the triangle is flat, not impossible.
@@ -63,7 +62,7 @@ def triangle(mech: Actuator, a: np.ndarray, mode: int = 0) -> tuple[np.ndarray, 
     return np.pi - beta - side * np.arccos(cos_psi), side * np.arccos(cos_phi) - beta
 
 
-def forward(mech: Actuator, a: ArrayLike) -> np.ndarray:
+def forward(mech: Actuator, a: ArrayLike) -> Assemblies:
     """Both assembly modes of the loop at the strokes ``a``: the forward problem, in closed form.
 
     Parameters
@@ -74,9 +73,10 @@ def forward(mech: Actuator, a: ArrayLike) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape ``np.shape(a) + (2, 2)``
-        ``[..., mode, :]`` is ``(theta2, theta4)`` (rad) of mode 0 (the annex's) and mode 1
-        (its mirror image across ``O2 O4``).
+    mechnum.results.Assemblies
+        ``x``, shape ``np.shape(a) + (2, 2)``: ``x[..., mode, :]`` is ``(theta2, theta4)``
+        (rad) of mode 0 (the annex's) and mode 1 (its mirror image across ``O2 O4``);
+        ``inputs``: the strokes.
 
     Raises
     ------
@@ -87,43 +87,13 @@ def forward(mech: Actuator, a: ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> np.degrees(forward(ANNEX, 0.6)).round(4).tolist()   # the annex's mode first
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
+    >>> np.degrees(forward(ANNEX, 0.6).x).round(4).tolist()   # the annex's mode first
     [[90.0, 0.0], [118.0725, -151.9275]]
     """
     mech, a = checked(mech), _validate.array(a, "a")
-    return np.stack([np.stack(triangle(mech, a, mode), axis=-1) for mode in MODES], axis=-2)
-
-
-@_deprecated.mech_moved(to=1, **_MOVED)
-def positions(mech: Actuator, a: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """The link angles of the annex's assembly mode, as the annex computes them.
-
-    Mode 0 of :func:`forward`, as two arrays. (The order ``positions(a, mech)`` of version
-    0.1 is deprecated.)
-
-    Parameters
-    ----------
-    mech : Actuator
-    a : array_like
-        Strokes (m); must be finite and real. An empty array is valid.
-
-    Returns
-    -------
-    theta2, theta4 : ndarray
-        Angles (rad) of the cylinder and of the rocker, of ``a``'s shape.
-
-    Raises
-    ------
-    ValueError, UnreachablePoseError
-        As :func:`forward`.
-
-    Examples
-    --------
-    >>> th2, th4 = positions(ANNEX, 0.6)
-    >>> round(float(th2), 6), round(float(th4), 6)
-    (1.570796, 0.0)
-    """
-    return triangle(checked(mech), _validate.array(a, "a"))
+    x = np.stack([np.stack(triangle(mech, a, mode), axis=-1) for mode in MODES], axis=-2)
+    return Assemblies.of(x, a, a.size, len(MODES))
 
 
 def inverse(mech: Actuator, theta4: ArrayLike) -> np.ndarray:
@@ -153,8 +123,9 @@ def inverse(mech: Actuator, theta4: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> a = inverse(ANNEX, [0.0, 0.3])
-    >>> a.round(6).tolist(), bool(np.allclose(forward(ANNEX, a)[:, 0, 1], [0.0, 0.3]))
+    >>> a.round(6).tolist(), bool(np.allclose(forward(ANNEX, a).x[:, 0, 1], [0.0, 0.3]))
     ([0.6, 0.673938], True)
     """
     mech, theta4 = checked(mech), _validate.array(theta4, "theta4")
@@ -185,6 +156,7 @@ def singular_points(mech: Actuator) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> singular_points(ANNEX).round(6).tolist()
     [0.380776, 0.880776]
     """
@@ -203,7 +175,6 @@ def _loop_inputs(mech, x, a):
     return mech, x[..., 0], x[..., 1], _validate.scalar(a, "a") + mech.l
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def loop_residual(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
     """The two loop equations ``(a + l) e^{i theta2} - O4 - b e^{i theta4} = 0``.
 
@@ -228,6 +199,7 @@ def loop_residual(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> np.round(loop_residual(ANNEX, [np.pi / 2, 0.0], 0.6), 12) + 0.0
     array([0., 0.])
     """
@@ -236,7 +208,6 @@ def loop_residual(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
                      L * np.sin(th2) - mech.o4 - mech.b * np.sin(th4)], axis=-1)
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
     """Jacobian of :func:`loop_residual` with respect to ``(theta2, theta4)``.
 
@@ -259,6 +230,7 @@ def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> round(float(np.linalg.det(loop_jacobian(ANNEX, [np.pi / 2, 0.0], 0.6))), 12)
     0.25
     """
@@ -268,13 +240,6 @@ def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
     return np.stack(rows, axis=-2)
 
 
-def _old_solve_loop(a, mech=ANNEX, x0=(np.pi / 2, 0.0), **options):
-    return (mech, a), {"seed": x0, **options}
-
-
-@_deprecated.old_form(_old_solve_loop, old="solve_loop(a, mech, x0)",
-                      new="solve_loop(mech, a, seed=...)",
-                      is_new=_deprecated.mech_at(0, Actuator))
 def solve_loop(mech: Actuator, a: float, *, seed: ArrayLike = (np.pi / 2, 0.0),
                **options) -> object:
     """Solve the loop equations for one stroke by Newton-Raphson.
@@ -305,8 +270,9 @@ def solve_loop(mech: Actuator, a: float, *, seed: ArrayLike = (np.pi / 2, 0.0),
 
     Examples
     --------
+    >>> from mechnum.mechanisms.actuator.study import ANNEX
     >>> res = solve_loop(ANNEX, 0.62, seed=(1.5, 0.0))
-    >>> np.round(res.x, 9).tolist() == np.round(forward(ANNEX, 0.62)[0], 9).tolist()
+    >>> np.round(res.x, 9).tolist() == np.round(forward(ANNEX, 0.62).x[0], 9).tolist()
     True
     """
     a = _validate.scalar(a, "a")

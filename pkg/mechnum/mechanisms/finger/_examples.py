@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, linear
 from mechnum.errors import SingularJacobianError
-from mechnum.mechanisms.finger.model import unit
+from mechnum.mechanisms.finger._model import unit
 
 #: The opening example of the study (its Fig. 1): the given lengths (m) and angles (degrees)
 #: of its nine vectors ``p_i at theta_i``, as the study prints them (input data).

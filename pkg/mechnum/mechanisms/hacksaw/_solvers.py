@@ -13,13 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
+from mechnum import _validate
 from mechnum.errors import ConvergenceError
-from mechnum.mechanisms.hacksaw import kernels
-from mechnum.mechanisms.hacksaw.model import (
+from mechnum.mechanisms.hacksaw import _kernels as kernels
+from mechnum.mechanisms.hacksaw._model import (
     ALPHA_MAX,
     FORMS,
-    STUDY,
     TOL,
     TRAJECTORY_SEED,
     Geometry,
@@ -28,6 +27,7 @@ from mechnum.mechanisms.hacksaw.model import (
     motor,
 )
 from mechnum.newton import solve, solve_batch
+from mechnum.results import Result
 
 METHODS = ("consecutive", "simultaneous", "batched")
 PREDICTORS = ("previous", "velocity")
@@ -35,8 +35,6 @@ MAX_POINTS = 1_000_000
 """The most points of a sweep (a point costs some 10 kB in the batched sweep's Jacobians)."""
 # Newton's stopping rule of the study: the Euclidean norm of the step (absolute), below ``tol``.
 _RULE = {"criterion": "step", "norm": 2, "relative": False}
-# The old forms took the geometry later, with the study's as default.
-_MOVED = {"mech_type": Geometry, "name": "geometry", "default": STUDY}
 
 
 def _seed(seed, batch=False):
@@ -70,9 +68,31 @@ def _consecutive(g, th2, w2, a2, seed, tol, form="loop"):
     return pos, vel, acc
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
+@dataclass(frozen=True, kw_only=True)
+class Stages(Result):
+    """The outcome of :func:`solve_consecutive`: the state, and its three Newton solves.
+
+    Attributes
+    ----------
+    x : ndarray, shape (9,) or (n, 9)
+        The nine unknowns (of every point).
+    status : str or ndarray of str
+        ``"converged"`` (a solve that fails raises).
+    message : str
+        The iterations of each stage.
+    iterations : ndarray of int, shape (3,) or (n, 3)
+        The Newton steps of the position, velocity and acceleration stages.
+    nfev, njev : int
+        Calls of the three stages' residuals and Jacobians.
+    stages : tuple of NewtonResult (or of BatchNewtonResult)
+        The position, velocity and acceleration solves.
+    """
+
+    stages: tuple
+
+
 def solve_consecutive(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
-                      tol: float = TOL, form: str = "loop") -> tuple:
+                      tol: float = TOL, form: str = "loop") -> Stages:
     """Solve position, then velocity, then acceleration, each by Newton from ``seed``.
 
     The study's consecutive scheme: three 3x3 Newton solves, each stopped by the step criterion
@@ -94,9 +114,7 @@ def solve_consecutive(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
 
     Returns
     -------
-    tuple of NewtonResult (or of BatchNewtonResult)
-        The position, velocity and acceleration solves; ``np.concatenate([r.x for r in ...],
-        axis=-1)`` is the state.
+    Stages
 
     Raises
     ------
@@ -105,16 +123,22 @@ def solve_consecutive(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
 
     Examples
     --------
-    >>> from mechnum.mechanisms.hacksaw import STUDY_SEED
-    >>> stages = solve_consecutive(STUDY, (0.0, 0.0, 0.0), STUDY_SEED)
-    >>> [r.iterations for r in stages]
-    [4, 2, 2]
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY, STUDY_SEED
+    >>> res = solve_consecutive(STUDY, (0.0, 0.0, 0.0), STUDY_SEED)
+    >>> res.iterations.tolist(), res.x[:3].round(4).tolist()
+    ([4, 2, 2], [-0.0997, -0.4684, 2.8737])
     """
     th2, w2, a2 = checked_motor(motor_state)
     seed = _seed(seed, batch=True)
     checked(mech, [("seed", seed, 9)], [("theta2", th2), ("omega2", w2), ("alpha2", a2)])
     form = _validate.choice(form, FORMS, "form")
-    return _consecutive(mech, th2, w2, a2, seed, _validate.tolerance(tol), form)
+    stages = _consecutive(mech, th2, w2, a2, seed, _validate.tolerance(tol), form)
+    iterations = np.stack([r.iterations for r in stages], axis=-1)
+    return Stages(x=np.concatenate([r.x for r in stages], axis=-1), status=stages[0].status,
+                  message="position, velocity and acceleration stages converged in "
+                          f"{np.asarray(iterations).tolist()} iterations",
+                  iterations=iterations, nfev=sum(r.nfev for r in stages),
+                  njev=sum(r.njev for r in stages), stages=stages)
 
 
 def _simultaneous(g, th2, w2, a2, seed, tol):
@@ -125,7 +149,6 @@ def _simultaneous(g, th2, w2, a2, seed, tol):
     return res
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def solve_simultaneous(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
                        tol: float = TOL) -> object:
     """Solve the nine equations of one point at once, by Newton on the 9x9 system.
@@ -150,7 +173,7 @@ def solve_simultaneous(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
 
     Examples
     --------
-    >>> from mechnum.mechanisms.hacksaw import STUDY_SEED
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY, STUDY_SEED
     >>> res = solve_simultaneous(STUDY, (0.0, 0.0, 0.0), STUDY_SEED)
     >>> res.iterations, np.round(res.x[:3], 6).tolist()
     (5, [-0.099672, -0.468422, 2.873694])
@@ -163,14 +186,20 @@ def solve_simultaneous(mech: Geometry, motor_state: tuple, seed: ArrayLike, *,
                          _validate.tolerance(tol))
 
 
-@dataclass(frozen=True)
-class SweepResult:
+@dataclass(frozen=True, kw_only=True)
+class SweepResult(Result):
     """The outcome of :func:`sweep`.
 
     Attributes
     ----------
     x : ndarray, shape (n, 9)
         The nine unknowns at every time.
+    status : ndarray of str, shape (n,)
+        ``"converged"`` at every point (a point that fails raises).
+    message : str
+        How many points, and the iterations in all.
+    nfev, njev : int
+        Calls of the residuals and Jacobians of every solve.
     iterations : ndarray of int, shape (n, k)
         Newton iterations of every solve at every point (those of a repaired branch jump
         included): ``k = 3`` (position, velocity, acceleration) for ``"consecutive"``; ``k = 1``
@@ -178,8 +207,6 @@ class SweepResult:
         rate stages are linear solves).
     """
 
-    x: np.ndarray
-    iterations: np.ndarray
 
 
 def _batched(g, th2, w2, a2, seed, tol):
@@ -195,7 +222,15 @@ def _batched(g, th2, w2, a2, seed, tol):
             f"seed's (first at theta2 = {th2[jumped][0]:.6g} rad): seed them nearer, or "
             f"sweep point by point", pos)
     v, a = kernels.linear_rates(g, pos.x, th2, w2, a2, crank)
-    return SweepResult(np.concatenate([pos.x, v, a], axis=-1), pos.iterations[:, None])
+    return _swept(np.concatenate([pos.x, v, a], axis=-1), pos.iterations[:, None], pos.nfev,
+                  pos.njev)
+
+
+def _swept(x, iterations, nfev, njev):
+    """The :class:`SweepResult` of the points ``x`` and their iterations."""
+    return SweepResult(x=x, status=np.full(len(x), "converged"), iterations=iterations,
+                       message=f"{len(x)} points converged in {int(iterations.sum())} "
+                               "Newton iterations", nfev=nfev, njev=njev)
 
 
 def _loops(g, t, th2, w2, a2, seed, tol, method, predictor):
@@ -203,7 +238,7 @@ def _loops(g, t, th2, w2, a2, seed, tol, method, predictor):
     point's solution, and raises if it jumps again."""
     out = np.empty((t.size, 9))
     iterations = np.zeros((t.size, 3 if method == "consecutive" else 1), dtype=int)
-    previous = seed
+    previous, nfev, njev = seed, 0, 0
     for i in range(t.size):
         seeds = [previous]
         if i and predictor == "velocity":  # first-order Taylor: positions, then velocities
@@ -216,6 +251,7 @@ def _loops(g, t, th2, w2, a2, seed, tol, method, predictor):
                 stages = (_simultaneous(g, th2[i], w2[i], a2[i], start, tol),)
             x = np.concatenate([r.x for r in stages])
             iterations[i] += [r.iterations for r in stages]
+            nfev, njev = nfev + sum(r.nfev for r in stages), njev + sum(r.njev for r in stages)
             if np.all(_branch(x) == _branch(previous)):
                 break
         else:
@@ -224,15 +260,9 @@ def _loops(g, t, th2, w2, a2, seed, tol, method, predictor):
                 f"point (signs of r1 and cos(theta3): {_branch(previous).tolist()}) to "
                 f"{_branch(x).tolist()}: the steps of t are too coarse", stages[-1])
         out[i] = previous = x
-    return SweepResult(out, iterations)
+    return _swept(out, iterations, nfev, njev)
 
 
-def _old_sweep(t, method, geometry=STUDY, **options):
-    return (geometry, t, method), options
-
-
-@_deprecated.old_form(_old_sweep, old="sweep(t, method, geometry)", new="sweep(mech, t, method)",
-                      is_new=_deprecated.mech_at(0, Geometry))
 def sweep(mech: Geometry, t: ArrayLike, method: str, *, seed: ArrayLike = TRAJECTORY_SEED,
           tol: float = TOL, alpha_max: float = ALPHA_MAX,
           predictor: str = "previous") -> SweepResult:
@@ -281,6 +311,7 @@ def sweep(mech: Geometry, t: ArrayLike, method: str, *, seed: ArrayLike = TRAJEC
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form, first_revolution_time
     >>> t = np.linspace(0, 2 * first_revolution_time(), 50)
     >>> res = sweep(STUDY, t, "batched")

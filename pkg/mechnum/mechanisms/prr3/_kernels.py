@@ -1,8 +1,8 @@
 """The 3PRR's formulas on checked input: the kernels that the public functions call.
 
-Each function here takes a :class:`~mechnum.mechanisms.prr3.geometry.Geometry` and float arrays
+Each function here takes a :class:`~mechnum.mechanisms.prr3.Geometry` and float arrays
 of shape ``(..., 3)`` that the caller has checked (the functions of
-:mod:`~mechnum.mechanisms.prr3.geometry` check, then call these), so that the forward solver and
+``prr3``'s geometry module check, then call these), so that the forward solver and
 the path search can call them many times without checking again. Nothing here validates its
 input.
 

@@ -3,20 +3,13 @@
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate, plotting
-from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, vectors
+from mechnum import _validate, plotting
+from mechnum.mechanisms.prr3 import _kernels as kernels
+from mechnum.mechanisms.prr3._geometry import Geometry, check, vectors
 
 _GAP = np.full((1, 2), np.nan)  # breaks a line between two of its segments
 
 
-def _old_draw(ax, pose, lambdas, geometry, **options):
-    return (ax, geometry, (lambdas, pose)), options
-
-
-@_deprecated.old_form(_old_draw, old="draw(ax, pose, lambdas, geometry)",
-                      new="draw(ax, mech, (lambdas, pose))",
-                      is_new=_deprecated.mech_at(1, Geometry))
 def draw(ax: object, mech: Geometry, state: tuple[ArrayLike, ArrayLike], *,
          artists: dict | None = None, color: str = "tab:blue", alpha: float = 1.0,
          guides: bool = True) -> dict:

@@ -1,8 +1,7 @@
 """The 3PRR's forward (direct) problem, inputs -> poses, for one input or thousands at once.
 
 :func:`forward` finds every pose from the study's polynomial; :func:`forward_by_newton` runs
-Newton from many seeds, as a check. (Their names of version 0.1, ``direct`` and
-``direct_by_newton``, are deprecated aliases.)
+Newton from many seeds, as a check.
 """
 
 from dataclasses import dataclass
@@ -10,12 +9,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
-from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.elimination import sextic
-from mechnum.mechanisms.prr3.geometry import SINGULAR_DET, Geometry, check, vectors
+from mechnum import _validate
+from mechnum.mechanisms.prr3 import _kernels as kernels
+from mechnum.mechanisms.prr3._elimination import sextic
+from mechnum.mechanisms.prr3._geometry import SINGULAR_DET, Geometry, check, vectors
 from mechnum.newton import solve_batch
 from mechnum.polynomials import roots
+from mechnum.results import Result
 
 # A root is real when |Im psi| <= 1e-4 rad: round-off splits a double real root (a direct
 # singularity) into a complex pair whose imaginary parts reach about sqrt(eps) kappa, up to
@@ -68,22 +68,29 @@ _CONTINUUM = 1e-13
 _REACH_MARGIN = 1e-12
 
 
-@dataclass(frozen=True)
-class DirectSolution:
+@dataclass(frozen=True, kw_only=True)
+class DirectSolution(Result):
     """The poses of the direct problem, with a report on each.
 
     Attributes
     ----------
-    poses : ndarray, shape (n, 3)
-        ``(x, y, psi)``, ``psi`` in ``[0, 2 pi)``; grouped by input, sorted by ``psi``.
+    x : ndarray, shape (n, 3)
+        The poses ``(x, y, psi)``, ``psi`` in ``[0, 2 pi)``; grouped by input, sorted by
+        ``psi``.
+    status : str or ndarray of str, shape of the batch
+        ``"converged"`` for an input whose poses are all found (possibly none: the sliders
+        too far apart); ``"singular"`` for an input whose polynomial vanishes identically:
+        the platform moves with the inputs locked (a self-motion, as when two sliders
+        coincide), a continuum of poses and no isolated one, its count 0.
+    message : str
+        How many poses, and how many inputs have a continuum.
+    iterations, nfev, njev : int
+        Zero: the roots of a polynomial (a few Newton steps polish the roots that round-off
+        blurs).
     input_index : ndarray of int, shape (n,)
         The input (row of the batch) of each pose; all 0 for one input.
     counts : ndarray of int, shape of the batch
         The number of poses of each input (a 0-d array for one input).
-    continuum : ndarray of bool, shape of the batch
-        Inputs whose polynomial vanishes identically: the platform moves with the inputs
-        locked (a self-motion, as when two sliders coincide), a continuum of poses and no
-        isolated one; their count is 0.
     residuals : ndarray, shape (n,)
         ``max |loop_residuals| / L**2`` of each pose.
     elimination_det : ndarray, shape (n,)
@@ -99,10 +106,8 @@ class DirectSolution:
         singularity, a leg tangent to its guide.
     """
 
-    poses: np.ndarray
     input_index: np.ndarray
     counts: np.ndarray
-    continuum: np.ndarray
     residuals: np.ndarray
     elimination_det: np.ndarray
     jacobian_det: np.ndarray
@@ -250,8 +255,6 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
        to about ``1e-8``; Newton cannot sharpen a pose *at* a direct singularity (two assembly
        modes meeting), where its Jacobian is singular.
 
-    The name ``direct(lambdas, geometry)`` of version 0.1 is a deprecated alias.
-
     Parameters
     ----------
     mech : ~mechnum.mechanisms.prr3.geometry.Geometry
@@ -266,7 +269,7 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
     Returns
     -------
     DirectSolution
-        ``poses`` of shape ``(n, 3)`` with ``n`` from 0 to 6 per input.
+        The poses ``x``, of shape ``(n, 3)`` with ``n`` from 0 to 6 per input.
 
     Raises
     ------
@@ -280,7 +283,7 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
     >>> from mechnum.mechanisms.prr3 import Geometry
     >>> g = Geometry(L=1, a=1, B2=3, B3=2, H3=3)
     >>> sol = forward(g, [0.4, 0.1, 0.6])
-    >>> sol.poses[:, :2].round(5).tolist(), np.degrees(sol.poses[:, 2]).round(4).tolist()
+    >>> sol.x[:, :2].round(5).tolist(), np.degrees(sol.x[:, 2]).round(4).tolist()
     ([[1.23123, 0.55593], [1.05352, 0.7569]], [9.9967, 341.5164])
     >>> forward(g, [[0.4, 0.1, 0.6], [1e100, 0.1, 0.6]]).counts.tolist()
     [2, 0]
@@ -341,11 +344,15 @@ def _forward(mech, lam, imag_tol, residual_tol):
     counts = np.bincount(index[keep], minlength=len(batch)).reshape(lam.shape[:-1])
     own = kernels.slider_points(mech, batch[index[keep]]) / mech.L  # the elimination at the
     elimination = _radical_axes(poses[keep, 2], own, mech.a / mech.L)[3]  # poses' own angles
-    return DirectSolution(poses[keep], index[keep], counts, continuum.reshape(lam.shape[:-1]),
-                          res[keep], elimination, jacobian_det[keep], inverse_det[keep])
+    status = np.where(continuum, "singular", "converged").reshape(lam.shape[:-1])
+    return DirectSolution(
+        x=poses[keep], status=status if status.ndim else str(status), iterations=0, nfev=0,
+        njev=0, message=f"{keep.size} poses of {len(batch)} inputs; a continuum of poses at "
+                        f"{int(continuum.sum())}", input_index=index[keep], counts=counts,
+        residuals=res[keep], elimination_det=elimination, jacobian_det=jacobian_det[keep],
+        inverse_det=inverse_det[keep])
 
 
-direct = _deprecated.renamed(forward, "direct", mech_type=Geometry, to=1)
 
 
 def _angles(polynomials):
@@ -413,8 +420,7 @@ def forward_by_newton(mech: Geometry, lambdas: ArrayLike, seeds: ArrayLike, *,
     Each seed is iterated on the loop equations (:func:`loop_residuals`, with the analytic
     :func:`direct_jacobian`) by :func:`mechnum.newton.solve_batch`; the seeds whose status is
     not "converged" (50 steps, a singular Jacobian) are ignored. It finds only the solutions
-    whose basins the seeds hit: a check on :func:`forward`, not a replacement. The name
-    ``direct_by_newton(lambdas, geometry, starts)`` of version 0.1 is a deprecated alias.
+    whose basins the seeds hit: a check on :func:`forward`, not a replacement.
 
     Parameters
     ----------
@@ -461,6 +467,3 @@ def forward_by_newton(mech: Geometry, lambdas: ArrayLike, seeds: ArrayLike, *,
     poses = poses[keep]
     return poses[np.argsort(poses[:, 2])]
 
-
-direct_by_newton = _deprecated.renamed(forward_by_newton, "direct_by_newton", mech_type=Geometry,
-                                       to=1, renames={"seeds": "starts"})

@@ -9,12 +9,15 @@ singularity, which a planar parallel mechanism can do by encircling a cusp of it
 surface in input space (Innocenti and Parenti-Castelli, 1998).
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
-from mechnum.mechanisms.prr3.geometry import Geometry, check, jacobian_dets, radicands, vectors
-from mechnum.mechanisms.prr3.inverse import branch_inputs
+from mechnum import _validate
+from mechnum.mechanisms.prr3._geometry import Geometry, check, jacobian_dets, radicands, vectors
+from mechnum.mechanisms.prr3._inverse import branch_inputs
+from mechnum.results import Result
 
 # Passes of neighbour averaging that turn the voxel staircase into a smooth path (each pass
 # spreads a corner over one more point; 30 round the corners of a path of a few dozen voxels).
@@ -69,19 +72,42 @@ def _bfs(region, start, end):
     return where[chain[::-1]]
 
 
-@_deprecated.mech_moved(Geometry, to=2)
+@dataclass(frozen=True, kw_only=True)
+class ModeChangePath(Result):
+    """The outcome of :func:`mode_change_path`.
+
+    Attributes
+    ----------
+    x : ndarray, shape (k, 3)
+        The path's poses, from ``start`` to ``end`` (``k = 0`` where none was found); ``psi``
+        is continuous along it, so it may end at ``end``'s angle plus a multiple of ``2 pi``.
+    status : str
+        ``"converged"``: the path was found and checked finely, a certificate;
+        ``"undecided"``: none was found at this resolution, which does not show that none
+        exists.
+    message : str
+        The outcome in a sentence.
+    iterations, nfev, njev : int
+        Zero; ``voxels`` counts the work.
+    voxels : int
+        Voxels of the search.
+    """
+
+    voxels: int
+
+
 def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: ArrayLike, *,
                      bounds: ArrayLike, shape: tuple[int, int, int] = (70, 50, 90)
-                     ) -> np.ndarray | None:
-    """A path of poses from ``start`` to ``end`` that crosses no singularity, or None.
+                     ) -> ModeChangePath:
+    """A path of poses from ``start`` to ``end`` that crosses no singularity.
 
     Both poses must belong to the working mode ``signs`` and have the same sign of the direct
     Jacobian's determinant. The pose space inside ``bounds`` (``psi`` periodic) is cut into
     voxels; a breadth-first search finds a shortest chain of neighbouring voxels where every
     leg reaches its guide and the determinant keeps its sign; the path (the voxel centres, with
     ``psi`` unwrapped, smoothed by neighbour averaging where that keeps it safe) is then
-    checked finely. It is a certificate when it is
-    returned; None means none was found at this resolution, not that none exists.
+    checked finely. It is a certificate when it is found (status ``"converged"``); the status
+    ``"undecided"`` means none was found at this resolution, not that none exists.
 
     Parameters
     ----------
@@ -97,9 +123,7 @@ def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: Ar
 
     Returns
     -------
-    ndarray, shape (k, 3), or None
-        The path's poses, from ``start`` to ``end``; ``psi`` is continuous along it, so it may
-        end at ``end``'s angle plus a multiple of ``2 pi``.
+    ModeChangePath
 
     Raises
     ------
@@ -110,13 +134,13 @@ def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: Ar
     Examples
     --------
     >>> import numpy as np
-    >>> from mechnum.mechanisms.prr3 import EXAMPLES
+    >>> from mechnum.mechanisms.prr3.study import EXAMPLES
     >>> g = EXAMPLES["Table 5"][0]
     >>> a, b = np.array([2.2, 0.5, 3.0]), np.array([2.3, 0.5, 3.2])
     >>> path = mode_change_path(g, a, b, (1, 1, 1), bounds=[[1.5, 3.5], [0.0, 1.0]],
     ...                         shape=(20, 10, 36))
-    >>> bool(np.allclose(path[0], a) and np.allclose(path[-1], b))
-    True
+    >>> path.status, bool(np.allclose(path.x[0], a) and np.allclose(path.x[-1], b))
+    ('converged', True)
     """
     check(mech)
     start = _validate.array(start, "start", shape=(3,))
@@ -147,16 +171,26 @@ def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: Ar
         return tuple(steps)
 
     chain = _bfs(region, voxel(start), voxel(end))
+    voxels = int(np.prod(shape))
     if chain is None:
-        return None
+        return _outcome(np.empty((0, 3)), voxels)
     centres = grid[tuple(chain.T)]
     path = np.vstack([start, centres, end])
     path[:, 2] = np.unwrap(path[:, 2])
     path[-1, 2] = path[-2, 2] + np.mod(end[2] - path[-2, 2] + np.pi, 2 * np.pi) - np.pi
     for candidate in (_smoothed(path), path):  # the smooth path if it passes the check
         if _certified(mech, candidate, signs, np.sign(dets[0])):
-            return candidate
-    return None
+            return _outcome(candidate, voxels)
+    return _outcome(np.empty((0, 3)), voxels)
+
+
+def _outcome(path, voxels):
+    """The :class:`ModeChangePath` of a path (empty: none found)."""
+    found = len(path) > 0
+    message = (f"a path of {len(path)} poses that crosses no singularity, checked finely"
+               if found else f"no path found on {voxels} voxels: a finer grid may find one")
+    return ModeChangePath(x=path, status="converged" if found else "undecided",
+                          message=message, iterations=0, nfev=0, njev=0, voxels=voxels)
 
 
 def _smoothed(path):

@@ -10,24 +10,20 @@ linear in their unknowns, with the position Jacobian as their matrix, rows permu
 (:func:`~mechnum.mechanisms.hacksaw.jacobian`) is block lower triangular. Where
 ``|cos(theta3)|`` falls below ``DEAD_POINT_COS`` (a dead point) the rate equations are
 singular. Each evaluator takes the mechanism first, checks its input and calls its kernel
-(:mod:`~mechnum.mechanisms.hacksaw.kernels`), which the solvers call directly.
+(``hacksaw``'s kernels module), which the solvers call directly.
 """
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated
-from mechnum.mechanisms.hacksaw import kernels
-from mechnum.mechanisms.hacksaw.kernels import DEAD_POINT_COS, RATE_ROWS
-from mechnum.mechanisms.hacksaw.model import STUDY, Geometry, evaluator
+from mechnum.mechanisms.hacksaw import _kernels as kernels
+from mechnum.mechanisms.hacksaw._kernels import DEAD_POINT_COS, RATE_ROWS
+from mechnum.mechanisms.hacksaw._model import Geometry, evaluator
 
 __all__ = ["DEAD_POINT_COS", "position_residual", "position_jacobian", "rate_jacobian",
            "velocity_residual", "acceleration_residual", "residual", "jacobian"]
-# The old forms took the geometry last, with the study's as default.
-_MOVED = {"mech_type": Geometry, "name": "geometry", "default": STUDY}
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 @evaluator(("q", 3), motor=("theta2",))
 def position_residual(mech: Geometry, q: ArrayLike, theta2: ArrayLike,
                       form: str = "loop") -> np.ndarray:
@@ -50,6 +46,7 @@ def position_residual(mech: Geometry, q: ArrayLike, theta2: ArrayLike,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form
     >>> q = closed_form(STUDY, 0.0)[:3]
     >>> bool(np.allclose(position_residual(STUDY, q, 0.0), 0, atol=1e-14))
@@ -58,7 +55,6 @@ def position_residual(mech: Geometry, q: ArrayLike, theta2: ArrayLike,
     return kernels.loop(mech, q, kernels.crank(theta2), form)
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 @evaluator(("q", 3))
 def position_jacobian(mech: Geometry, q: ArrayLike, form: str = "loop") -> np.ndarray:
     """Jacobian of :func:`position_residual` with respect to ``(r1, theta1, theta3)``.
@@ -71,6 +67,7 @@ def position_jacobian(mech: Geometry, q: ArrayLike, form: str = "loop") -> np.nd
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> J = position_jacobian(STUDY, np.array([-0.1, -0.5, 3.0]))
     >>> bool(np.isclose(np.linalg.det(J), 0.1 * 0.17 * np.cos(3.0)))
     True
@@ -78,7 +75,6 @@ def position_jacobian(mech: Geometry, q: ArrayLike, form: str = "loop") -> np.nd
     return kernels.loop_jacobian(mech, q, form)
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def rate_jacobian(mech: Geometry, q: ArrayLike) -> np.ndarray:
     """Jacobian of the velocity constraints ``(x', y', c')`` in ``(Vr, omega1, omega3)``.
 
@@ -91,6 +87,7 @@ def rate_jacobian(mech: Geometry, q: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form
     >>> q = closed_form(STUDY, 0.0)[:3]
     >>> bool(np.allclose(rate_jacobian(STUDY, q)[2], position_jacobian(STUDY, q)[0]))
@@ -99,7 +96,6 @@ def rate_jacobian(mech: Geometry, q: ArrayLike) -> np.ndarray:
     return position_jacobian(mech, q)[..., RATE_ROWS, :]
 
 
-@_deprecated.mech_moved(to=4, **_MOVED)
 @evaluator(("v", 3), ("q", 3), motor=("theta2", "omega2"))
 def velocity_residual(mech: Geometry, v: ArrayLike, q: ArrayLike, theta2: ArrayLike,
                       omega2: ArrayLike) -> np.ndarray:
@@ -111,6 +107,7 @@ def velocity_residual(mech: Geometry, v: ArrayLike, q: ArrayLike, theta2: ArrayL
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form, motor
     >>> x = closed_form(STUDY, 0.5)
     >>> th2, w2, _ = motor(0.5)
@@ -120,7 +117,6 @@ def velocity_residual(mech: Geometry, v: ArrayLike, q: ArrayLike, theta2: ArrayL
     return kernels.velocity(mech, v, q, kernels.crank(theta2), omega2)
 
 
-@_deprecated.mech_moved(to=6, **_MOVED)
 @evaluator(("a", 3), ("v", 3), ("q", 3), motor=("theta2", "omega2", "alpha2"))
 def acceleration_residual(mech: Geometry, a: ArrayLike, v: ArrayLike, q: ArrayLike,
                           theta2: ArrayLike, omega2: ArrayLike, alpha2: ArrayLike) -> np.ndarray:
@@ -132,6 +128,7 @@ def acceleration_residual(mech: Geometry, a: ArrayLike, v: ArrayLike, q: ArrayLi
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form, motor
     >>> x = closed_form(STUDY, 0.5)
     >>> bool(np.abs(acceleration_residual(STUDY, x[6:], x[3:6], x[:3], *motor(0.5))).max()
@@ -141,7 +138,6 @@ def acceleration_residual(mech: Geometry, a: ArrayLike, v: ArrayLike, q: ArrayLi
     return kernels.acceleration(mech, a, v, q, kernels.crank(theta2), omega2, alpha2)
 
 
-@_deprecated.mech_moved(to=4, **_MOVED)
 @evaluator(("x", 9), motor=("theta2", "omega2", "alpha2"))
 def residual(mech: Geometry, x: ArrayLike, theta2: ArrayLike, omega2: ArrayLike,
              alpha2: ArrayLike) -> np.ndarray:
@@ -160,6 +156,7 @@ def residual(mech: Geometry, x: ArrayLike, theta2: ArrayLike, omega2: ArrayLike,
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form, motor
     >>> x = closed_form(STUDY, 1.0)
     >>> bool(np.abs(residual(STUDY, x, *motor(1.0))).max() < 1e-14)
@@ -168,7 +165,6 @@ def residual(mech: Geometry, x: ArrayLike, theta2: ArrayLike, omega2: ArrayLike,
     return kernels.residual(mech, x, kernels.crank(theta2), omega2, alpha2)
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 @evaluator(("x", 9))
 def jacobian(mech: Geometry, x: ArrayLike) -> np.ndarray:
     """Jacobian of :func:`residual` in the nine unknowns; shape ``x.shape[:-1] + (9, 9)``.
@@ -178,6 +174,7 @@ def jacobian(mech: Geometry, x: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> from mechnum.mechanisms.hacksaw.study import STUDY
     >>> from mechnum.mechanisms.hacksaw import closed_form
     >>> x = closed_form(STUDY, 0.5)
     >>> J = jacobian(STUDY, x)

@@ -5,11 +5,9 @@ from itertools import product
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
-from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, radicands, vectors
-
-_MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came later
+from mechnum import _validate
+from mechnum.mechanisms.prr3 import _kernels as kernels
+from mechnum.mechanisms.prr3._geometry import Geometry, check, radicands, vectors
 
 # A radicand within 1e-12 L^2 of zero is a tangent leg: the two values of its input then
 # differ by 2 sqrt(1e-12) L = 2e-6 L, the study's own merging distance (1e-6 L) in size,
@@ -26,7 +24,6 @@ def _tangent_roots(rad, tol, L):
         return np.where(np.abs(rad) <= band, 0.0, np.where(rad < -band, np.nan, np.sqrt(rad)))
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORDER, *,
                   tol: float = TANGENT_TOL) -> np.ndarray:
     """The inputs of one working mode (one branch of each leg), vectorised over poses.
@@ -74,7 +71,6 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
     return centre + signs * root
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.ndarray:
     """All the inputs ``(lambda1, lambda2, lambda3)`` that assemble the mechanism in ``pose``.
 
@@ -121,7 +117,6 @@ def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.
     return np.array(list(product(*values)))
 
 
-@_deprecated.mech_moved(to=3, **_MOVED)
 def workspace(mech: Geometry, x: ArrayLike, y: ArrayLike, psi: ArrayLike, *,
               tol: float = TANGENT_TOL) -> np.ndarray:
     """Reachability of every pose of a grid: can the inverse problem be solved there?

@@ -3,8 +3,7 @@
 :class:`Linkage` holds the link lengths (metres); :func:`forward` gives the output angle of each
 assembly mode for input angles, :func:`inverse` the input angle for output angles,
 :func:`workspace` the angles at which the linkage assembles, and :func:`place_links` the points
-of given angles (a :class:`Pose`). The deprecated functions of version 0.1 (:func:`pose`,
-:func:`pose_from_output`, :func:`reachable`) are at the end.
+of given angles (a :class:`Pose`).
 """
 
 from dataclasses import dataclass
@@ -12,8 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
+from mechnum import _validate
 from mechnum.errors import GeometryError, UnreachablePoseError
+from mechnum.results import Assemblies
 
 #: Sign of the circle-intersection branch of the study's (crossed) assembly, and of the other.
 CROSSED, OPEN = 1, -1
@@ -130,7 +130,7 @@ def _pivots(mech):
     return np.array([-mech.r4, 0.0]), np.zeros(2)
 
 
-def forward(mech: Linkage, theta_in: ArrayLike) -> np.ndarray:
+def forward(mech: Linkage, theta_in: ArrayLike) -> Assemblies:
     """The output angles of both assembly modes for input angles: the forward problem.
 
     The input rocker ``HI`` at ``theta_in`` puts ``I``; ``E`` is where the circles of radius
@@ -146,9 +146,10 @@ def forward(mech: Linkage, theta_in: ArrayLike) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape (n, 2)
-        The output angles theta_out (the study's theta_1), rad in ``[0, 2 pi)``: column 0 of
-        the crossed assembly, column 1 of the open one.
+    mechnum.results.Assemblies
+        ``x``, shape (n, 2): the output angles theta_out (the study's theta_1), rad in
+        ``[0, 2 pi)``, column 0 of the crossed assembly, column 1 of the open one;
+        ``inputs``: ``theta_in``.
 
     Raises
     ------
@@ -158,7 +159,7 @@ def forward(mech: Linkage, theta_in: ArrayLike) -> np.ndarray:
     Examples
     --------
     >>> L = Linkage(0.030613, 0.0069973, 0.0247825, 0.0069989)
-    >>> forward(L, [5.0]).round(6).tolist()
+    >>> forward(L, [5.0]).x.round(6).tolist()
     [[2.32172, 1.88642]]
     """
     mech = checked(mech)
@@ -166,7 +167,8 @@ def forward(mech: Linkage, theta_in: ArrayLike) -> np.ndarray:
     H, D = _pivots(mech)
     I = H - mech.r3 * unit(theta_in)  # noqa: E741
     E = _intersect(np.broadcast_to(D, I.shape), mech.r1, I, mech.r2, theta_in)
-    return wrap(np.arctan2(E[..., 1], E[..., 0])).T
+    return Assemblies.of(wrap(np.arctan2(E[..., 1], E[..., 0])).T, theta_in, theta_in.size,
+                         len(MODES))
 
 
 def inverse(mech: Linkage, theta_out: ArrayLike) -> np.ndarray:
@@ -198,7 +200,7 @@ def inverse(mech: Linkage, theta_out: ArrayLike) -> np.ndarray:
     Examples
     --------
     >>> L = Linkage(0.030613, 0.0069973, 0.0247825, 0.0069989)
-    >>> round(float(inverse(L, forward(L, [5.0])[:, 0])[0, 0]), 12)
+    >>> round(float(inverse(L, forward(L, [5.0]).x[:, 0])[0, 0]), 12)
     5.0
     """
     mech = checked(mech)
@@ -251,14 +253,6 @@ def angle_pairs(theta_in: ArrayLike, theta_out: ArrayLike) -> tuple[np.ndarray, 
     return theta_in, theta_out
 
 
-def _old_place_links(theta_in, theta_out, linkage):
-    return (linkage, theta_in, theta_out), {}
-
-
-@_deprecated.old_form(_old_place_links, old="place_links(theta_in, theta_out, linkage)",
-                      new="place_links(mech, theta_in, theta_out)",
-                      is_new=lambda args, kwargs: "linkage" not in kwargs and not (
-                          len(args) > 2 and isinstance(args[2], Linkage)))
 def place_links(mech: Linkage, theta_in: ArrayLike, theta_out: ArrayLike) -> Pose:
     """The points of the rockers at given angles, without assembling the coupler (as the
     study's Tables 4 and 5 do): ``E = r1 e(theta_out)``, ``I = H - r3 e(theta_in)``.
@@ -299,33 +293,3 @@ def angles_from_points(E: ArrayLike, I: ArrayLike, r4: float  # noqa: E741
     I = _validate.array(I, "I", shape=(E.shape[0], 2))  # noqa: E741
     r4 = _validate.scalar(r4, "r4", positive=True)
     return wrap(np.arctan2(-I[:, 1], -r4 - I[:, 0])), wrap(np.arctan2(E[:, 1], E[:, 0]))
-
-
-# ---------------------------------------------------------- the deprecated forms of 0.1
-
-
-def pose(theta_in: ArrayLike, linkage: Linkage, branch: int = CROSSED) -> Pose:
-    """Deprecated: ``place_links(mech, theta_in, forward(mech, theta_in)[:, mode])``.
-
-    The position analysis driven by the input rocker, of one assembly mode (``branch``).
-    """
-    _deprecated.warn("pose(theta_in, linkage, branch)",
-                     "forward(mech, theta_in) and place_links(mech, theta_in, theta_out)")
-    branch = _validate.choice(branch, MODES, "branch")
-    theta_out = forward(linkage, theta_in)[:, MODES.index(branch)]
-    return place_links(linkage, theta_in, theta_out)
-
-
-def pose_from_output(theta_out: ArrayLike, linkage: Linkage, branch: int = CROSSED) -> Pose:
-    """Deprecated: ``place_links(mech, inverse(mech, theta_out)[:, mode], theta_out)``."""
-    _deprecated.warn("pose_from_output(theta_out, linkage, branch)",
-                     "inverse(mech, theta_out) and place_links(mech, theta_in, theta_out)")
-    branch = _validate.choice(branch, MODES, "branch")
-    theta_in = inverse(linkage, theta_out)[:, MODES.index(branch)]
-    return place_links(linkage, theta_in, theta_out)
-
-
-def reachable(theta: ArrayLike, linkage: Linkage, driver: str = "input") -> np.ndarray:
-    """Deprecated: :func:`workspace` ``(mech, theta, driver)``."""
-    _deprecated.warn("reachable(theta, linkage, driver)", "workspace(mech, theta, driver)")
-    return workspace(linkage, theta, driver)

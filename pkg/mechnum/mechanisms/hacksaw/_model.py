@@ -6,7 +6,7 @@ and :func:`~mechnum.mechanisms.hacksaw.motor` gives the study's jerk-limited sta
 The study's seeds and tolerance are here too, and the input checks that every public function
 of the package shares (:func:`checked`, :func:`checked_motor`, :func:`finite`, and the decorator
 :func:`evaluator` of the equations), so that the solvers can call the unchecked kernels
-(:mod:`~mechnum.mechanisms.hacksaw.kernels`) inside Newton's loop.
+(``hacksaw``'s kernels module) inside Newton's loop.
 """
 
 import functools

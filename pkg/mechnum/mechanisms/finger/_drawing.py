@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from mechnum import _deprecated, _validate, plotting
-from mechnum.mechanisms.finger.model import Linkage, Pose, checked, place_links
+from mechnum import _validate, plotting
+from mechnum.mechanisms.finger._model import Linkage, checked, place_links
 
 
 def _parts(ax, pose, index, artists, color):
@@ -15,21 +15,6 @@ def _parts(ax, pose, index, artists, color):
                                    "label": "ground D-H"})}, artists)
 
 
-def _old_draw(ax, state, index=0, *, lines=None, color="C0"):
-    """The deprecated form ``draw(ax, pose, index, lines=)``: one pose of a :class:`Pose`."""
-    if not isinstance(state, Pose):
-        raise ValueError(f"state must be a Pose, got {state!r:.80}")
-    index = _validate.maxiter(index, "index", minimum=0)
-    if index >= state.E.shape[0]:
-        raise ValueError(f"index {index} is out of range for {state.E.shape[0]} poses")
-    artists = None if lines is None else dict(zip(("links", "ground"), lines))
-    drawn = _parts(plotting.check_axes(ax), state, index, artists, color)
-    return drawn["links"], drawn["ground"]
-
-
-@_deprecated.old_form(lambda *args, **kwargs: (args, kwargs), target=_old_draw,
-                      old="draw(ax, pose, index, lines=)", new="draw(ax, mech, state, artists=)",
-                      is_new=lambda args, kwargs: not (len(args) > 1 and isinstance(args[1], Pose)))
 def draw(ax: object, mech: Linkage, state: tuple, *, artists: dict | None = None,
          color: str = "C0") -> dict:
     """Draw the linkage in one state: ground ``DH``, rockers and coupler; or move a drawing.
@@ -63,10 +48,10 @@ def draw(ax: object, mech: Linkage, state: tuple, *, artists: dict | None = None
     >>> from mechnum.mechanisms.finger import forward
     >>> fig, ax = plt.subplots()
     >>> L = Linkage(0.030613, 0.0069973, 0.0247825, 0.0069989)
-    >>> drawn = draw(ax, L, (5.0, forward(L, [5.0])[0, 0]))
+    >>> drawn = draw(ax, L, (5.0, forward(L, [5.0]).x[0, 0]))
     >>> (drawn["links"].get_xydata() * 1e3).round(2).tolist()[1]     # E, in millimetres
     [-20.89, 22.38]
-    >>> moved = draw(ax, L, (5.5, forward(L, [5.5])[0, 0]), artists=drawn); plt.close(fig)
+    >>> moved = draw(ax, L, (5.5, forward(L, [5.5]).x[0, 0]), artists=drawn); plt.close(fig)
     """
     plotting.check_axes(ax)
     checked(mech)

@@ -13,9 +13,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
-from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, vectors
+from mechnum import _validate
+from mechnum.mechanisms.prr3 import _kernels as kernels
+from mechnum.mechanisms.prr3._geometry import Geometry, check, vectors
 from mechnum.polynomials import PolynomialSystem
 
 _ROOT3 = math.sqrt(3.0)  # a Python float: the arithmetic on one input stays in floats
@@ -23,7 +23,6 @@ _ROOT3 = math.sqrt(3.0)  # a Python float: the arithmetic on one input stays in 
 # real below an imaginary part of 1e-7, meet it to about 1e-14. Off by more than 1e-6, the
 # point is no solution, and its angle would be a silent wrong answer.
 UNIT_CIRCLE_TOL = 1e-6
-_MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came last
 
 
 def _times(p, q):
@@ -118,7 +117,6 @@ def sextic(l1, c2x, c3x, c3y, a, L):
     return _stacked(_deflated(_octic(l1, c2x, c3x, c3y, a, L)))
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def polynomial(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
     """Coefficients ``C0 ... C8`` of the study's degree-8 polynomial in ``t = tan(psi/2)``.
 
@@ -208,7 +206,6 @@ def _circle(linear_x, linear_y, radius):
     return {e: c for e, c in out.items() if c != 0.0}
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def equations(mech: Geometry, lambdas: ArrayLike) -> PolynomialSystem:
     """The direct problem as four quadratics in ``(x/L, y/L, cos psi, sin psi)``.
 
@@ -247,7 +244,6 @@ def equations(mech: Geometry, lambdas: ArrayLike) -> PolynomialSystem:
     return PolynomialSystem.from_dicts(rows)
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def solutions_from_equations(mech: Geometry, points: ArrayLike) -> np.ndarray:
     """Poses ``(x, y, psi)`` from real solutions ``(x/L, y/L, cos psi, sin psi)`` of
     :func:`equations`, ``psi`` in ``[0, 2 pi)``.

@@ -3,7 +3,7 @@
 Everything here is a function of the mechanism (:class:`Geometry`, first), of poses
 ``(x, y, psi)`` and of inputs ``lambdas``, vectorised over any leading axes; the inverse and
 direct problems are built on it. Each function checks its input, then calls its kernel
-(:mod:`~mechnum.mechanisms.prr3.kernels`).
+(``prr3``'s kernels module).
 """
 
 from dataclasses import dataclass
@@ -11,9 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum import _deprecated, _validate
+from mechnum import _validate
 from mechnum.errors import GeometryError
-from mechnum.mechanisms.prr3 import kernels
+from mechnum.mechanisms.prr3 import _kernels as kernels
 
 # Lengths are squared (radicands and loop residuals are in m^2) and the direct problem's
 # polynomial has degree 8 in them: outside 1e-100 to 1e100 m these overflow or underflow
@@ -119,10 +119,6 @@ def pairs(poses: ArrayLike, lambdas: ArrayLike) -> tuple[np.ndarray, np.ndarray]
     return poses, lambdas
 
 
-_MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came last
-
-
-@_deprecated.mech_moved(to=1, **_MOVED)
 def vertices(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     """The platform vertices ``P1, P2, P3`` of poses ``(x, y, psi)``.
 
@@ -146,7 +142,6 @@ def vertices(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     return kernels.vertices(check(mech), vectors(poses, "poses"))
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def sliders(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
     """The slider points ``C1, C2, C3`` of inputs ``lambdas``.
 
@@ -169,7 +164,6 @@ def sliders(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
     return kernels.sliders(check(mech), vectors(lambdas, "lambdas"))
 
 
-@_deprecated.mech_moved(to=1, **_MOVED)
 def radicands(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     """The radicands of the inverse problem, one per leg (equations 62 to 64 of the study).
 
@@ -199,7 +193,6 @@ def radicands(mech: Geometry, poses: ArrayLike) -> np.ndarray:
         return (mech.L - distance) * (mech.L + distance)
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def bars(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """The bar vectors ``P_i - C_i``, shape ``(..., 3, 2)``; poses and inputs broadcast.
 
@@ -212,7 +205,6 @@ def bars(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     return kernels.bars(check(mech), *pairs(poses, lambdas))
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def loop_residuals(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """The loop-closure equations ``|P_i - C_i|^2 - L^2``, zero when the mechanism is assembled.
 
@@ -243,7 +235,6 @@ def loop_residuals(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.n
     return kernels.loop_residuals(check(mech), *pairs(poses, lambdas))
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def direct_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """Jacobian of :func:`loop_residuals` with respect to the pose ``(x, y, psi)``.
 
@@ -272,7 +263,6 @@ def direct_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.
     return kernels.direct_jacobian(check(mech), *pairs(poses, lambdas))
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def inverse_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.ndarray:
     """Jacobian of :func:`loop_residuals` with respect to the inputs: diagonal.
 
@@ -301,7 +291,6 @@ def inverse_jacobian(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np
     return 2 * along[..., None] * np.eye(3)
 
 
-@_deprecated.mech_moved(to=2, **_MOVED)
 def jacobian_dets(mech: Geometry, poses: ArrayLike,
                   lambdas: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Dimensionless determinants of the inverse and the direct Jacobian.

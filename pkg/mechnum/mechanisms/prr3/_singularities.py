@@ -1,6 +1,6 @@
 """Where the 3PRR is singular along a segment of poses: :func:`singular_points`.
 
-A working mode (one branch of each leg, :func:`~mechnum.mechanisms.prr3.inverse.branch_inputs`)
+A working mode (one branch of each leg, :func:`~mechnum.mechanisms.prr3.branch_inputs`)
 maps poses to inputs. Along a segment of poses it meets a *direct* singularity where the direct
 Jacobian's determinant changes sign (the bars' lines concurrent or parallel: two assembly modes
 meet), and an *inverse* one where a leg becomes tangent to its guide (a radicand changes sign:
@@ -13,9 +13,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from mechnum import _validate
-from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, radicands
-from mechnum.mechanisms.prr3.inverse import STUDY_ORDER, branch_inputs
+from mechnum.mechanisms.prr3 import _kernels as kernels
+from mechnum.mechanisms.prr3._geometry import Geometry, check, radicands
+from mechnum.mechanisms.prr3._inverse import STUDY_ORDER, branch_inputs
 
 KINDS = ("direct", "inverse")
 MAX_SAMPLES = 100_000
@@ -61,7 +61,8 @@ def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
 
     Examples
     --------
-    >>> from mechnum.mechanisms.prr3 import EXAMPLES, jacobian_dets
+    >>> from mechnum.mechanisms.prr3 import jacobian_dets
+    >>> from mechnum.mechanisms.prr3.study import EXAMPLES
     >>> g = EXAMPLES["Table 5"][0]
     >>> pose = singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, -1, -1))
     >>> pose.round(6).tolist()

@@ -1,10 +1,13 @@
-"""Every number of the study's Annex 3.2, recomputed: :func:`reproduce`."""
+"""The study's Annex 3.2: its actuator (:data:`ANNEX`), its gravity (:data:`G_MATHCAD`, Mathcad's
+built-in ``g``), and every number it prints, recomputed (:func:`reproduce`)."""
 
 import numpy as np
 
-from mechnum.mechanisms.actuator.dynamics import lagrange_force, virtual_power_force
-from mechnum.mechanisms.actuator.model import ANNEX
-from mechnum.mechanisms.actuator.velocities import kinematics
+from mechnum.mechanisms.actuator._dynamics import lagrange_force, virtual_power_force
+from mechnum.mechanisms.actuator._model import ANNEX, G_MATHCAD
+from mechnum.mechanisms.actuator._velocities import kinematics
+
+__all__ = ["ANNEX", "G_MATHCAD", "reproduce"]
 
 # The cylinder's bore and rod radii (m), printed only inside the annulus area S.
 _BORE_RADIUS, _ROD_RADIUS = 0.016, 0.008

@@ -17,17 +17,20 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, linear
 from mechnum.errors import GeometryError, SingularJacobianError
-from mechnum.mechanisms.finger.model import Linkage, angle_pairs
+from mechnum.mechanisms.finger._model import Linkage, angle_pairs
+from mechnum.results import Result
 
 
-@dataclass(frozen=True)
-class Synthesis:
+@dataclass(frozen=True, kw_only=True)
+class Synthesis(Result):
     """The outcome of :func:`synthesize`.
 
     Attributes
     ----------
-    k : ndarray, shape (3,)
-        Freudenstein coefficients ``k1, k2, k3``.
+    x : ndarray, shape (3,)
+        The Freudenstein coefficients ``k1, k2, k3``.
+    status, message, iterations, nfev, njev
+        Those of the least-squares solve (:class:`mechnum.linear.LeastSquares`).
     linkage : Linkage
         The link lengths they give for the proposed ``r4``.
     residuals : ndarray, shape (m,)
@@ -36,7 +39,6 @@ class Synthesis:
         The iterative solver's result (methods ``sor``, ``gauss_seidel``, ``jacobi``, ``cg``).
     """
 
-    k: np.ndarray
     linkage: Linkage
     residuals: np.ndarray
     solver: object
@@ -166,7 +168,7 @@ def synthesize(theta_in: ArrayLike, theta_out: ArrayLike, r4: float, method: str
     >>> from mechnum.mechanisms.finger import forward
     >>> true = Linkage(0.030, 0.007, 0.025, 0.007)
     >>> theta_in = np.linspace(4.6, 6.2, 6)
-    >>> fit = synthesize(theta_in, forward(true, theta_in)[:, 0], 0.007)
+    >>> fit = synthesize(theta_in, forward(true, theta_in).x[:, 0], 0.007)
     >>> np.round([fit.linkage.r1, fit.linkage.r2, fit.linkage.r3], 12).tolist()
     [0.03, 0.007, 0.025]
     """
@@ -178,4 +180,6 @@ def synthesize(theta_in: ArrayLike, theta_out: ArrayLike, r4: float, method: str
         fit = linear.least_squares(A, b, method, omega, **solver_options)
     except SingularJacobianError as error:
         raise SingularJacobianError(f"the angle pairs do not determine k: {error}") from None
-    return Synthesis(fit.x, linkage_from_coefficients(fit.x, r4), fit.residuals, fit.solver)
+    return Synthesis(x=fit.x, status=fit.status, message=fit.message, iterations=fit.iterations,
+                     nfev=fit.nfev, njev=fit.njev, linkage=linkage_from_coefficients(fit.x, r4),
+                     residuals=fit.residuals, solver=fit.solver)
