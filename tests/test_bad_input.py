@@ -33,11 +33,13 @@ from mechnum.results import Result
 plt.switch_backend("Agg")
 
 MODULES = ("continuation", "newton", "linear", "ode", "homotopy", "polynomials", "certify",
-           "published", "exercises", "plotting", "rods", "rods.assembly", "rods.profile",
-           "rods.regular", "rods.growing", "mechanisms.actuator", "mechanisms.elastica",
+           "published", "exercises", "plotting", "rods", "mechanisms",
+           "mechanisms.actuator", "mechanisms.actuator.study", "mechanisms.elastica",
+           "mechanisms.elastica.study",
            "mechanisms.finger", "mechanisms.finger.study", "mechanisms.hacksaw",
            "mechanisms.hacksaw.study",
-           "mechanisms.pfr3", "mechanisms.prr3", "mechanisms.prr3.study", "mechanisms.rfr2")
+           "mechanisms.pfr3", "mechanisms.pfr3.study", "mechanisms.prr3", "mechanisms.prr3.study",
+           "mechanisms.rfr2", "mechanisms.rfr2.study")
 LIMIT, PACKAGE, BAD = 2.0, mechnum.__path__[0], ("raw", "hang", "silent")  # LIMIT in seconds
 # Arguments that set an amount of work: -1, 0, a fraction and 10**9 (which a bound must refuse).
 WORK = {"nodes", "segments", "n_psi", "n_k", "n_starts", "check", "maxiter", "max_boxes",
@@ -272,11 +274,11 @@ REPRODUCERS = [
     ("rods.pinned_equilibria(1.0, 1.0, [0.8, 0.1], None)", "modes must be an iterable"),
     ("rods.certify_pinned(1.0, 1.0, [0.8, 0.1], (1, 1))", "distinct integers"),
     ("rods.elliptic_k([1.0, 2.0], [0.5, 0.5, 0.5])", "do not broadcast"),
-    ("rods.regular.closed_form(1.0, np.nan, 2.0, 0.5)", "L must be finite"),
-    ("rods.growing.branch_shape(1.0, 1.0, 2.0, 1e-12, 1.0, 1.0, 10**9)", "a bound on the work"),
-    ("rods.assembly.peak_moment(1.0, np.nan, [0.0, 1.0], 0.0, 1)", "clamp_moment must be finite"),
-    ("rods.assembly.Layout(rods=np.nan, inputs=2, pose=2)", "rods must be an integer"),
-    ("rfr2.motor_angles(rfr2.TABLE7, [np.nan, 0.5], np.ones((2, 2)))", "P must be finite"),
+    ("rods.clamped_pinned_regular(1.0, np.nan, 2.0, 0.5)", "L must be finite"),
+    ("rods._growing.branch_shape(1.0, 1.0, 2.0, 1e-12, 1.0, 1.0, 10**9)", "a bound on the work"),
+    ("rods.peak_moment(1.0, np.nan, [0.0, 1.0], 0.0, 1)", "clamp_moment must be finite"),
+    ("_assembly.Layout(rods=np.nan, inputs=2, pose=2)", "rods must be an integer"),
+    ("rfr2.inverse(rfr2.study.TABLE7, [np.nan, 0.5])", "pose must be finite"),
 ]
 
 
@@ -284,7 +286,7 @@ REPRODUCERS = [
 def test_a_fixed_finding_gives_a_named_error(source, words):
     names = {m.split(".")[-1]: importlib.import_module(f"mechnum.{m}") for m in (
         "certify", "continuation", "homotopy", "ode", "plotting", "published", "rods",
-        "mechanisms.rfr2")}
+        "mechanisms.rfr2", "mechanisms._assembly")}
     names |= dict(np=np, plt=plt, prr3=prr3, f=lambda x: [x[0] * x[0] - 2],
                   J=lambda x: [[2 * x[0]]], ROW=dict(quantity="T", published="1.942",
                                                      computed="1.941626", verdict="reproduced"))

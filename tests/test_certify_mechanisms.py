@@ -11,7 +11,8 @@ from mechnum import certify, rods
 from mechnum.certify import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
-from mechnum.rods import balls, regular
+from mechnum.rods import _regular as regular
+from mechnum.rods import balls
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 
@@ -86,8 +87,8 @@ def _same_set(certified, sampled, tol):
 
 
 def test_table7_sampled_equilibria_are_proven():
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     assert result.count == 3 and not result.complete and "lower bound" in result.message
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
     # no certified verdict contradicts the sampled index (False only where unstable)
@@ -96,8 +97,8 @@ def test_table7_sampled_equilibria_are_proven():
 
 
 def test_table8_sampled_equilibria_are_proven():
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    result = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     assert result.count == 9 and result.parts[0].complete
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
     for verdict, index in zip(result.stable, sampled.index):
@@ -105,18 +106,18 @@ def test_table8_sampled_equilibria_are_proven():
 
 
 def test_a_box_without_an_equilibrium_is_excluded():
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA,
                                   around=[[1.0, 0.5, 1.0, 0.5]])
     assert result.count == 0 and result.parts[0].complete
 
 
 def test_the_stored_table8_certificate_verifies():
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
+    f, J, _, exclude = pfr3_certified.system(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS,
                                              cert.inputs["modes"])
     checked = certify.verify(cert, f, J, exclude)
     assert checked.count == 9 and checked.complete
-    other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
+    other = pfr3_certified.system(pfr3.study.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
         certify.verify(cert, other[0], other[1], other[3])
 

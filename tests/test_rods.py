@@ -15,9 +15,10 @@ from mechnum import rods
 from mechnum.continuation import pseudo_arclength
 from mechnum.errors import ConvergenceError, MechnumError
 from mechnum.mechanisms import elastica
-from mechnum.rods import NoEquilibriumError, shooting
-from mechnum.rods import rod as rod_module
-from mechnum.rods.growing import START_TOL
+from mechnum.rods import NoEquilibriumError
+from mechnum.rods import _rod as rod_module
+from mechnum.rods import _shooting as shooting
+from mechnum.rods._growing import START_TOL
 
 PI = np.pi
 EPS = np.finfo(float).eps

@@ -11,7 +11,8 @@ from scipy.integrate import solve_ivp
 
 from mechnum import rods
 from mechnum.mechanisms import elastica as el
-from mechnum.rods import pinned, regular
+from mechnum.rods import _pinned as pinned
+from mechnum.rods import _regular as regular
 
 THESIS = np.array([0.8, 0.1])         # the thesis's pinned point, EI = L = 1
 

@@ -18,8 +18,6 @@ from pathlib import Path
 
 import numpy as np
 
-from mechnum import _deprecated
-
 STYLE = Path(__file__).with_name("book.mplstyle")
 """The book's Matplotlib style file: text sizes of 9 pt and more (CONTRIBUTING.md)."""
 MAX_FRAMES = 200
@@ -222,34 +220,6 @@ def _frame_count(count, name):
     return count
 
 
-def _old_animate(fig, update, frames, *, interval=80, dpi=72):
-    """The deprecated form ``animate(fig, update, frames)``: ``update(i)`` redraws frame i."""
-    from matplotlib.figure import Figure
-
-    from mechnum import _validate
-
-    if not isinstance(fig, Figure):
-        raise ValueError(f"fig must be a matplotlib Figure, got {fig!r:.80}")
-    if not callable(update):
-        raise ValueError(f"update must be callable, got {update!r:.80}")
-    if isinstance(frames, (int, np.integer, float, np.floating)):
-        frames = range(_validate.maxiter(frames, "frames", minimum=0))
-    frames = list(frames)
-    _frame_count(len(frames), "frames")
-    return _render(fig, update, frames, *_controls(interval, dpi))
-
-
-def _is_new(args, kwargs):
-    """Whether a call of :func:`animate` is of the new form (no figure, no update)."""
-    from matplotlib.figure import Figure
-
-    return not ({"fig", "update", "frames"} & set(kwargs)) and not (
-        args and isinstance(args[0], Figure))
-
-
-@_deprecated.old_form(lambda *args, **kwargs: (args, kwargs), target=_old_animate,
-                      old="animate(fig, update, frames)", new="animate(draw, mech, states)",
-                      is_new=_is_new)
 def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None,
             titles: Sequence[str] | None = None, interval: float = 80, dpi: float = 72,
             **options) -> JSAnimation:
@@ -264,9 +234,6 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
     the first frame, so that no label or title is cropped, and keeps that layout in every frame.
     The figure is closed, so it is not displayed again as a still. The HTML is the same
     whenever the frames are: its element ids are a hash of the content.
-
-    The form ``animate(fig, update, frames)`` of version 0.1 (``update(i)`` redraws frame
-    ``i``) is deprecated; it still works, with a :class:`DeprecationWarning`.
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """The clamped-pinned closed form of the regular chart, enclosed over boxes (ball arithmetic).
 
-:mod:`mechnum.rods.regular` evaluates a rod ``(psi, t)`` of the regular chart in floats; this
+``rods``'s regular module evaluates a rod ``(psi, t)`` of the regular chart in floats; this
 module encloses the same closed form, tip, force, clamp moment and their derivatives in
 ``(psi, t)``, over a whole **box** of the chart, with Arb's balls (:mod:`mechnum.certify.balls`),
 for the proofs of :mod:`mechnum.certify`. The formulas are those of ``regular``'s module
@@ -30,7 +30,7 @@ enclosed is the closed form as written; that it is the elastica is the study's d
 Examples
 --------
 >>> from mechnum.certify import ball, bounds
->>> from mechnum.rods import regular
+>>> from mechnum.rods import _regular as regular
 >>> rod = clamped_pinned(1.0, 1.0, ball(2.0, 2.001), ball(0.5, 0.501), 1, 1)
 >>> exact = regular.clamped_pinned_regular(1.0, 1.0, 2.0005, 0.5005).tip
 >>> [bool(bounds(x)[0] < e < bounds(x)[1]) for x, e in zip(rod.tip, exact)]
@@ -42,7 +42,7 @@ from dataclasses import dataclass, replace
 from flint import acb, arb
 
 from mechnum.certify import balls as B
-from mechnum.rods import regular
+from mechnum.rods import _regular as regular
 
 TWO_PI = 2 * B.PI
 

@@ -1,6 +1,6 @@
 """Every clamped-pinned equilibrium that reaches a point, proven (Chapter 3's pinned rod).
 
-:func:`certify_pinned` searches the regular chart ``(psi, t)`` of :mod:`mechnum.rods.regular`
+:func:`certify_pinned` searches the regular chart ``(psi, t)`` of ``rods``'s regular module
 of each mode with :func:`~mechnum.certify.search.roots`, the closed form enclosed by
 :mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
 branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
@@ -24,7 +24,8 @@ from flint import arb
 
 from mechnum import _validate, certify
 from mechnum.certify.search import Roots
-from mechnum.rods import balls, regular
+from mechnum.rods import _regular as regular
+from mechnum.rods import balls
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -147,7 +148,7 @@ def pinned_system(EI, L, target, mode):
 def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`~mechnum.rods.pinned.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,

@@ -1,12 +1,12 @@
 """Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
 
 :func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: the same six reduced equations
-(:func:`~mechnum.mechanisms.pfr3.model.forward_system`: the tips form the platform, ``d_1 / b_1
+:func:`~mechnum.mechanisms.pfr3.forward`: the same six reduced equations
+(:func:`~mechnum.mechanisms.pfr3.forward_system`: the tips form the platform, ``d_1 / b_1
 = d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
 forces carry ``F``; the moments about the centroid carry ``M``) in the same chart, re-derived
-from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
-:func:`~mechnum.mechanisms.pfr3.model.clamps`, and enclosed over boxes
+from the :class:`~mechnum.mechanisms.pfr3.Mechanism`'s public fields and
+:func:`~mechnum.mechanisms.pfr3.clamps`, and enclosed over boxes
 (:mod:`mechnum.rods.balls`). Two exclusion tests of the mechanism's own speed the search up:
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
@@ -14,7 +14,7 @@ platform's sides (every two tips are ``a`` apart).
 Without ``around``, the search covers the chart's whole domain (64 boxes, one per sign pattern
 of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
 ``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
-sampled ``forward_elliptic(...).chart``), it covers a small box around each point: each
+sampled ``forward(...).x``), it covers a small box around each point: each
 equilibrium there is then proven to exist, alone in its box, and the count is a lower bound.
 
 **Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): ``stable`` is False
@@ -27,8 +27,8 @@ import numpy as np
 from flint import acb, arb
 
 from mechnum import _validate, certify
-from mechnum.mechanisms.pfr3.model import clamps
-from mechnum.rods import certified, regular
+from mechnum.mechanisms.pfr3._model import clamps
+from mechnum.rods import certified, k_rel_from_t
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -47,7 +47,7 @@ def system(mech, lambdas, modes=(1, 1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
     >>> f, J, rods, exclude = system(TABLE8, TABLE8_LAMBDAS)
     >>> z = chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
     >>> X = [certify.ball(v - 1e-3, v + 1e-3) for v in z]
@@ -142,7 +142,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     modes : (int, int, int), optional
@@ -158,7 +158,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     -------
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
-        ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
+        ``(psi_i, k_rel_i)`` (``forward``'s coordinates), sorted by ``psi1``;
         ``stable``: False or None (see the module); ``complete``: the count is a theorem over
         the chart's domain (never with ``around``, whose count is a lower bound: each root is
         proven, alone in its box, but others may lie elsewhere; each part's ``certificate()``
@@ -168,9 +168,10 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     --------
     Each of the equilibria that the sampling finds, proven (here the first):
 
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
-    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> sampled = forward(TABLE8, TABLE8_LAMBDAS, rng=0)
+    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.x[:1])
     >>> r.count, r.complete, r.parts[0].complete, np.round(r.solutions[0], 4).tolist()
     (1, False, True, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
@@ -182,7 +183,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     z = part.x
     solutions = z.copy()
     if len(z):
-        solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
+        solutions[:, 1::2] = k_rel_from_t(z[:, 0::2], z[:, 1::2])
     stable = [certified.verdict(_reduced(rods(certified.enclosed(root), True)))
               for root in part.roots]
     return certified.combine([part], solutions, stable, certified.around_note(around))

@@ -1,10 +1,10 @@
 """Every equilibrium of the 2RFR at given motor angles, proven by interval arithmetic.
 
 :func:`~mechnum.mechanisms.rfr2.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.rfr2.forward_elliptic`: the same four equations (both tips at one
+:func:`~mechnum.mechanisms.rfr2.forward`: the same four equations (both tips at one
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
-:class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields and enclosed over boxes
+:class:`~mechnum.mechanisms.rfr2.Mechanism`'s public fields and enclosed over boxes
 (:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots` over the
 chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
 
@@ -28,9 +28,9 @@ import numpy as np
 from flint import arb
 
 from mechnum import _validate, certify
-from mechnum.mechanisms.rfr2.model import Mechanism
-from mechnum.rods import certified, regular
-from mechnum.rods.assembly import check_type
+from mechnum.mechanisms._assembly import check_type
+from mechnum.mechanisms.rfr2._model import Mechanism
+from mechnum.rods import certified, k_rel_from_t
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -51,7 +51,7 @@ def system(mech, theta, modes=(1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
     >>> f, J, rods, exclude = system(TABLE7, TABLE7_THETA)
     >>> X = [certify.ball(1.96, 1.97), certify.ball(-0.06, -0.05), certify.ball(4.81, 4.82),
     ...      certify.ball(0.85, 0.86)]                  # holds a root: no test excludes it
@@ -97,7 +97,7 @@ def tail_excluded(mech, modes=(1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7
     >>> tail_excluded(TABLE7, (3, 3))
     True
     """
@@ -128,7 +128,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     max_boxes : int, optional
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 4), optional
-        Chart points (for example ``forward_elliptic(...).chart``) to search around instead of
+        Chart points (for example ``forward(...).x``) to search around instead of
         the whole chart (boxes of :func:`mechnum.rods.certified.around_boxes`): each
         equilibrium found there is proven, alone in its box, and the count is a lower bound
         (``complete`` is then False).
@@ -138,16 +138,16 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart ``(psi1, t1, psi2, t2)``; ``solutions``: their
         midpoints as ``(psi1, k_rel1, psi2, k_rel2)`` (the coordinates of
-        ``forward_elliptic``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
+        ``forward``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
         unstable) or None (see the module); ``complete``: the count is a theorem (the chart
         searched whole, and the tail beyond it excluded).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
-    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
-    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.chart)
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> sampled = forward(TABLE7, TABLE7_THETA, rng=0)
+    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.x)
     >>> r.count, r.complete, bool(np.abs(r.solutions - sampled.solutions).max() < 1e-12)
     (3, False, True)
     """
@@ -156,7 +156,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
                          split=exclude.split)
-    k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
+    k_rel = (k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
     stable = []
