@@ -13,7 +13,7 @@ from scipy.integrate import solve_ivp
 
 from mechnum import rods
 from mechnum.errors import DivergenceError, MechnumError, SingularJacobianError
-from mechnum.mechanisms import elastica
+from mechnum.mechanisms.elastica import study as elastica
 from mechnum.rods import _crossing as crossing
 from mechnum.rods import _regular as profile
 from mechnum.rods import _regular as regular

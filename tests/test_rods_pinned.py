@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 from mechnum import rods
-from mechnum.mechanisms import elastica as el
+from mechnum.mechanisms.elastica import study as el
 from mechnum.rods import _pinned as pinned
 from mechnum.rods import _regular as regular
 
