@@ -14,6 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from published import agrees, read_published
 
 from mechnum.errors import (
     ConvergenceError,
@@ -43,7 +44,6 @@ from mechnum.mechanisms.actuator import (
 )
 from mechnum.mechanisms.actuator.study import ANNEX
 from mechnum.plotting import animate
-from mechnum.published import agrees, read_published
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from published import check_row, read_published, read_registry
 
 from mechnum.errors import (
     DivergenceError,
@@ -22,7 +23,6 @@ from mechnum.mechanisms import finger as F
 from mechnum.mechanisms.finger import study as FS
 from mechnum.mechanisms.finger._model import CROSSED, MODES, OPEN
 from mechnum.plotting import animate
-from mechnum.published import check_row, read_published, read_registry
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -241,7 +241,7 @@ def test_animate_moves_the_linkage():
      RelaxationFactorError, "omega"),
     (lambda: F.synthesize(FS.TABLE2_THETA_IN, FS.TABLE2_THETA_OUT, 7.0, "qr", tol=1e-3),
      ValueError, "direct"),
-    (lambda: F.workspace(TABLE3, [1.0], "coupler"), ValueError, "driver"),
+    (lambda: F.workspace(TABLE3, [1.0], driver="coupler"), ValueError, "driver"),
     (lambda: F.workspace("TABLE3", [1.0]), ValueError, "Linkage"),
     (lambda: F.forward(TABLE3, [np.inf]), ValueError, "finite"),
     (lambda: F.forward(TABLE3, 5.0), ValueError, "dimension"),
@@ -361,7 +361,7 @@ def test_pose_closes_the_loop_and_inverts(case, branch):
        st.sampled_from(["input", "output"]))
 def test_reachable_is_the_triangle_inequality(thetas, r1, r2, r3, r4, driver):
     L = F.Linkage(r1, r2, r3, r4)
-    ok = F.workspace(L, thetas, driver)
+    ok = F.workspace(L, thetas, driver=driver)
     assert ok.shape == (len(thetas),)
     for theta, flag in zip(thetas, ok):
         if driver == "input":

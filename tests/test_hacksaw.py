@@ -17,6 +17,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from hypothesis import HealthCheck, assume, example, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
+from published import check_row, read_registry  # noqa: E402
 
 from mechnum import newton  # noqa: E402
 from mechnum.errors import (  # noqa: E402
@@ -33,7 +34,6 @@ from mechnum.mechanisms.hacksaw._kernels import MODES  # noqa: E402
 from mechnum.mechanisms.hacksaw._model import FORMS  # noqa: E402
 from mechnum.mechanisms.hacksaw._solvers import MAX_POINTS, METHODS, PREDICTORS  # noqa: E402
 from mechnum.plotting import animate  # noqa: E402
-from mechnum.published import check_row, read_registry  # noqa: E402
 
 S = study.STUDY
 T = hs.first_revolution_time()

@@ -6,6 +6,8 @@ import pytest
 from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.mechanisms import _assembly as assembly
 from mechnum.mechanisms import pfr3
+from mechnum.mechanisms.pfr3 import _analysis as analysis
+from mechnum.mechanisms.pfr3 import _drawing as drawing
 from mechnum.mechanisms.pfr3 import _model as model
 from mechnum.mechanisms.pfr3 import _shooting as shooting
 from mechnum.mechanisms.pfr3 import study
@@ -134,7 +136,7 @@ def _discrete_lagrangian(mech, z, segments):
 
 def test_the_second_variation_is_the_hessian_of_the_lagrangian(table8):
     z, segments = table8.x[0], 5
-    blocks, dense, _ = pfr3.second_variation(MECH, LAMBDAS, z, segments=segments)
+    blocks, dense, _ = analysis.second_variation(MECH, LAMBDAS, z, segments=segments)
     n = 3 * segments + 3
     H = np.zeros((n, n))
     for i, b in enumerate(blocks):
@@ -153,7 +155,7 @@ def test_stability_agrees_with_dense_eigenvalues():
     eq = pfr3.forward(MECH, LAMBDAS, modes=(1, 2, 1), n_starts=300, check=0, rng=2)
     for z in eq.x[:3]:
         N = 200
-        blocks, dense, G = pfr3.second_variation(MECH, LAMBDAS, z, (1, 2, 1), segments=N)
+        blocks, dense, G = analysis.second_variation(MECH, LAMBDAS, z, (1, 2, 1), segments=N)
         H = np.zeros((3 * N + 3, 3 * N + 3))
         for i, b in enumerate(blocks):
             H[i * N:(i + 1) * N, i * N:(i + 1) * N] = b.hessian
@@ -251,7 +253,7 @@ def test_draw_shows_the_rods_and_the_platform(table8):
     assert sorted(artists) == sorted(["guide1", "guide2", "guide3", "slider1", "slider2",
                                       "slider3", "rod1", "rod2", "rod3", "platform", "pins",
                                       "load"])
-    x, y = pfr3.shapes(MECH, LAMBDAS, table8.x[0])
+    x, y = drawing.shapes(MECH, LAMBDAS, table8.x[0])
     clamps = model.clamps(MECH, LAMBDAS)
     pins = model.pins(MECH, table8.pose[0])
     for i in range(3):
@@ -304,11 +306,11 @@ def test_non_finite_chart_points_raise_value_error():
     with pytest.raises(ValueError, match="chart"):
         model.rods(MECH, LAMBDAS, [1.0, 0.5, 1.0, 0.0, 1.0, 0.5])
     with pytest.raises(ValueError):
-        pfr3.stability(MECH, LAMBDAS, [1.0, np.nan, 1.0, 0.5, 1.0, 0.5])
+        analysis.stability(MECH, LAMBDAS, [1.0, np.nan, 1.0, 0.5, 1.0, 0.5])
 
 
 def test_empty_batches_are_valid():
-    assert pfr3.crossings(MECH, LAMBDAS, np.empty((0, 6)))[0].shape == (0, 3)
+    assert analysis.crossings(MECH, LAMBDAS, np.empty((0, 6)))[0].shape == (0, 3)
     assert model.forward_system(MECH, LAMBDAS)(np.empty((0, 6)))[0].shape == (0, 6)
 
 
@@ -426,13 +428,13 @@ def test_a_mechanism_of_the_wrong_kind_is_named():
 def test_stability_checks_its_resolutions_and_its_equilibrium(table8):
     z = table8.x[0]
     with pytest.raises(ValueError, match="pair of integers"):
-        pfr3.stability(MECH, LAMBDAS, z, segments=1)
+        analysis.stability(MECH, LAMBDAS, z, segments=1)
     with pytest.raises(ValueError, match="bound on the work"):
-        pfr3.stability(MECH, LAMBDAS, z, segments=(200, 10**6))
+        analysis.stability(MECH, LAMBDAS, z, segments=(200, 10**6))
     with pytest.raises(ValueError, match="pair of integers"):
-        pfr3.stability(MECH, LAMBDAS, z, segments=(200,))
+        analysis.stability(MECH, LAMBDAS, z, segments=(200,))
     with pytest.raises(ValueError, match="no equilibrium"):
-        pfr3.stability(MECH, LAMBDAS, [1.0, 0.5, 2.0, 0.5, 3.0, 0.5])
+        analysis.stability(MECH, LAMBDAS, [1.0, 0.5, 2.0, 0.5, 3.0, 0.5])
 
 
 @pytest.mark.parametrize("m", [-1, 2.5, 10**9])
@@ -463,4 +465,4 @@ def test_sizes_are_bounded(table8):
         pfr3.inverse_map(MECH, np.zeros(2000), np.zeros(2000), 0.0, table8.pose[0], LAMBDAS,
                          table8.x[0])
     with pytest.raises(ValueError, match="bound on the work"):
-        pfr3.shapes(MECH, LAMBDAS, table8.x[0], nodes=10**7)
+        drawing.shapes(MECH, LAMBDAS, table8.x[0], nodes=10**7)

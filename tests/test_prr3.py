@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import hacksaw, prr3
-from mechnum.mechanisms.prr3 import Geometry
+from mechnum.mechanisms.prr3 import Geometry, _geometry
 from mechnum.mechanisms.prr3 import _annex_i as annex_i
 from mechnum.mechanisms.prr3 import _direct as DIRECT
 from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, annex_i_terms, reproduce
@@ -105,7 +105,7 @@ def test_bad_geometry_is_refused_by_name(kwargs, error, name):
 @MANY
 @given(g=geometries, poses=st.lists(st.tuples(*[st.floats(-1e3, 1e3)] * 3), max_size=4))
 def test_vertices_form_the_platform_triangle(g, poses):
-    v = prr3.vertices(g, np.reshape(poses, (-1, 3)))
+    v = _geometry.vertices(g, np.reshape(poses, (-1, 3)))
     assert v.shape == (len(poses), 3, 2)
     sides = np.linalg.norm(v - np.roll(v, 1, axis=1), axis=-1)
     assert_allclose(sides, g.a, rtol=1e-9, atol=1e-12 * (1 + np.abs(v).max(initial=0)))
@@ -118,7 +118,7 @@ def test_vertices_form_the_platform_triangle(g, poses):
 @MANY
 @given(g=geometries, lam=st.tuples(*[st.floats(-1e6, 1e6)] * 3))
 def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
-    c = prr3.sliders(g, lam)
+    c = _geometry.sliders(g, lam)
     assert c[0, 1] == c[1, 1] == 0 and c[2, 0] == g.B3
     assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, rtol=0,
                     atol=1e-9 * (1 + abs(g.B2)
@@ -131,9 +131,9 @@ def test_every_inverse_solution_closes_the_loops_and_the_radicands_say_so(case):
     g, pose = case
     lam = prr3.inverse(g, pose)
     assert lam.shape == (8, 3)  # no leg tangent: radicands >= 1e-3 L^2
-    assert_allclose(prr3.loop_residuals(g, pose, lam), 0, atol=1e-12 * g.L ** 2)
-    bars = prr3.bars(g, pose, lam)
-    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, prr3.loop_residuals(g, pose, lam),
+    assert_allclose(_geometry.loop_residuals(g, pose, lam), 0, atol=1e-12 * g.L ** 2)
+    bars = _geometry.bars(g, pose, lam)
+    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, _geometry.loop_residuals(g, pose, lam),
                     rtol=0, atol=1e-13)
     rad = prr3.radicands(g, pose)  # the bar's component across its guide is sqrt(L^2 - rad)
     across = np.abs([bars[0, 0, 1], bars[0, 1, 1], bars[0, 2, 0]])
@@ -150,7 +150,7 @@ def test_branch_inputs_close_the_loops_where_the_legs_reach(case, signs):
     reach = prr3.radicands(g, poses) >= 0
     assert np.array_equal(np.isfinite(lam), reach)
     if reach[0].all():
-        assert_allclose(prr3.loop_residuals(g, pose, lam[0]), 0, atol=1e-12)
+        assert_allclose(_geometry.loop_residuals(g, pose, lam[0]), 0, atol=1e-12)
         assert any(np.allclose(lam[0], row, atol=1e-12) for row in prr3.inverse(g, pose))
 
 
@@ -170,11 +170,11 @@ def test_jacobians_match_finite_differences(case, k):
     g, pose = case
     lam = prr3.branch_inputs(g, pose, SIGNS[k])
     assume(np.all(np.isfinite(lam)))
-    J = prr3.direct_jacobian(g, pose, lam)
-    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(g, p, lam), pose), rtol=0,
+    J = _geometry.direct_jacobian(g, pose, lam)
+    assert_allclose(J, fd_jacobian(lambda p: _geometry.loop_residuals(g, p, lam), pose), rtol=0,
                     atol=1e-6)
-    Ji = prr3.inverse_jacobian(g, pose, lam)
-    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(g, pose, q), lam), rtol=0,
+    Ji = _geometry.inverse_jacobian(g, pose, lam)
+    assert_allclose(Ji, fd_jacobian(lambda q: _geometry.loop_residuals(g, pose, q), lam), rtol=0,
                     atol=1e-6)
     assert np.count_nonzero(Ji - np.diag(np.diag(Ji))) == 0
 
@@ -192,7 +192,7 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
                     prr3.jacobian_dets(g, pose, lam), rtol=0, atol=1e-9)
     inverse_det, direct_det = prr3.jacobian_dets(g, pose, lam)
     assert_allclose(inverse_det * (2 * g.L) ** 3,
-                    np.linalg.det(prr3.inverse_jacobian(g, pose, lam)),
+                    np.linalg.det(_geometry.inverse_jacobian(g, pose, lam)),
                     rtol=1e-9, atol=1e-12)
 
 
@@ -200,7 +200,7 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
 @given(x=st.floats(-1e300, 1e300), y=st.floats(-1e300, 1e300), psi=st.floats(-1e6, 1e6))
 def test_workspace_agrees_with_inverse_even_far_away(x, y, psi):
     g = TABLE_5
-    reach = prr3.workspace(g, x, y, psi)
+    reach = prr3.workspace(g, np.stack(np.broadcast_arrays(x, y, psi), axis=-1))
     assert reach.shape == () and reach == (len(prr3.inverse(g, [x, y, psi])) > 0)
 
 
@@ -208,11 +208,11 @@ def test_workspace_is_vectorised_and_takes_empty_grids():
     g = TABLE_5
     x, y, psi = np.meshgrid(np.linspace(-1, 4, 11), np.linspace(-1, 2, 7), [0.0, 1.0],
                             indexing="ij")
-    reach = prr3.workspace(g, x, y, psi)
+    reach = prr3.workspace(g, np.stack(np.broadcast_arrays(x, y, psi), axis=-1))
     assert reach.shape == (11, 7, 2) and reach.any() and not reach.all()
     expected = [len(prr3.inverse(g, p)) > 0 for p in np.stack([x, y, psi], -1).reshape(-1, 3)]
     assert np.array_equal(reach.ravel(), expected)
-    assert prr3.workspace(g, [], [], []).shape == (0,)
+    assert prr3.workspace(g, np.empty((0, 3))).shape == (0,)
 
 
 # --- the polynomial -----------------------------------------------------------------------
@@ -333,7 +333,7 @@ def test_direct_returns_the_pose_of_every_inverse_solution(case):
     assert np.all(sol.residuals <= 1e-6)
     # the loops close to 1e-6 L^2 (in m^2): near a direct singularity, where the polish stops,
     # that is all (L = 2, pose (1.750846179, 0, 2^-9): 2.9e-6 m^2 = 7e-7 L^2)
-    assert_allclose(prr3.loop_residuals(g, sol.x, lam[sol.input_index]), 0,
+    assert_allclose(_geometry.loop_residuals(g, sol.x, lam[sol.input_index]), 0,
                     atol=1e-6 * g.L ** 2)
     assert np.all((sol.x[:, 2] >= 0) & (sol.x[:, 2] < 2 * np.pi))
     for k in range(8):  # the pose itself, unless it is near a direct singularity, where two
@@ -378,7 +378,7 @@ def test_far_apart_sliders_have_no_pose_even_at_1e300():
     g = EXAMPLES["Table 6"][0]
     sol = prr3.forward(g, [[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]])
     assert sol.counts.tolist() == [0, 0, 2]
-    c = prr3.sliders(g, [1e100, 0.0, 0.0])  # no pose: sliders 1 and 2 are 1e100 apart
+    c = _geometry.sliders(g, [1e100, 0.0, 0.0])  # no pose: sliders 1 and 2 are 1e100 apart
     assert np.linalg.norm(c[0] - c[1]) > 2 * g.L + g.a
 
 
@@ -425,7 +425,7 @@ def test_a_self_motion_is_reported_as_a_continuum():
     scale = np.abs(prr3.polynomial(g, [2.0, 0.5, 0.2])).max()
     assert np.abs(prr3.polynomial(g, lam)).max() < 1e-12 * scale  # zero but for round-off
     for psi in (0.3, 2.0, 4.0):
-        assert_allclose(prr3.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
+        assert_allclose(_geometry.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
     sol = prr3.forward(g, [lam, [2.0, 0.5, 0.2]])
     assert sol.status.tolist() == ["singular", "converged"] and sol.counts.tolist() == [0, 2]
 
@@ -464,15 +464,15 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     lambda g: prr3.inverse(g, [0.6, 0.4, 0.0], tol=np.nan),
     lambda g: prr3.branch_inputs(g, [0.6, 0.4, 0.0], (1, 0, 1)),
     lambda g: prr3.branch_inputs(g, [0.6, 0.4]),
-    lambda g: prr3.workspace(g, [0.0, 1.0], [0.0, 1.0, 2.0], 0.0),
-    lambda g: prr3.workspace(g, 0.0, np.nan, 0.0),
-    lambda g: prr3.workspace(g, 0.0, 0.0, 0.0, tol=0.0),
-    lambda g: prr3.vertices(g, [1.0, 2.0]),
-    lambda g: prr3.sliders(g, [1.0, 2.0j, 3.0]),
+    lambda g: prr3.workspace(g, [[0.0, 1.0], [0.0, 1.0]]),
+    lambda g: prr3.workspace(g, [0.0, np.nan, 0.0]),
+    lambda g: prr3.workspace(g, [0.0, 0.0, 0.0], tol=0.0),
+    lambda g: _geometry.vertices(g, [1.0, 2.0]),
+    lambda g: _geometry.sliders(g, [1.0, 2.0j, 3.0]),
     lambda g: prr3.radicands(g, "pose"),
-    lambda g: prr3.loop_residuals(g, [0.0, 0.0, 0.0], [[1.0, 2.0]]),
-    lambda g: prr3.direct_jacobian(g, [0.0, 0.0, np.nan], [0.0, 0.0, 0.0]),
-    lambda g: prr3.inverse_jacobian(g, [0.0, 0.0, 0.0], [0.0, 0.0]),
+    lambda g: _geometry.loop_residuals(g, [0.0, 0.0, 0.0], [[1.0, 2.0]]),
+    lambda g: _geometry.direct_jacobian(g, [0.0, 0.0, np.nan], [0.0, 0.0, 0.0]),
+    lambda g: _geometry.inverse_jacobian(g, [0.0, 0.0, 0.0], [0.0, 0.0]),
     lambda g: prr3.jacobian_dets(g, [0.0, 0.0, 0.0], [np.inf, 0.0, 0.0]),
     lambda g: prr3.polynomial(g, [1.0, 2.0]),
     lambda g: prr3.polynomial(g, [1e300, 0.0, 0.0]),
@@ -492,22 +492,22 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     lambda g: prr3.draw(FIG[1], g, [0.6, 0.4, 0.0]),
     lambda g: prr3.draw(FIG[1], g, ([1.5, 0.5, 0.2], [0.6, 0.4, 0.0]), guides=1),
     # R4: poses and inputs that do not broadcast; D13: NaN where a solution must be
-    lambda g: prr3.loop_residuals(g, np.zeros((2, 3)), np.zeros((3, 3))),
-    lambda g: prr3.bars(g, np.zeros((2, 3)), np.zeros((4, 3))),
+    lambda g: _geometry.loop_residuals(g, np.zeros((2, 3)), np.zeros((3, 3))),
+    lambda g: _geometry.bars(g, np.zeros((2, 3)), np.zeros((4, 3))),
     lambda g: prr3.jacobian_dets(g, np.zeros((2, 3)), np.zeros((3, 3))),
     lambda g: prr3.solutions_from_equations(g, [[np.nan, 0.0, 1.0, 0.0]]),
     lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0, 1.0]]),  # cos^2 + sin^2 = 2
     lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0]]),
     # R6: no geometry, or another mechanism's
     lambda g: prr3.forward(None, [0.4, 0.1, 0.6]),
-    lambda g: prr3.vertices(None, [0.6, 0.4, 0.0]),
+    lambda g: _geometry.vertices(None, [0.6, 0.4, 0.0]),
     lambda g: prr3.radicands(hacksaw.Geometry(), [0.6, 0.4, 0.0]),
     lambda g: prr3.inverse(None, [0.6, 0.4, 0.0]),
-    lambda g: prr3.singular_points(None, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5]),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], kind="both"),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3], (1, -1, -1)),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, 2, -1)),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], samples=10 ** 7),
+    lambda g: prr3.singular_points(None, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]]),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], kind="both"),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3]], signs=(1, -1, -1)),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], signs=(1, 2, -1)),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], samples=10 ** 7),
     lambda g: prr3.mode_change_path(g, [2.2, 0.5, 3.0], [2.3, 0.5, 3.2], (1, 1, 1),
                                     bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(2000, 2000, 2)),
 ])
@@ -525,8 +525,8 @@ def test_an_empty_batch_is_valid_everywhere():
     assert sol.x.shape == (0, 3) and sol.counts.shape == (0,)
     assert prr3.branch_inputs(g, empty).shape == (0, 3)
     assert prr3.radicands(g, empty).shape == (0, 3)
-    assert prr3.loop_residuals(g, empty, empty).shape == (0, 3)
-    assert prr3.direct_jacobian(g, empty, empty).shape == (0, 3, 3)
+    assert _geometry.loop_residuals(g, empty, empty).shape == (0, 3)
+    assert _geometry.direct_jacobian(g, empty, empty).shape == (0, 3, 3)
     assert prr3.jacobian_dets(g, empty, empty)[1].shape == (0,)
     assert prr3.polynomial(g, empty).shape == (0, 9)
     assert prr3.forward_by_newton(g, [0.4, 0.1, 0.6], empty).shape == (0, 3)
@@ -544,16 +544,16 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
                                                                guides=False)) + 3
     artists = prr3.draw(ax, g, (lam, pose), guides=False)
     legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]  # C_i, P_i and a break
-    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, lam), rtol=1e-15, atol=1e-15)
-    np.testing.assert_allclose(legs[:, 1], prr3.vertices(g, pose), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 0], _geometry.sliders(g, lam), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 1], _geometry.vertices(g, pose), rtol=1e-15, atol=1e-15)
     assert_allclose(np.linalg.norm(legs[:, 1] - legs[:, 0], axis=1), g.L, rtol=1e-12)
-    assert_allclose(artists["platform"].get_xy()[:3], prr3.vertices(g, pose), rtol=1e-15)
+    assert_allclose(artists["platform"].get_xy()[:3], _geometry.vertices(g, pose), rtol=1e-15)
     other = prr3.inverse(g, pose)[5]  # another working mode: the drawing moves, nothing added
     count = len(ax.lines) + len(ax.patches)
     assert prr3.draw(ax, g, (other, pose), artists=artists, guides=False) is artists
     assert len(ax.lines) + len(ax.patches) == count
     legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]
-    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, other), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 0], _geometry.sliders(g, other), rtol=1e-15, atol=1e-15)
     plt.close(fig)
 
 
@@ -673,7 +673,8 @@ def test_direct_emits_no_overflow_far_away():
 
 def test_singular_points_find_the_direct_singularity_that_brentq_finds():
     pose, lam = singular_pose()  # brentq on the determinant, in this file
-    found = prr3.singular_points(TABLE_5, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, -1, -1))
+    found = prr3.singular_points(TABLE_5, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]],
+                                 signs=(1, -1, -1))
     assert found.shape == (1, 3)
     assert_allclose(found[0], pose, rtol=1e-14)
     assert abs(prr3.jacobian_dets(TABLE_5, found[0], lam)[1]) < 1e-12
@@ -684,7 +685,7 @@ def test_singular_points_find_the_direct_singularity_that_brentq_finds():
 def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, seed):
     g, pose = case
     end = pose + np.random.default_rng(seed).normal(0, 0.3, 3)
-    found = prr3.singular_points(g, pose, end, signs, samples=50)
+    found = prr3.singular_points(g, [pose, end], signs=signs, samples=50)
     s = np.linspace(0, 1, 2001)  # an independent count on a finer grid of the segment
     line = pose + np.outer(s, end - pose)
     lam = prr3.branch_inputs(g, line, signs)
@@ -699,7 +700,7 @@ def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, se
 
 def test_inverse_singular_points_are_where_a_leg_turns_tangent():
     ws = WORKSPACE_GEOMETRY
-    found = prr3.singular_points(ws, [0.5, 0.0, 0.3], [0.5, 1.5, 0.3], kind="inverse")
+    found = prr3.singular_points(ws, [[0.5, 0.0, 0.3], [0.5, 1.5, 0.3]], kind="inverse")
     assert len(found) >= 1
     for p in found:  # some radicand vanishes there
         assert np.abs(prr3.radicands(ws, p)).min() < 1e-12

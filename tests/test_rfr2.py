@@ -4,10 +4,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from published import check_row, read_registry
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import rfr2
-from mechnum.published import check_row, read_registry
+from mechnum.mechanisms.rfr2 import _analysis as analysis
+from mechnum.mechanisms.rfr2 import _elliptic as elliptic
+from mechnum.mechanisms.rfr2 import _shooting as shooting
 from mechnum.results import STATUSES
 
 MECH, THETA = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
@@ -72,7 +75,7 @@ def test_the_study_n41_shooting_misses_by_rk4_error(table7):
 
 
 def test_shooting_jacobian_matches_finite_differences(table7):
-    fun, _ = rfr2.shooting_system(MECH, 41, "inputs")
+    fun, _ = shooting.shooting_system(MECH, 41, "inputs")
     X = rfr2.shooting_guess(MECH, THETA, table7.x[:1], unknown="inputs")
     known = table7.pose[:1]
     h = 1e-7
@@ -254,7 +257,7 @@ def test_inverse_finds_every_equilibrium_at_an_end_effector(table7):
     assert np.abs(tips - table7.pose[2]).max() < 1e-12
     assert eq.pose.shape == (2,) and eq.inputs.shape == (len(eq.x), 2)
     assert eq.search.complete and len(eq.x) >= 2
-    system = rfr2.inverse_system(MECH, table7.pose[2])
+    system = elliptic.inverse_system(MECH, table7.pose[2])
     h, z = 1e-6, eq.x + 0.01
     fd = np.stack([(system(z + h * e)[0] - system(z - h * e)[0]) / (2 * h) for e in np.eye(4)],
                   axis=-1)
@@ -263,7 +266,7 @@ def test_inverse_finds_every_equilibrium_at_an_end_effector(table7):
 
 def test_strain_is_the_largest_bending_strain(table7):
     from mechnum.rods import _regular as regular
-    strain = rfr2.strain(MECH, THETA, table7.x)
+    strain = analysis.strain(MECH, THETA, table7.x)
     np.testing.assert_array_equal(strain, table7.strain)
     # sampled along the rods (20001 nodes): the closed form is the supremum of the samples
     for z, e in zip(table7.x, strain):
@@ -352,7 +355,7 @@ def test_an_empty_grid_is_a_valid_map(table7):
 @pytest.mark.parametrize("call", [
     lambda z: rfr2.residual(MECH, np.zeros((3, 2)), np.stack([z, z])),
     lambda z: rfr2.shapes(MECH, np.zeros((3, 2)), np.stack([z, z])),
-    lambda z: rfr2.crossings(MECH, np.zeros((3, 2)), np.stack([z, z])),
+    lambda z: analysis.crossings(MECH, np.zeros((3, 2)), np.stack([z, z])),
     lambda z: rfr2.jacobians(MECH, np.zeros((3, 2)), np.stack([z, z])),
 ])
 def test_shapes_that_do_not_broadcast_are_named(table7, call):
@@ -391,16 +394,16 @@ def test_verify_refuses_tolerances_it_cannot_meet(table7, rtol):
 def test_stability_checks_its_resolutions_and_its_equilibrium(table7):
     z = table7.x[0]
     with pytest.raises(ValueError, match="bound on the work"):
-        rfr2.stability(MECH, THETA, z, segments=(200, 10**6))
+        analysis.stability(MECH, THETA, z, segments=(200, 10**6))
     with pytest.raises(ValueError, match="pair of integers"):
-        rfr2.stability(MECH, THETA, z, segments=200)
+        analysis.stability(MECH, THETA, z, segments=200)
     with pytest.raises(ValueError, match="pair of integers"):
-        rfr2.stability(MECH, THETA, z, segments=(200,))
-    assert rfr2.index(MECH, THETA, z, segments=100) == 0
+        analysis.stability(MECH, THETA, z, segments=(200,))
+    assert analysis.index(MECH, THETA, z, segments=100) == 0
     with pytest.raises(ValueError, match="no equilibrium"):
-        rfr2.stability(MECH, THETA, [1.0, 0.5, 2.0, 0.5])
+        analysis.stability(MECH, THETA, [1.0, 0.5, 2.0, 0.5])
     with pytest.raises(ValueError, match="bound on the work"):
-        rfr2.eigenvalues(MECH, THETA, z, segments=10**5)
+        analysis.eigenvalues(MECH, THETA, z, segments=10**5)
 
 
 @pytest.mark.parametrize("flag", ["yes", 1, None])

@@ -37,12 +37,18 @@ mechnum.certify.certificate.CertificateError: a malformed certificate: missing k
 ['boxes', 'complete', 'inputs', 'leaves', 'roots', 'scope', 'search', 'work']
 """
 
+from __future__ import annotations
+
 import json
 from dataclasses import dataclass, field
+from os import PathLike
 
 import numpy as np
 
 from mechnum.errors import MechnumError
+
+__all__ = ["EXCLUSIONS", "FORMAT", "KEYS", "SCOPES", "TESTS", "Certificate", "CertificateError",
+           "Leaf"]
 
 EXCLUSIONS = ("residual", "exclude", "mean-value", "krawczyk-exclusion")
 TESTS = EXCLUSIONS + ("krawczyk", "undecided")
@@ -278,7 +284,7 @@ class Certificate:
                    count=data["count"], scope=data["scope"], complete=data.get("complete"),
                    search=data["search"], inputs=data["inputs"], work=data["work"])
 
-    def save(self, path) -> None:
+    def save(self, path: str | PathLike) -> None:
         """Write :meth:`to_json` to ``path``."""
         with open(path, "w", encoding="utf-8") as out:
             out.write(self.to_json())

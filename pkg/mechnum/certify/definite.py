@@ -8,11 +8,17 @@ with ``x^T A x < 0`` for every member proves a negative eigenvalue for every mem
 the eigenvector of the midpoint's smallest eigenvalue, and ``x^T A x`` is enclosed in balls.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import arb
 
 from mechnum._validate import shown
 from mechnum.certify.balls import meet
+
+__all__ = ["definite"]
 
 
 def _entries(matrix):
@@ -34,7 +40,7 @@ def _rows(matrix):
     return matrix
 
 
-def definite(hessian_ball):
+def definite(hessian_ball: Sequence) -> str:
     """Whether a symmetric interval matrix is positive definite: True, False or None.
 
     Parameters

@@ -61,12 +61,16 @@ mechnum.certify.guard.BallArithmeticError: x > y is not certain for x = [3e+0 +/
 y = 3.1: a residual cannot branch on it
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
+
 from flint import arb
 
 from mechnum._validate import shown
 from mechnum.errors import MechnumError
 
-__all__ = ["Ball", "BallArithmeticError", "ResidualError", "decision", "interval", "matrix",
+__all__ = ["BallArithmeticError", "ResidualError", "decision", "interval", "matrix",
            "values"]
 
 
@@ -255,7 +259,7 @@ def _sequence(out, n, name, what):
     return list(out)
 
 
-def values(residual, X: list, n: int, *, point: bool = False) -> list:
+def values(residual: Callable, X: list, n: int, *, point: bool = False) -> list:
     """``residual(X)`` checked: ``n`` balls (plain ``arb``), finite if ``point``.
 
     Examples
@@ -282,7 +286,7 @@ def values(residual, X: list, n: int, *, point: bool = False) -> list:
     return out
 
 
-def matrix(jacobian, X: list, n: int) -> list:
+def matrix(jacobian: Callable, X: list, n: int) -> list:
     """``jacobian(X)`` checked: ``n`` rows of ``n`` balls (plain ``arb``).
 
     Examples
@@ -296,7 +300,7 @@ def matrix(jacobian, X: list, n: int) -> list:
             for i, row in enumerate(rows)]
 
 
-def decision(exclude, X: list) -> bool:
+def decision(exclude: Callable, X: list) -> bool:
     """``exclude(X)`` checked: a plain ``bool`` (numpy's ``bool_`` too).
 
     Examples

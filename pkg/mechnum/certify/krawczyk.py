@@ -31,11 +31,20 @@ Krawczyk's inclusion is tested against the faces of ``X`` itself, so ``K(S)`` in
 of ``X`` (inside ``S``) proves exactly one root in ``S``, and it lies in ``X``.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
 import numpy as np
 from flint import arb, arb_mat
 
 from mechnum.certify import guard
 from mechnum.certify.balls import ball, bounds, guarded
+
+__all__ = ["CONTRACTING", "INFLATION", "MAX_CONDITION", "disjoint", "excluded_by", "inflate",
+           "inside", "krawczyk", "krawczyk_test", "linearised", "mean_value_excludes", "midpoint",
+           "preconditioner", "residual_excludes", "residual_of", "test_box", "to_balls",
+           "to_floats"]
 
 # A preconditioner Y is the inverse of the midpoint of J(X); beyond this condition number it
 # would only widen K(X), and the box is bisected instead.
@@ -53,7 +62,7 @@ def _zero_excluded(values):
     return any(v.is_finite() and not v.contains(0) for v in values)
 
 
-def residual_excludes(values):
+def residual_excludes(values: Sequence) -> bool:
     """The natural test: some component of ``f(X)`` excludes 0."""
     return _zero_excluded(values)
 
@@ -72,7 +81,7 @@ def _vector(values):
     return arb_mat(len(values), 1, list(values))
 
 
-def preconditioner(J):
+def preconditioner(J: Sequence) -> np.ndarray:
     """The inverse of the midpoint of ``J`` (floats), or None where it is singular, not finite
     or too ill-conditioned."""
     mid = np.array([[float(v.mid()) if v.is_finite() else np.nan for v in row] for row in J])
@@ -86,7 +95,7 @@ def preconditioner(J):
         return None
 
 
-def mean_value_excludes(fy, J, X, yb):
+def mean_value_excludes(fy: Sequence, J: Sequence, X: Sequence, yb: Sequence) -> bool:
     """The mean-value test: some component of ``f(y) + J(X) (X - y)`` excludes 0 (``X``,
     ``yb``: balls)."""
     if not all(v.is_finite() for row in J for v in row):
@@ -96,7 +105,7 @@ def mean_value_excludes(fy, J, X, yb):
     return _zero_excluded([values[i, 0] for i in range(len(X))])
 
 
-def krawczyk(fy, J, X, yb, Y):
+def krawczyk(fy: Sequence, J: Sequence, X: Sequence, yb: Sequence, Y: np.ndarray) -> list:
     """Krawczyk's operator ``K(X)`` (list of balls) and the norm bound of ``I - Y J(X)``.
 
     Parameters
@@ -125,38 +134,38 @@ def inside(K: list, X: np.ndarray) -> bool:
                and bool(k.upper() < arb(float(hi))) for k, (lo, hi) in zip(K, X))
 
 
-def disjoint(K, X):
+def disjoint(K: Sequence, X: np.ndarray) -> bool:
     """Whether some component of ``K`` misses that of the balls ``X``."""
     return any(k.is_finite() and not k.overlaps(x) for k, x in zip(K, X))
 
 
-def inflate(box, fraction=INFLATION):
+def inflate(box: np.ndarray, fraction: float = INFLATION) -> np.ndarray:
     """The float box widened by ``fraction`` of its width on each side."""
     w = box[:, 1] - box[:, 0]
     return np.column_stack((box[:, 0] - fraction * w, box[:, 1] + fraction * w))
 
 
-def to_balls(box):
+def to_balls(box: np.ndarray) -> list:
     """The plain balls of a float box."""
     return [ball(lo, hi) for lo, hi in box]
 
 
-def to_floats(values):
+def to_floats(values: Sequence) -> np.ndarray:
     return np.array([bounds(v) for v in values])
 
 
-def residual_of(residual, X: np.ndarray, counter: dict) -> list:
+def residual_of(residual: Callable, X: np.ndarray, counter: dict) -> list:
     """The residual's enclosure over the float box ``X`` (checked, counted)."""
     counter["nfev"] += 1
     return guard.values(residual, guarded(X), len(X))
 
 
-def excluded_by(exclude, X: np.ndarray) -> bool:
+def excluded_by(exclude: Callable | None, X: np.ndarray) -> bool:
     """The caller's own exclusion test on the float box ``X`` (checked)."""
     return guard.decision(exclude, guarded(X))
 
 
-def linearised(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
+def linearised(residual: Callable, jacobian: Callable, X: np.ndarray, counter: dict) -> tuple:
     """``(J, yb, fy)``: the Jacobian's enclosure over the float box ``X``, its midpoint (exact
     balls) and the residual's enclosure there, the two evaluations counted in ``counter``."""
     n = len(X)
@@ -168,7 +177,8 @@ def linearised(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
     return J, yb, fy
 
 
-def test_box(residual, jacobian, X: np.ndarray, counter: dict, exclude=None) -> tuple:
+def test_box(residual: Callable, jacobian: Callable, X: np.ndarray, counter: dict,
+             exclude: Callable | None = None) -> tuple:
     """Run the tests on the float box ``X``.
 
     Returns ``(test, J, K, value)``: ``test`` is ``"residual"``, ``"exclude"`` (the caller's
@@ -198,7 +208,8 @@ def test_box(residual, jacobian, X: np.ndarray, counter: dict, exclude=None) -> 
     return ("contracting" if norm < CONTRACTING else None), J, K, value
 
 
-def krawczyk_test(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
+def krawczyk_test(residual: Callable, jacobian: Callable, X: np.ndarray,
+                  counter: dict) -> tuple:
     """One Krawczyk test of the float box ``X``: ``(passed, K)``, ``passed`` True when ``K(X)``
     lies in the interior of ``X`` (exactly one root, in ``K``)."""
     J, yb, fy = linearised(residual, jacobian, X, counter)

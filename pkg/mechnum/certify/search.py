@@ -16,11 +16,15 @@ so a root proven in a box lies in the interior of its searched box, and searched
 interiors are disjoint cannot count one root twice.
 """
 
+from __future__ import annotations
+
 import operator
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.certify import guard
@@ -29,6 +33,9 @@ from mechnum.certify.balls import as_array, guarded
 from mechnum.certify.certificate import EXCLUSIONS, SCOPES, Certificate, Leaf
 from mechnum.certify.verify import distinct_roots, overlapping, sorted_roots
 from mechnum.results import Result
+
+__all__ = ["MAX_BOXES", "MAX_BOXES_LIMIT", "MIN_WIDTH", "MIN_WIDTH_RANGE", "NARROW",
+           "REFINEMENTS", "SEARCH", "Roots", "roots"]
 
 SEARCH = "mechnum.certify.roots"
 """The name a certificate of :func:`roots` carries in its field ``search``."""
@@ -197,8 +204,9 @@ def _boxes(box):
     return boxes
 
 
-def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, exclude=None,
-          split=None, scope="all") -> Roots:
+def roots(residual: Callable, jacobian: Callable, box: ArrayLike, *, max_boxes: int = MAX_BOXES,
+          min_width: float = MIN_WIDTH, exclude: Callable | None = None,
+          split: Callable | None = None, scope: str = "all") -> Roots:
     """Every root of ``residual`` in a box, proven by interval arithmetic (branch and prune).
 
     Parameters

@@ -19,16 +19,23 @@ mechanisms the whole chart, both branches of every rod), and derives everything 
    names both values.
 """
 
+from __future__ import annotations
+
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum._validate import shown
 from mechnum.certify import krawczyk as kr
 from mechnum.certify.balls import as_array
 from mechnum.certify.certificate import SCOPES, Certificate, CertificateError
+from mechnum.results import Result
+
+__all__ = ["Verified", "covers", "distinct_roots", "overlapping", "sorted_roots", "verify"]
 
 
 def _within(inner, outer):
@@ -68,7 +75,7 @@ def sorted_roots(found: list) -> list:
     return [found[i] for i in order]
 
 
-def distinct_roots(leaves) -> tuple:
+def distinct_roots(leaves: Sequence) -> tuple:
     """The distinct roots proven by the Krawczyk leaves of one searched box, and the leaves
     whose root cannot be told apart from another's.
 
@@ -109,7 +116,7 @@ def distinct_roots(leaves) -> tuple:
     return sorted_roots([E for E, _ in found]), undecided
 
 
-def covers(leaves, box: np.ndarray) -> bool:
+def covers(leaves: Sequence, box: np.ndarray) -> bool:
     """Whether leaves in depth-first order merge, two halves at a time, into ``box``: two
     consecutive boxes merge when they differ in exactly one coordinate, where the first ends
     exactly where the second begins.
@@ -136,9 +143,14 @@ def covers(leaves, box: np.ndarray) -> bool:
     return len(stack) == 1 and np.array_equal(stack[0], box)
 
 
-@dataclass(frozen=True)
-class Verified:
+@dataclass(frozen=True, kw_only=True)
+class Verified(Result):
     """What :func:`verify` re-proved.
+
+    The fields of ``mechnum.results.Result`` (``x``: the midpoints of the root enclosures,
+    ``(count, n)``; ``status``: ``"converged"`` when the certificate proves what it says,
+    ``"undecided"`` where a leaf of a certificate of scope ``"all"`` is undecided;
+    ``iterations``: the leaves re-tested; ``nfev``, ``njev``), and:
 
     Attributes
     ----------
@@ -150,18 +162,14 @@ class Verified:
         For ``"all"``: no leaf is undecided, ``count`` is every root in the domain. None for
         ``"existence"``.
     roots : ndarray, shape (count, n, 2)
-    leaves : int
-    nfev, njev : int
+        The enclosures.
     seconds : float
     """
 
     count: int
     scope: str
-    complete: bool
+    complete: bool | None
     roots: np.ndarray
-    leaves: int
-    nfev: int
-    njev: int
     seconds: float
 
 
@@ -265,8 +273,9 @@ def _compare(certificate, found, complete):
                                    f"{stored.tolist()}")
 
 
-def verify(certificate, residual, jacobian, exclude=None, *, domain=None,
-           scope=None) -> Verified:
+def verify(certificate: Certificate, residual: Callable, jacobian: Callable,
+           exclude: Callable | None = None, *, domain: ArrayLike | None = None,
+           scope: str | None = None) -> Verified:
     """Re-check a certificate: its domain, cover, every leaf's test, the roots, count and scope.
 
     Parameters
@@ -348,6 +357,11 @@ def verify(certificate, residual, jacobian, exclude=None, *, domain=None,
     complete = decided if certificate.scope == "all" else None
     _compare(certificate, found, complete)
     n = certificate.boxes.shape[1]
-    return Verified(len(found), certificate.scope, complete,
-                    np.array(found).reshape(-1, n, 2), len(leaves), counter["nfev"],
-                    counter["njev"], time.perf_counter() - start)
+    roots = np.array(found).reshape(-1, n, 2)
+    status = "undecided" if complete is False else "converged"
+    return Verified(x=roots.mean(axis=-1), status=status,
+                    message=f"{len(found)} roots re-proven, scope {certificate.scope!r}"
+                    + ("" if complete is not False else "; a leaf is undecided"),
+                    iterations=len(leaves), nfev=counter["nfev"], njev=counter["njev"],
+                    count=len(found), scope=certificate.scope, complete=complete,
+                    roots=roots, seconds=time.perf_counter() - start)

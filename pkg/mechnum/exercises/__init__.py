@@ -63,7 +63,7 @@ def _exercise(number):
     return _BY_NUMBER[number]
 
 
-def check(number, answer):
+def check(number: str, answer: object) -> object:
     """Run the check of exercise ``number`` on the student's ``answer`` (a function).
 
     Parameters
@@ -96,7 +96,7 @@ def check(number, answer):
     return run_check(_exercise(number), answer)
 
 
-def reference(number):
+def reference(number: str) -> object:
     """The reference solution of exercise ``number``: the function the student writes.
 
     Examples
@@ -110,7 +110,7 @@ def reference(number):
     return _exercise(number).reference
 
 
-def starter(number):
+def starter(number: str) -> str:
     """The starter cell of exercise ``number``: signature, docstring, and ``...`` for the body.
 
     Examples
@@ -124,7 +124,7 @@ def starter(number):
     return _starter(_exercise(number).reference)
 
 
-def solution(number):
+def solution(number: str) -> str:
     """The solution cell of exercise ``number``: the reference's source, which redefines the
     starter's function.
 
@@ -137,7 +137,7 @@ def solution(number):
     return _source(_exercise(number).reference)
 
 
-def statement(number):
+def statement(number: str) -> str:
     """The statement of exercise ``number`` (Markdown, for the ``{exercise}`` directive).
 
     Examples
@@ -149,7 +149,7 @@ def statement(number):
     return _exercise(number).statement
 
 
-def check_code(number):
+def check_code(number: str) -> str:
     """The check cell of exercise ``number``.
 
     Examples
@@ -161,7 +161,7 @@ def check_code(number):
     return f'exercises.check("{number}", {_exercise(number).name})'
 
 
-def cells(number):
+def cells(number: str) -> list:
     """The cells of exercise ``number`` for a chapter's notebook, in order, as dictionaries in
     the notebook format (``nbformat.from_dict`` accepts them): the exercise, the starter, the
     gated solution, the check.

@@ -80,18 +80,21 @@ from mechnum.rods._regular import (
 from mechnum.rods._rod import Rod, ShotRods, equations, integrate, tip_jacobian
 from mechnum.rods._shooting import (
     SHOOTING_TOL,
-    Shooting,
     UnresolvedRodError,
     shoot_cantilever,
     shoot_pinned,
 )
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.rods._shooting import Shooting as Shooting
 from mechnum.rods._stability import constrained_eigenvalues, constrained_index, rod_block
 from mechnum.rods.certified import certify_pinned
 
 __all__ = ["SHOOTING_TOL", "T_MAX", "ClampedRods", "DeadLoad", "NoEquilibriumError",
-           "NotAnElasticaError", "Rod", "Shooting", "ShotRods", "UnresolvedRodError",
-           "cantilever", "certify_pinned", "chart_from_clamps", "clamped_pinned",
-           "clamped_pinned_regular", "classify", "constrained_eigenvalues", "constrained_index",
+           "NotAnElasticaError", "Rod", "ShotRods", "UnresolvedRodError", "cantilever",
+           "certify_pinned", "chart_from_clamps", "clamped_pinned", "clamped_pinned_regular",
+           "classify", "constrained_eigenvalues", "constrained_index",
            "constrained_index_with_body", "elliptic_k", "elliptic_parameters", "equations",
            "in_chart", "integrate", "k_rel_for_force", "k_rel_from_t", "mutual_crossings",
            "peak_moment", "pinned_equilibria", "rod_block", "self_crossings", "shape",

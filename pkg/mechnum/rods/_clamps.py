@@ -4,6 +4,7 @@ bending moment along them (:func:`peak_moment`), exactly."""
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.rods import _regular as regular
@@ -26,7 +27,8 @@ def _clamp_states(clamp_angle, clamp_moment, force):
             np.broadcast_to(n, shape + (2,)))
 
 
-def chart_from_clamps(EI, L, clamp_angle, clamp_moment, force):
+def chart_from_clamps(EI: float, L: float, clamp_angle: ArrayLike, clamp_moment: ArrayLike,
+                      force: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The chart and modes of rods known by their clamp states (shooting).
 
     Parameters
@@ -71,7 +73,8 @@ def chart_from_clamps(EI, L, clamp_angle, clamp_moment, force):
     return chart, np.where(np.isnan(modes), 0, modes).astype(int)
 
 
-def peak_moment(EI, clamp_moment, force, clamp_angle, modes) -> np.ndarray:
+def peak_moment(EI: float, clamp_moment: ArrayLike, force: ArrayLike, clamp_angle: ArrayLike,
+                modes: ArrayLike) -> np.ndarray:
     """The largest ``|m(s)|`` along clamped-pinned rods, from their clamp states, exactly.
 
     Along a rod under a tip force ``n`` the first integral of the elastica is ``m(s)**2 =

@@ -132,8 +132,8 @@ def chart_tip(a: np.ndarray, b: np.ndarray, v: np.ndarray, w: np.ndarray) -> tup
     >>> round(float(du / (b * b * v * v)), 12), round(float(u_v / (b * b * v)), 12)
     (1.333333333333, 2.666666666667)
     """
-    a, b, v, w = np.broadcast_arrays(*_validate.numbers(
-        dict(a=a, b=b, v=v, w=w), positive=("b", "w"), nonnegative=("v",), scalars=False))
+    # unchecked: a kernel of the closed form's inner loop (its callers checked the chart)
+    a, b, v, w = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (a, b, v, w)))
     aa, sa = np.abs(a), np.where(a < 0, -1.0, 1.0)
     m, p = a * a + b * b * v * v, b * b * w
     k, X = np.sqrt(m), w * a * a / m

@@ -15,13 +15,13 @@ from mechnum.rods._rod import Rod, rod_scales
 from mechnum.rods._shooting import MAX_ITER, Shooting, check_resolved, shooting_result
 
 
-def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, segments: int = 4,
+def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, seed: Rod, *, segments: int = 4,
                           theta0: float = 0.0, tol: float = 1e-10,
                           maxiter: int = 50) -> Shooting:
     """A pinned rod by multiple shooting (:func:`mechnum.ode.multiple_shooting`) from a shape.
 
     The state ``(x, y, theta, m, n_x, n_y)`` (the force as two states with ``n' = 0``) is
-    integrated by RK4 on ``guess``'s nodes, cut into ``segments``; the unknowns are the states
+    integrated by RK4 on ``seed``'s nodes, cut into ``segments``; the unknowns are the states
     at the segments' starts, the equations the clamp ``(0, 0, theta0)``, the pinned tip with
     ``m(L) = 0``, and continuity. The start is a whole shape, so the equilibrium found is the
     one that shape resembles, and each segment amplifies rounding by ``exp(lambda L /
@@ -38,9 +38,9 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, se
         Bending stiffness (N m^2) and length (m), positive.
     tip : array_like, shape (2,)
         The pinned point (m), within ``L`` of the clamp.
-    guess : Rod
-        A guess of the rod: its nodes (``N >= 2``, equally spaced from 0 to ``L``), shape,
-        moments and force (a zero force will do).
+    seed : Rod
+        A sketch of the rod (the seed): its nodes (``N >= 2``, equally spaced from 0 to ``L``),
+        shape, moments and force (a zero force will do).
     segments : int, optional
         Number of segments, ``1 <= segments <= N - 1`` (1 is plain shooting).
     theta0, tol, maxiter
@@ -51,7 +51,7 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, se
     -------
     mechnum.rods.shooting.Shooting
         ``newton`` is the :class:`~mechnum.newton.NewtonResult` of the segments' states,
-        ``x`` the solution's ``(m0, n_x, n_y)`` and ``start`` the guess's.
+        ``x`` the solution's ``(m0, n_x, n_y)`` and ``start`` the seed's.
 
     Raises
     ------
@@ -82,14 +82,14 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, se
         raise ValueError(f"the pinned point {tip!r} is farther than L = {L} from the clamp")
     theta0 = _validate.scalar(theta0, "theta0")
     maxiter = _validate.maxiter(maxiter, maximum=MAX_ITER)
-    if not isinstance(guess, Rod):
-        raise ValueError(f"guess must be a Rod (a sketch of the shape), got {type(guess)}")
-    s = _validate.array(guess.s, "guess.s", ndim=1)
-    states = [_validate.array(getattr(guess, name), f"guess.{name}", shape=s.shape)
+    if not isinstance(seed, Rod):
+        raise ValueError(f"seed must be a Rod (a sketch of the shape), got {type(seed)}")
+    s = _validate.array(seed.s, "seed.s", ndim=1)
+    states = [_validate.array(getattr(seed, name), f"seed.{name}", shape=s.shape)
               for name in ("x", "y", "theta", "m")]
-    force = _validate.array(guess.force, "guess.force", shape=(2,))
+    force = _validate.array(seed.force, "seed.force", shape=(2,))
     if s.size < 2 or not np.allclose(s, np.linspace(0.0, L, s.size), rtol=0, atol=1e-12 * L):
-        raise ValueError(f"guess.s must be {s.size} >= 2 equally spaced nodes from 0 to L = {L}")
+        raise ValueError(f"seed.s must be {s.size} >= 2 equally spaced nodes from 0 to L = {L}")
 
     def rhs(_, z):      # (x / L, y / L, theta, m, n_x, n_y), in sigma = s / L
         out = np.zeros_like(z)

@@ -310,7 +310,7 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     >>> bool(np.array_equal(fast.tip, checked.tip)), fast.jacobian.shape
     (True, (2, 5, 2))
     """
-    if _validate.flag(check, "check"):
+    if check:                 # the door's call; the kernel's (check=False) checks nothing
         EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
         jacobian = _validate.flag(jacobian, "jacobian")
     a, b, v, w, j, sgn, sign, v_t = _chart(psi, t, mode)
@@ -388,10 +388,10 @@ def place(rod: RegularRod, origin: ArrayLike,
         raise ValueError(f"rod must be a RegularRod, got {type(rod).__name__}")
     origin, angle = as_vectors(origin, "origin", 2), _validate.array(angle, "angle")
     batch_shape(rod=rod.tip.shape[:-1], origin=origin.shape[:-1], angle=angle.shape)
-    return placed(rod, origin, angle)
+    return place_at(rod, origin, angle)
 
 
-def placed(rod: RegularRod, origin: np.ndarray, angle: np.ndarray) -> tuple:
+def place_at(rod: RegularRod, origin: np.ndarray, angle: np.ndarray) -> tuple:
     """:func:`place` on checked input (the kernel of :class:`ClampedRods`)."""
     c, s = np.cos(angle), np.sin(angle)
     rot = np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)   # (..., 2, 2)
@@ -463,7 +463,7 @@ class ClampedRods:
         (..., r, 4), as :func:`place` gives them."""
         rod = closed_form(self.EI, self.L, chart[..., 0::2], chart[..., 1::2], self.modes,
                           jacobian=jacobian, check=False)
-        tip, force, d_chart, d_angle = placed(rod, origin, angle)
+        tip, force, d_chart, d_angle = place_at(rod, origin, angle)
         return tip, force, rod.clamp_moment, d_chart, d_angle
 
 

@@ -414,7 +414,7 @@ def _pinned(EI, L, points, x0, theta0, nodes, tol, maxiter, damping):
     return *_solve(fun, jac, x0, tol, floor, maxiter, "shoot_pinned", damping), tips
 
 
-def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = None, *,
+def shoot_pinned(EI: float, L: float, tip: ArrayLike, seed: ArrayLike | None = None, *,
                  theta0: float = 0.0, nodes: int = 41, tol: float = SHOOTING_TOL,
                  maxiter: int = 50, damping: bool = True) -> Shooting:
     """A rod clamped at the origin whose tip is pinned at a given point, by shooting.
@@ -435,7 +435,7 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = 
         Bending stiffness (N m^2) and length (m), positive.
     tip : array_like, shape (2,) or (batch, 2)
         The pinned point(s) (m); each within ``L`` of the clamp.
-    guess : array_like, shape (3,) or (batch, 3), optional
+    seed : array_like, shape (3,) or (batch, 3), optional
         Start ``(m0, n_x, n_y)`` (N m, N, N).
     theta0, nodes, tol, maxiter, damping
         As in :func:`shoot_cantilever` (``tol`` on the residual above; ``damping=False`` is
@@ -468,14 +468,14 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = 
     if np.any(np.hypot(tip[..., 0], tip[..., 1]) > L):
         raise ValueError(f"a pinned point {tip!r} is farther than L = {L} from the clamp")
     points = tip.reshape(-1, 2)
-    if guess is None:
+    if seed is None:
         start = pinned_start(EI, L, points, theta0)
     else:
-        guess = _batch(guess, "guess", 3)
-        if guess.ndim == 2 and len(guess) not in (1, len(points)):
-            raise ValueError(f"guess must be one start or one per point ({len(points)}), got "
-                             f"shape {guess.shape}: the shapes do not broadcast")
-        start = np.broadcast_to(guess.reshape(-1, 3), points.shape[:1] + (3,)).copy()
+        seed = _batch(seed, "seed", 3)
+        if seed.ndim == 2 and len(seed) not in (1, len(points)):
+            raise ValueError(f"seed must be one start or one per point ({len(points)}), got "
+                             f"shape {seed.shape}: the shapes do not broadcast")
+        start = np.broadcast_to(seed.reshape(-1, 3), points.shape[:1] + (3,)).copy()
     res, p, tol, tips = _pinned(EI, L, points, start, theta0, nodes, tol, maxiter, damping)
     rod = integrate(EI, L, p[:, 0], p[:, 1:], theta0=theta0, nodes=nodes)
     result = shooting_result("shoot_pinned", res, p, start, rod, tip.shape[:-1], tol, tips)

@@ -37,12 +37,17 @@ Examples
 [True, True]
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, replace
 
 from flint import acb, arb
+from numpy.typing import ArrayLike
 
 from mechnum.certify import balls as B
 from mechnum.rods import _regular as regular
+
+__all__ = ["TWO_PI", "RodBall", "clamped_pinned", "place"]
 
 TWO_PI = 2 * B.PI
 
@@ -149,7 +154,8 @@ def _chart(psi, t, sign):
     return psi, a, b, w, v_span[0].union(v_span[1]), dv_w, (tau, b_span, v_span)
 
 
-def clamped_pinned(EI, L, psi, t, mode, sign, *, jacobian=False):
+def clamped_pinned(EI: float, L: float, psi: object, t: object, mode: int, sign: int, *,
+                   jacobian: bool = False) -> object:
     """Tip, force and clamp moment of the rods of a chart box, enclosed, with their Jacobian.
 
     Parameters
@@ -277,7 +283,7 @@ def _side(EI, L, chart, cos, sin, j, sign, sa, jacobian):
     return RodBall(tip, force, moment, J, R)
 
 
-def place(rod, origin, angle):
+def place(rod: object, origin: ArrayLike, angle: object) -> tuple:
     """A local-frame :class:`RodBall` clamped at ``origin`` (2 floats) at ``angle`` (rad):
     the global tip, force and their Jacobian rows (4 rows of 2: tip_x, tip_y, force_x,
     force_y). The clamp moment does not change."""

@@ -17,16 +17,25 @@ farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is
 rod of the tail.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
 from mechnum.certify import guard
 from mechnum.certify.search import Roots
 from mechnum.rods import _regular as regular
 from mechnum.rods import balls
+
+__all__ = ["AROUND", "CHART_BOX", "MAX_BOXES", "MEMORY", "TAIL_LAMBDA", "TWO_PI", "Certified",
+           "around_boxes", "around_note", "branch_boxes", "branch_of", "certify_pinned",
+           "combine", "enclosed", "forces_exclude", "forces_split", "memoised", "pinned_system",
+           "placed", "stiffness", "tail_reach", "verdict"]
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -36,7 +45,7 @@ TAIL_LAMBDA = 0.5 * regular.Q_MAX * float(np.sqrt(-np.expm1(-regular.Q_MAX))) * 
 margin for rounding: ``v q / 2`` at ``q = Q_MAX`` (see the module)."""
 
 
-def tail_reach(mode, lam=TAIL_LAMBDA):
+def tail_reach(mode: int, lam: float = TAIL_LAMBDA) -> float:
     """``(2 pi mode + 2) / Lambda``: how far (over ``L``) the tip of a rod of that ``mode`` with
     ``lambda L >= Lambda`` may lie from ``L (cos psi, sin psi)``."""
     return (2.0 * np.pi * mode + 2.0) / lam
@@ -65,7 +74,7 @@ class Certified(Roots):
     stable: list
     parts: tuple
 
-    def certificate(self, inputs=None):
+    def certificate(self, inputs: dict | None = None) -> certify.Certificate:
         """The certificate of the one search (a certificate is made per search: for several,
         ``parts[i].certificate()``)."""
         if len(self.parts) != 1:
@@ -74,7 +83,8 @@ class Certified(Roots):
         return self.parts[0].certificate(inputs)
 
 
-def combine(parts, solutions, stable, extra=""):
+def combine(parts: Sequence, solutions: np.ndarray, stable: list,
+            extra: str = "") -> Certified:
     """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
     n = parts[0].roots.shape[1] if parts else 2
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
@@ -115,7 +125,7 @@ AROUND = 1e-6
 ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
-def around_boxes(points, n_rods: int) -> np.ndarray:
+def around_boxes(points: ArrayLike, n_rods: int) -> np.ndarray:
     """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
     the chart and to each point's branch (the side of ``t = 0`` it lies on).
 
@@ -141,7 +151,7 @@ def around_boxes(points, n_rods: int) -> np.ndarray:
     return np.stack((lo, hi), axis=-1)
 
 
-def around_note(around):
+def around_note(around: object) -> str:
     """The message of a search around given points (its count is a lower bound)."""
     return "" if around is None else (
         f"; searched around {len(around)} given points only: the count is a lower bound")
@@ -177,7 +187,7 @@ def branch_of(X: list, i: int) -> int:
     return 1 if t1 > 0.0 else -1
 
 
-def pinned_system(EI, L, target, mode):
+def pinned_system(EI: float, L: float, target: ArrayLike, mode: int) -> tuple:
     """``residual, jacobian`` of ``tip(psi, t) - target`` (over ``L``) for :mod:`mechnum.certify`.
 
     Examples
@@ -201,7 +211,8 @@ def pinned_system(EI, L, target, mode):
     return residual, jacobian
 
 
-def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
+def certify_pinned(EI: float, L: float, target: ArrayLike, modes: Sequence = (1, 2, 3), *,
+                   max_boxes: int = MAX_BOXES) -> Certified:
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
     The certified counterpart of :func:`~mechnum.rods.pinned_equilibria` (same inputs, same
@@ -258,7 +269,8 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     return combine(parts, solutions, [None] * len(rows), extra)
 
 
-def placed(EI, L, X, i, mode, origin, angle, jacobian):
+def placed(EI: float, L: float, X: Sequence, i: int, mode: int, origin: ArrayLike,
+           angle: float, jacobian: bool) -> tuple:
     """Rod ``i`` of a box of balls ``X = (psi_1, t_1, psi_2, t_2, ...)``, placed at its clamp
     (:func:`mechnum.rods.balls.place`)."""
     rod = balls.clamped_pinned(EI, L, X[2 * i], X[2 * i + 1], mode, branch_of(X, i),
@@ -266,7 +278,7 @@ def placed(EI, L, X, i, mode, origin, angle, jacobian):
     return balls.place(rod, origin, angle)
 
 
-def stiffness(rod):
+def stiffness(rod: object) -> list:
     """The tip stiffness ``d force / d tip = J_force J_tip^-1`` of a placed rod (2 x 2 balls,
     symmetrised): the Hessian of the rod's energy as a function of its pinned tip, along its
     branch of equilibria."""
@@ -284,7 +296,7 @@ MEMORY = 4
 midpoint and cut interleave)."""
 
 
-def memoised(rods):
+def memoised(rods: Callable) -> Callable:
     """``rods(X, jacobian)`` remembering its last ``MEMORY`` answers: the residual, the
     exclusion test, the cut and the Jacobian of one box share one evaluation of the rods (a
     Jacobian's evaluation also serves the residual). The key is the balls exactly, and the
@@ -312,7 +324,7 @@ def enclosed(root: np.ndarray) -> list:
     return certify.balls.guarded(root)
 
 
-def verdict(reduced):
+def verdict(reduced: Sequence) -> bool | None:
     """Stability from the reduced Hessian (balls) of an equilibrium: False where it is proven
     to have a negative eigenvalue (the equilibrium is then unstable, whatever the rods' own
     pinned-tip index: the index is the sum of the rods' pinned-tip indices and the reduced
@@ -372,7 +384,7 @@ def _allowed(rods, load, i):
     return _box(c) if all(v.is_finite() for v in c) else None
 
 
-def forces_exclude(rods, load):
+def forces_exclude(rods: Callable, load: ArrayLike) -> Callable:
     """Whether ``sum of the rods' forces = load`` is impossible over a box, in polar form.
 
     For each rod ``i`` the others' forces give the box ``c = load - sum_{j != i} n_j`` that
@@ -395,7 +407,7 @@ def forces_exclude(rods, load):
     return False
 
 
-def forces_split(rods, load, X):
+def forces_split(rods: Callable, load: ArrayLike, X: Sequence) -> object:
     """Where to cut the box ``X`` of chart coordinates ``(psi_1, t_1, ...)``: at an edge of the
     directions that the force balance leaves rod ``i`` (see :func:`forces_exclude`), when that
     edge lies inside ``psi_i``'s range; the half beyond it is then excluded at once. The rod

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechnum import _validate
+from mechnum import _validate, plotting
 from mechnum.mechanisms._assembly._checks import check_modes, check_type
 from mechnum.mechanisms._assembly._results import State
 
@@ -31,7 +31,8 @@ def check_state(state, rods: int) -> State:
 
 
 def draw_parts(ax, parts: dict, arrow, artists: dict | None, arrow_color: str) -> dict:
-    """Draw (or, given the ``artists`` of an earlier call, move) a mechanism's parts.
+    """Draw (or, given the ``artists`` of an earlier call, move) a mechanism's parts, by
+    :func:`mechnum.plotting.parts`.
 
     ``parts`` maps names to ``(x, y, style)`` polylines (a polygon where ``style["fill"]``),
     ``arrow`` is ``(tail, head)`` or None. Returns the artists by name, the arrow's as
@@ -47,31 +48,16 @@ def draw_parts(ax, parts: dict, arrow, artists: dict | None, arrow_color: str) -
     (True, [[0.0, 0.0], [2.0, 1.0]], 1)
     >>> plt.close(fig)
     """
-    from matplotlib.axes import Axes
-
-    check_type(ax, Axes, "ax")
-    names = list(parts) + (["load"] if arrow is not None else [])
-    if artists is None:
-        artists = {}
-        for name, (x, y, style) in parts.items():
-            style = dict(style)
-            artists[name] = (ax.fill(x, y, **{k: v for k, v in style.items() if k != "fill"})
-                             if style.get("fill") else ax.plot(x, y, **style))[0]
-        if arrow is not None:
-            artists["load"] = ax.annotate("", xy=arrow[1], xytext=arrow[0], arrowprops={
-                "arrowstyle": "->", "color": arrow_color, "lw": 1.5})
-        return artists
-    if not isinstance(artists, dict) or sorted(artists) != sorted(names):
-        raise ValueError(f"artists must be the artists {names} of an earlier draw of this "
-                         f"mechanism, got {_validate.shown(artists)}")
+    shapes = {}
     for name, (x, y, style) in parts.items():
-        if style.get("fill"):
-            artists[name].set_xy(np.column_stack((x, y)))
-        else:
-            artists[name].set_data(x, y)
+        style = dict(style)
+        if style.pop("fill", False):
+            style["kind"] = "fill"
+        shapes[name] = (np.column_stack((np.ravel(x), np.ravel(y))), style)
     if arrow is not None:
-        artists["load"].xy, artists["load"].xyann = tuple(arrow[1]), tuple(arrow[0])
-    return artists
+        shapes["load"] = (np.array(arrow, dtype=float), {
+            "kind": "arrow", "arrowstyle": "->", "color": arrow_color, "lw": 1.5})
+    return plotting.parts(ax, shapes, artists)
 
 
 def _edges(centres: np.ndarray) -> np.ndarray:

@@ -3,7 +3,7 @@
 :class:`Layout` (how a mechanism orders its unknowns), :class:`State` (one equilibrium, as a
 mechanism's ``draw`` takes it), :class:`Equilibria` (every equilibrium of an all-solutions
 search), :class:`Path` (one equilibrium followed along a path or over a grid, with
-:func:`path_of` and :func:`closed_form_path` to make one), :class:`Shooting` (equilibria by
+:func:`path_of` and :func:`closed_form_path` to make one), :class:`ShotEquilibria` (equilibria by
 shooting) and :class:`Trace` (what continuation returns), with the determinants of both
 problems (:func:`jacobians`, :func:`determinants`).
 """
@@ -358,7 +358,7 @@ def closed_form_path(system, layout: Layout, modes, trace, params, along, kind=P
 
 
 @dataclass(frozen=True, kw_only=True)
-class Shooting(Result):
+class ShotEquilibria(Result):
     """Equilibria found by RK4 shooting: ``x`` the study's unknowns, ``status`` per system.
 
     Attributes
@@ -382,8 +382,9 @@ class Shooting(Result):
     newton: newton.BatchNewtonResult
 
 
-def shooting_result(res, inputs, pose, clamp_moments, forces, jacobian, kind=Shooting):
-    """A :class:`Shooting` (or subclass ``kind``) of a
+def shooting_result(res, inputs, pose, clamp_moments, forces, jacobian,
+                    kind=ShotEquilibria):
+    """A :class:`ShotEquilibria` (or subclass ``kind``) of a
     :class:`~mechnum.newton.BatchNewtonResult` and its parts."""
     done = int(np.sum(res.converged))
     return kind(x=res.x, status=res.status, iterations=res.iterations, nfev=res.nfev,

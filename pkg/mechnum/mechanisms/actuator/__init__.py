@@ -64,10 +64,13 @@ Examples
 import importlib
 
 from mechnum.mechanisms.actuator._drawing import draw
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.actuator._dynamics import Energy as Energy
+from mechnum.mechanisms.actuator._dynamics import ForwardDynamics as ForwardDynamics
+from mechnum.mechanisms.actuator._dynamics import LagrangeTerms as LagrangeTerms
 from mechnum.mechanisms.actuator._dynamics import (
-    Energy,
-    ForwardDynamics,
-    LagrangeTerms,
     energy,
     forward_dynamics,
     kane_force,
@@ -84,20 +87,18 @@ from mechnum.mechanisms.actuator._loop import (
     solve_loop,
 )
 from mechnum.mechanisms.actuator._model import Actuator
+from mechnum.mechanisms.actuator._velocities import Kinematics as Kinematics
+from mechnum.mechanisms.actuator._velocities import PartialVelocities as PartialVelocities
 from mechnum.mechanisms.actuator._velocities import (
-    Kinematics,
-    PartialVelocities,
-    centres_of_mass,
     kinematics,
     partial_velocities,
     stroke_kinematics,
 )
 
-__all__ = ["Actuator", "Energy", "ForwardDynamics", "Kinematics", "LagrangeTerms",
-           "PartialVelocities", "centres_of_mass", "draw", "energy", "forward",
-           "forward_dynamics", "inverse", "kane_force", "kinematics", "lagrange_force",
-           "lagrange_terms", "loop_jacobian", "loop_residual", "partial_velocities",
-           "singular_points", "solve_loop", "stroke_kinematics", "virtual_power_force"]
+__all__ = ["Actuator", "draw", "energy", "forward", "forward_dynamics", "inverse", "kane_force",
+           "kinematics", "lagrange_force", "lagrange_terms", "loop_jacobian", "loop_residual",
+           "partial_velocities", "singular_points", "solve_loop", "stroke_kinematics",
+           "virtual_power_force"]
 
 
 def __getattr__(name: str) -> object:

@@ -25,6 +25,7 @@ from mechnum.mechanisms.actuator._velocities import (  # kinematics: for the exa
     stroke_kinematics,  # noqa: F401
 )
 from mechnum.ode import rk4
+from mechnum.results import Result
 
 
 def _masses(kin):
@@ -314,21 +315,31 @@ def energy(kin: Kinematics, g: float = G_MATHCAD) -> "Energy":
     return Energy(kinetic, g * np.sum(mass * centres_of_mass(kin).imag, axis=0))
 
 
-@dataclass(frozen=True)
-class ForwardDynamics:
+@dataclass(frozen=True, kw_only=True)
+class ForwardDynamics(Result):
     """The motion that :func:`forward_dynamics` computes.
+
+    The fields of ``mechnum.results.Result`` (``x``: the state ``(a, a_dot)`` at every node,
+    shape ``(N, 2)``; ``status``: ``"converged"``, RK4 having taken every step;
+    ``iterations``: its steps; ``nfev``: the force's calls), and:
 
     Attributes
     ----------
     t : ndarray, shape (N,)
         The nodes (s).
-    a, a_dot : ndarray, shape (N,)
-        Stroke (m) and rate (m/s) at every node.
     """
 
     t: np.ndarray
-    a: np.ndarray
-    a_dot: np.ndarray
+
+    @property
+    def a(self) -> np.ndarray:
+        """ndarray, shape (N,): the stroke (m) at every node, ``x[:, 0]``."""
+        return self.x[:, 0]
+
+    @property
+    def a_dot(self) -> np.ndarray:
+        """ndarray, shape (N,): the rate (m/s) at every node, ``x[:, 1]``."""
+        return self.x[:, 1]
 
 
 def forward_dynamics(mech: Actuator, force: Callable, t: ArrayLike, a0: float, v0: float,
@@ -391,4 +402,6 @@ def forward_dynamics(mech: Actuator, force: Callable, t: ArrayLike, a0: float, v
         return np.array([y[1], acc])
 
     y = rk4(rate, y0, t)
-    return ForwardDynamics(t, y[:, 0], y[:, 1])
+    steps = len(t) - 1
+    return ForwardDynamics(x=y, status="converged", message=f"{steps} RK4 steps",
+                           iterations=steps, nfev=4 * steps, njev=0, t=t)

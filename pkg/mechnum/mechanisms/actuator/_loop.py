@@ -241,7 +241,7 @@ def loop_jacobian(mech: Actuator, x: ArrayLike, a: float) -> np.ndarray:
 
 
 def solve_loop(mech: Actuator, a: float, *, seed: ArrayLike = (np.pi / 2, 0.0),
-               **options) -> object:
+               **options: object) -> object:
     """Solve the loop equations for one stroke by Newton-Raphson.
 
     Parameters

@@ -44,16 +44,19 @@ from mechnum.mechanisms.finger._model import (
     place_links,
     workspace,
 )
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.finger._synthesis import Synthesis as Synthesis
 from mechnum.mechanisms.finger._synthesis import (
-    Synthesis,
     design_matrix,
     lengths_from_coefficients,
     linkage_from_coefficients,
     synthesize,
 )
 
-__all__ = ["Linkage", "Pose", "Synthesis", "angles_from_points", "design_matrix", "draw",
-           "forward", "freudenstein_coefficients", "inverse", "lengths_from_coefficients",
+__all__ = ["Linkage", "Pose", "angles_from_points", "design_matrix", "draw", "forward",
+           "freudenstein_coefficients", "inverse", "lengths_from_coefficients",
            "linkage_from_coefficients", "place_links", "synthesize", "workspace"]
 
 

@@ -211,7 +211,7 @@ def inverse(mech: Linkage, theta_out: ArrayLike) -> np.ndarray:
     return wrap(np.arctan2(H[1] - I[..., 1], H[0] - I[..., 0])).T
 
 
-def workspace(mech: Linkage, theta: ArrayLike, driver: str = "input") -> np.ndarray:
+def workspace(mech: Linkage, theta: ArrayLike, *, driver: str = "input") -> np.ndarray:
     """Whether the linkage can be assembled at each angle of its driving rocker.
 
     Parameters

@@ -130,7 +130,7 @@ def design_matrix(theta_in: ArrayLike, theta_out: ArrayLike) -> tuple[np.ndarray
 
 
 def synthesize(theta_in: ArrayLike, theta_out: ArrayLike, r4: float, method: str = "qr",
-               omega: float | None = None, **solver_options) -> Synthesis:
+               omega: float | None = None, **solver_options: object) -> Synthesis:
     """Fit the Freudenstein coefficients and link lengths to angle pairs by least squares.
 
     Parameters

@@ -92,7 +92,8 @@ def published_points(published: dict, table: int,
     Parameters
     ----------
     published : dict
-        ``{quantity: printed text}`` of the registry (``mechnum.published.read_published``),
+        ``{quantity: printed text}`` of the registry (``read_published`` of the book's
+        ``published`` module),
         with keys ``"Table <t> pos <i> <I|E> <x|y>"`` (printed in millimetres).
     table : int
         One of the tables of points: 1, 4, 5, 7, 8, 9, 10.
@@ -196,7 +197,7 @@ def reproduce() -> dict[str, float]:
     ok = workspace(published, TABLE2_THETA_IN)
     for i, value in zip(np.flatnonzero(ok), forward(published, TABLE2_THETA_IN[ok]).x[:, 0]):
         values[f"Table 2 pos {i + 1} theta_1"] = float(value)
-    ok = workspace(published, TABLE2_THETA_OUT, "output")
+    ok = workspace(published, TABLE2_THETA_OUT, driver="output")
     for i, value in zip(np.flatnonzero(ok), inverse(published, TABLE2_THETA_OUT[ok])[:, 0]):
         values[f"Table 2 pos {i + 1} theta_3"] = float(value)
     # Table 3: the least-squares fit of Table 2. Table 4: the rockers of Table 3 placed at

@@ -63,35 +63,32 @@ import importlib
 
 from mechnum.mechanisms.hacksaw._drawing import draw, joints
 from mechnum.mechanisms.hacksaw._equations import (
-    acceleration_residual,
     jacobian,
     position_jacobian,
     position_residual,
-    rate_jacobian,
     residual,
-    velocity_residual,
 )
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.hacksaw._exact import SingularPoints as SingularPoints
 from mechnum.mechanisms.hacksaw._exact import (
-    SingularPoints,
     closed_form,
     forward,
     singular_points,
-    solve_rates,
 )
 from mechnum.mechanisms.hacksaw._model import NAMES, Geometry, first_revolution_time, motor
+from mechnum.mechanisms.hacksaw._solvers import Stages as Stages
+from mechnum.mechanisms.hacksaw._solvers import SweepResult as SweepResult
 from mechnum.mechanisms.hacksaw._solvers import (
-    Stages,
-    SweepResult,
     solve_consecutive,
     solve_simultaneous,
     sweep,
 )
 
-__all__ = ["NAMES", "Geometry", "SingularPoints", "Stages", "SweepResult",
-           "acceleration_residual", "closed_form", "draw", "first_revolution_time", "forward",
-           "jacobian", "joints", "motor", "position_jacobian", "position_residual",
-           "rate_jacobian", "residual", "singular_points", "solve_consecutive", "solve_rates",
-           "solve_simultaneous", "sweep", "velocity_residual"]
+__all__ = ["NAMES", "Geometry", "closed_form", "draw", "first_revolution_time", "forward",
+           "jacobian", "joints", "motor", "position_jacobian", "position_residual", "residual",
+           "singular_points", "solve_consecutive", "solve_simultaneous", "sweep"]
 
 
 def __getattr__(name: str) -> object:

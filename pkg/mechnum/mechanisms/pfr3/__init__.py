@@ -33,15 +33,11 @@ shooting programs, the published numbers, the inputs they belong to and their re
 """
 
 from mechnum.mechanisms.pfr3._analysis import (
-    crossings,
     index,
-    second_variation,
-    stability,
-    strain,
     verify,
 )
 from mechnum.mechanisms.pfr3._atlases import atlas
-from mechnum.mechanisms.pfr3._drawing import draw, shapes
+from mechnum.mechanisms.pfr3._drawing import draw
 from mechnum.mechanisms.pfr3._elliptic import forward, inverse, sampler
 from mechnum.mechanisms.pfr3._model import (
     Mechanism,
@@ -49,7 +45,6 @@ from mechnum.mechanisms.pfr3._model import (
     forward_system,
     full_system,
     pins,
-    pose_of_tips,
     rods,
 )
 from mechnum.mechanisms.pfr3._paths import (
@@ -64,17 +59,13 @@ from mechnum.mechanisms.pfr3._shooting import (
     forward_shooting,
     inverse_shooting,
     shooting_guess,
-    shooting_system,
 )
 from mechnum.mechanisms.pfr3.certified import certify_forward
 
-__all__ = [
-    "Mechanism", "atlas", "certify_forward", "clamps", "crossings", "draw", "forward",
-    "forward_path", "forward_shooting", "forward_system", "full_system", "index", "inverse",
-    "inverse_map", "inverse_path", "inverse_shooting", "jacobians", "pins", "pose_of_tips",
-    "rods", "sampler", "second_variation", "shapes", "shooting_guess", "shooting_system",
-    "singular_points", "stability", "strain", "verify", "workspace",
-]
+__all__ = ["Mechanism", "atlas", "certify_forward", "clamps", "draw", "forward", "forward_path",
+           "forward_shooting", "forward_system", "full_system", "index", "inverse", "inverse_map",
+           "inverse_path", "inverse_shooting", "jacobians", "pins", "rods", "sampler",
+           "shooting_guess", "singular_points", "verify", "workspace"]
 
 
 def __getattr__(name: str) -> object:

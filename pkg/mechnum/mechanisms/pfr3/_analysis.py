@@ -214,7 +214,7 @@ def crossings(mech: model.Mechanism, lambdas: ArrayLike, chart: ArrayLike,
 
 def verify(mech: model.Mechanism, lambdas: ArrayLike, chart: ArrayLike,
            modes: ArrayLike = (1, 1, 1),
-           *, rtol: float = IVP_RTOL):
+           *, rtol: float = IVP_RTOL) -> tuple:
     """Check equilibria independently: integrate each rod with scipy (``solve_ivp``, DOP853).
 
     Each rod is integrated from its clamp, with the clamp moment and tip force of the closed

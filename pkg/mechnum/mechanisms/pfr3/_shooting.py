@@ -164,7 +164,7 @@ def _shooting(mech, unknown, known, seed, nodes, tol, maxiter, rigid_end):
 
 def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, seed: ArrayLike, *,
                      nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
-                     rigid_end: float = 0.0) -> assembly.Shooting:
+                     rigid_end: float = 0.0) -> assembly.ShotEquilibria:
     """The direct problem by RK4 shooting: the study's (109) in its unknowns (112).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, m0_3, n3_x, n3_y, x, y, phi)``: damped Newton
@@ -190,7 +190,7 @@ def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, seed: ArrayLike,
 
     Returns
     -------
-    mechnum.mechanisms.Shooting
+    mechnum.mechanisms.ShotEquilibria
         ``inputs`` the sliders (m), ``pose`` the platform ``(x, y, phi)``, both (batch, 3);
         ``jacobian`` (batch, 12, 12) is the scaled Jacobian of (109) in the unknowns: the
         study's ``J_FK`` (in (112); ``J_IK`` in (111) for :func:`inverse_shooting`).
@@ -208,7 +208,7 @@ def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, seed: ArrayLike,
 
 def inverse_shooting(mech: model.Mechanism, pose: ArrayLike, seed: ArrayLike, *,
                      nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL, maxiter: int = 50,
-                     rigid_end: float = 0.0) -> assembly.Shooting:
+                     rigid_end: float = 0.0) -> assembly.ShotEquilibria:
     """The inverse problem by RK4 shooting: the study's (109) in its unknowns (111).
 
     ``X = (m0_1, n1_x, n1_y, lambda_1, ..., m0_3, n3_x, n3_y, lambda_3)`` for a given pose

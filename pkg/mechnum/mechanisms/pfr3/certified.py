@@ -23,12 +23,19 @@ term ``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K
 stiffnesses), is proven to have a negative eigenvalue, None otherwise.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import acb, arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
 from mechnum.mechanisms.pfr3._model import clamps
 from mechnum.rods import certified, k_rel_from_t
+
+__all__ = ["MAX_BOXES", "certify_forward", "chart", "system", "verify_certificate"]
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -41,7 +48,7 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, lambdas, modes=(1, 1, 1)):
+def system(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1)) -> tuple:
     """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes
     (``exclude.split``: the cut of :func:`mechnum.rods.certified.forces_split`).
 
@@ -152,8 +159,9 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(3)
 
 
-def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: ArrayLike,
+                       modes: Sequence = (1, 1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
 
@@ -192,7 +200,9 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1), *,
+                    max_boxes: int = MAX_BOXES,
+                    around: ArrayLike | None = None) -> certified.Certified:
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
     Parameters

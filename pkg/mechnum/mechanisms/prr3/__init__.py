@@ -43,7 +43,10 @@ Examples
 
 import importlib
 
-from mechnum.mechanisms.prr3._direct import DirectSolution, forward, forward_by_newton
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.prr3._direct import DirectSolution as DirectSolution
+from mechnum.mechanisms.prr3._direct import forward, forward_by_newton
 from mechnum.mechanisms.prr3._drawing import draw
 from mechnum.mechanisms.prr3._elimination import (
     deflate,
@@ -53,24 +56,17 @@ from mechnum.mechanisms.prr3._elimination import (
 )
 from mechnum.mechanisms.prr3._geometry import (
     Geometry,
-    bars,
-    direct_jacobian,
-    inverse_jacobian,
     jacobian_dets,
-    loop_residuals,
     radicands,
-    sliders,
-    vertices,
 )
 from mechnum.mechanisms.prr3._inverse import branch_inputs, inverse, workspace
-from mechnum.mechanisms.prr3._paths import ModeChangePath, mode_change_path
+from mechnum.mechanisms.prr3._paths import ModeChangePath as ModeChangePath
+from mechnum.mechanisms.prr3._paths import mode_change_path
 from mechnum.mechanisms.prr3._singularities import singular_points
 
-__all__ = ["DirectSolution", "Geometry", "ModeChangePath", "bars", "branch_inputs", "deflate",
-           "direct_jacobian", "draw", "equations", "forward", "forward_by_newton", "inverse",
-           "inverse_jacobian", "jacobian_dets", "loop_residuals", "mode_change_path",
-           "polynomial", "radicands", "singular_points", "sliders", "solutions_from_equations",
-           "vertices", "workspace"]
+__all__ = ["Geometry", "branch_inputs", "deflate", "draw", "equations", "forward",
+           "forward_by_newton", "inverse", "jacobian_dets", "mode_change_path", "polynomial",
+           "radicands", "singular_points", "solutions_from_equations", "workspace"]
 
 
 def __getattr__(name: str) -> object:

@@ -117,28 +117,28 @@ def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.
     return np.array(list(product(*values)))
 
 
-def workspace(mech: Geometry, x: ArrayLike, y: ArrayLike, psi: ArrayLike, *,
-              tol: float = TANGENT_TOL) -> np.ndarray:
+def workspace(mech: Geometry, poses: ArrayLike, *, tol: float = TANGENT_TOL) -> np.ndarray:
     """Reachability of every pose of a grid: can the inverse problem be solved there?
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
-    x, y, psi : array_like
-        Coordinates (m) and orientation (rad) of the poses; broadcast against each other (use
-        :func:`numpy.meshgrid` with ``indexing="ij"`` for a full grid). Empty arrays are valid.
+    mech : ~mechnum.mechanisms.prr3.Geometry
+    poses : array_like, shape (..., 3)
+        The poses ``(x, y, psi)``: coordinates (m) and orientation (rad) (stack the arrays of
+        :func:`numpy.meshgrid` with ``indexing="ij"`` on a last axis for a full grid). Empty
+        arrays are valid.
     tol : float, optional
         A radicand down to ``-tol * L**2`` counts as zero (a tangent leg is reachable).
 
     Returns
     -------
-    ndarray of bool
-        True where all three legs can be assembled; the broadcast shape of the inputs.
+    ndarray of bool, shape (...)
+        True where all three legs can be assembled.
 
     Raises
     ------
     ValueError
-        If an input is not finite and real, the inputs do not broadcast, or ``tol`` is not a
+        If a pose is not finite and real, ``poses`` has no last axis of 3, or ``tol`` is not a
         positive number.
 
     Examples
@@ -146,15 +146,13 @@ def workspace(mech: Geometry, x: ArrayLike, y: ArrayLike, psi: ArrayLike, *,
     >>> import numpy as np
     >>> from mechnum.mechanisms.prr3 import Geometry
     >>> g = Geometry(L=1, a=1, B2=3, B3=1.5, H3=2)
-    >>> workspace(g, np.array([0.6, 0.6]), np.array([0.4, 1.2]), 0.0).tolist()
+    >>> workspace(g, [[0.6, 0.4, 0.0], [0.6, 1.2, 0.0]]).tolist()
     [True, False]
     """
     check(mech)
-    arrays = [_validate.array(v, name) for v, name in ((x, "x"), (y, "y"), (psi, "psi"))]
+    poses = _validate.array(np.reshape(poses, (0, 3)) if np.size(poses) == 0 else poses,
+                            "poses")
+    if poses.shape[-1:] != (3,):
+        raise ValueError(f"poses must have a last axis of 3 (x, y, psi), got shape {poses.shape}")
     tol = _validate.tolerance(tol)
-    try:
-        poses = np.stack(np.broadcast_arrays(*arrays), axis=-1)
-    except ValueError:
-        raise ValueError("x, y and psi must broadcast together, got shapes "
-                         f"{[a.shape for a in arrays]}") from None
     return np.all(radicands(mech, poses) >= -tol * mech.L ** 2, axis=-1)

@@ -25,10 +25,9 @@ MAX_SAMPLES = 100_000
 _XTOL = 1e-15
 
 
-def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
-                    signs: ArrayLike = STUDY_ORDER, *, kind: str = "direct",
-                    samples: int = 200) -> np.ndarray:
-    """The poses between ``start`` and ``end`` where working mode ``signs`` is singular.
+def singular_points(mech: Geometry, segment: ArrayLike, *, signs: ArrayLike = STUDY_ORDER,
+                    kind: str = "direct", samples: int = 200) -> np.ndarray:
+    """The poses of a segment ``(start, end)`` where working mode ``signs`` is singular.
 
     The segment ``start + s (end - start)``, ``0 <= s <= 1``, is sampled at ``samples`` points;
     each sign change of the singularity's measure between two neighbours (both finite) is
@@ -41,8 +40,8 @@ def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
     Parameters
     ----------
     mech : ~mechnum.mechanisms.prr3.geometry.Geometry
-    start, end : array_like, shape (3,)
-        The segment's ends, poses ``(x, y, psi)``.
+    segment : array_like, shape (2, 3)
+        The segment's ends ``start`` and ``end``, poses ``(x, y, psi)``.
     signs : array_like of +-1, shape (3,), optional
         The working mode (:func:`branch_inputs`).
     kind : {"direct", "inverse"}, optional
@@ -64,7 +63,7 @@ def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
     >>> from mechnum.mechanisms.prr3 import jacobian_dets
     >>> from mechnum.mechanisms.prr3.study import EXAMPLES
     >>> g = EXAMPLES["Table 5"][0]
-    >>> pose = singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, -1, -1))
+    >>> pose = singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], signs=(1, -1, -1))
     >>> pose.round(6).tolist()
     [[3.212775, 0.3, 0.5]]
     >>> lam = branch_inputs(g, pose[0], (1, -1, -1))
@@ -72,8 +71,7 @@ def singular_points(mech: Geometry, start: ArrayLike, end: ArrayLike,
     True
     """
     check(mech)
-    start = _validate.array(start, "start", shape=(3,))
-    end = _validate.array(end, "end", shape=(3,))
+    start, end = _validate.array(segment, "segment", shape=(2, 3))
     kind = _validate.choice(kind, KINDS, "kind")
     samples = _validate.maxiter(samples, "samples", minimum=2, maximum=MAX_SAMPLES)
     if kind == "direct":

@@ -38,11 +38,6 @@ reproduction) is :mod:`mechnum.mechanisms.rfr2.study`, imported on first use.
 """
 
 from mechnum.mechanisms.rfr2._analysis import (
-    crossings,
-    eigenvalues,
-    index,
-    stability,
-    strain,
     verify,
 )
 from mechnum.mechanisms.rfr2._atlases import atlas
@@ -58,26 +53,21 @@ from mechnum.mechanisms.rfr2._elliptic import (
     forward,
     forward_system,
     inverse,
-    inverse_system,
     residual,
 )
-from mechnum.mechanisms.rfr2._model import Mechanism, full_system, rods
+from mechnum.mechanisms.rfr2._model import Mechanism, rods
 from mechnum.mechanisms.rfr2._shooting import (
     forward_shooting,
     inverse_shooting,
     shooting_guess,
-    shooting_system,
 )
 from mechnum.mechanisms.rfr2._singularities import jacobians
 from mechnum.mechanisms.rfr2.certified import certify_forward
 
-__all__ = [
-    "Mechanism", "atlas", "certify_forward", "crossings", "draw", "eigenvalues", "forward",
-    "forward_map", "forward_path", "forward_shooting", "forward_system", "full_system", "index",
-    "inverse", "inverse_path", "inverse_shooting", "inverse_system", "jacobians", "residual",
-    "rods", "shapes", "shooting_guess", "shooting_system", "singular_points", "stability",
-    "strain", "verify", "workspace",
-]
+__all__ = ["Mechanism", "atlas", "certify_forward", "draw", "forward", "forward_map",
+           "forward_path", "forward_shooting", "forward_system", "inverse", "inverse_path",
+           "inverse_shooting", "jacobians", "residual", "rods", "shapes", "shooting_guess",
+           "singular_points", "verify", "workspace"]
 
 
 def __getattr__(name: str) -> object:

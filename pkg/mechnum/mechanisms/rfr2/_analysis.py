@@ -150,7 +150,8 @@ def eigenvalues(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: Arra
     return constrained_eigenvalues(hessian, constraints) / (blocks[0].h * mech.EI / mech.L ** 2)
 
 
-def crossings(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1)):
+def crossings(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
+              modes: ArrayLike = (1, 1)) -> tuple[np.ndarray, np.ndarray]:
     """Crossings of the rods of equilibria: of each other, and of each with itself.
 
     Returns
@@ -201,7 +202,7 @@ def strain(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
 
 
 def verify(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
-           rtol: float = IVP_RTOL):
+           rtol: float = IVP_RTOL) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Check equilibria independently: integrate each rod from its clamp with scipy.
 
     Each rod is integrated by ``solve_ivp`` (DOP853, relative tolerance ``rtol`` in

@@ -112,7 +112,7 @@ def _shooting(mech, unknown, known, seed, nodes, tol, maxiter):
 
 def forward_shooting(mech: Mechanism, theta: ArrayLike, seed: ArrayLike, *,
                      nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL,
-                     maxiter: int = 50) -> assembly.Shooting:
+                     maxiter: int = 50) -> assembly.ShotEquilibria:
     """The direct problem by RK4 shooting: the study's (98) in its unknowns (102).
 
     ``X = (m0_1, n1_x, n1_y, m0_2, n2_x, n2_y, x_P, y_P)``; Newton (damped) drives the tip
@@ -136,7 +136,7 @@ def forward_shooting(mech: Mechanism, theta: ArrayLike, seed: ArrayLike, *,
 
     Returns
     -------
-    mechnum.mechanisms.Shooting
+    mechnum.mechanisms.ShotEquilibria
         ``x`` the unknowns, ``inputs`` the motor angles and ``pose`` the end effector (batch,
         2); ``jacobian`` (batch, 8, 8) is the Jacobian of (98) in the unknowns at the last
         iterate (scaled: moments by ``EI / L``, positions by ``L``, forces by ``EI / L**2``),
@@ -160,7 +160,7 @@ def forward_shooting(mech: Mechanism, theta: ArrayLike, seed: ArrayLike, *,
 
 def inverse_shooting(mech: Mechanism, pose: ArrayLike, seed: ArrayLike, *,
                      nodes: int = STUDY_NODES, tol: float = SHOOTING_TOL,
-                     maxiter: int = 50) -> assembly.Shooting:
+                     maxiter: int = 50) -> assembly.ShotEquilibria:
     """The inverse problem by RK4 shooting: the study's (98) in its unknowns (99).
 
     ``X = (m0_1, n1_x, n1_y, theta1, m0_2, n2_x, n2_y, theta2)`` for a given end effector

@@ -12,7 +12,7 @@ from mechnum import _validate
 from mechnum.mechanisms._assembly import MAX_POINTS
 
 
-def straight_path(length: float, angle: float, divisions: int):
+def straight_path(length: float, angle: float, divisions: int) -> np.ndarray:
     """Increments along a straight line from the origin (the study's ``StraightPath``, whose
     code is not listed: ``divisions + 1`` equally spaced points, ``divisions`` at most
     :data:`~mechnum.mechanisms._assembly.MAX_POINTS`).
@@ -28,7 +28,7 @@ def straight_path(length: float, angle: float, divisions: int):
     return s[:, None] * [np.cos(angle), np.sin(angle)]
 
 
-def circles(diameter: float, count: int, divisions: int):
+def circles(diameter: float, count: int, divisions: int) -> np.ndarray:
     """Increments on concentric circles (the study's ``Workspace_Circles``, not listed):
     the centre, then ``count`` circles of diameters ``diameter k / count``, each from angle 0
     in ``divisions`` points (``count divisions`` at most
@@ -47,7 +47,7 @@ def circles(diameter: float, count: int, divisions: int):
     return np.concatenate((np.zeros((1, 2)), ring.reshape(-1, 2)))
 
 
-def rectangles(base: float, height: float, count: int, divisions: int):
+def rectangles(base: float, height: float, count: int, divisions: int) -> np.ndarray:
     """Increments on concentric rectangles (the study's ``Workspace_Rectangles``, not listed):
     the centre, then ``count`` rectangles scaled by ``k / count``, each side in ``divisions``
     steps, anticlockwise from the middle of the right side (``4 count divisions`` at most
@@ -94,7 +94,7 @@ STUDY_PATHS = {
 increments of ``theta``, rad): generator and the study's parameters."""
 
 
-def path(kind: str):
+def path(kind: str) -> np.ndarray:
     """The increments of one of the study's trajectories
     (:data:`~mechnum.mechanisms.rfr2.STUDY_PATHS`).
 

@@ -24,13 +24,21 @@ the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-t
 not enclosed).
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
 from mechnum.mechanisms._assembly import check_type
 from mechnum.mechanisms.rfr2._model import Mechanism
 from mechnum.rods import certified, k_rel_from_t
+
+__all__ = ["MAX_BOXES", "certify_forward", "chart", "system", "tail_excluded",
+           "verify_certificate"]
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -43,7 +51,7 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, theta, modes=(1, 1)):
+def system(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1)) -> tuple:
     """``residual, jacobian`` of the 2RFR's closed form over boxes, for :mod:`mechnum.certify`,
     with ``rods(X, jacobian)`` (both rods, placed) and ``exclude(X)`` (the force balance in
     polar form, :func:`mechnum.rods.certified.forces_exclude`), whose attribute ``split`` is
@@ -91,7 +99,7 @@ def system(mech, theta, modes=(1, 1)):
     return residual, jacobian, rods, exclude
 
 
-def tail_excluded(mech, modes=(1, 1)):
+def tail_excluded(mech: Mechanism, modes: Sequence = (1, 1)) -> bool:
     """Whether no equilibrium has a rod beyond the chart (``q > Q_MAX``), by the bound of the
     module (True for the study's Table 7).
 
@@ -130,8 +138,9 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(2)
 
 
-def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta: ArrayLike,
+                       modes: Sequence = (1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
 
@@ -170,7 +179,9 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1), *,
+                    max_boxes: int = MAX_BOXES,
+                    around: ArrayLike | None = None) -> certified.Certified:
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
     Parameters

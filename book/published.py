@@ -1,5 +1,8 @@
 """Published numbers against computed ones: the rules of the book's registry, and its one table.
 
+The book's module, not the package's: every chapter imports it as ``published`` (the chapters run
+in ``book/``), and the chapters' zip serves it beside them (``.ci/chapters_zip.py``).
+
 A study prints a number with some digits; the number it stands for lies within half a unit of the
 last printed digit. :func:`agrees` applies that rule, and its variants for claims:
 
