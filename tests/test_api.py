@@ -60,9 +60,6 @@ MODULES = public_modules()
 API = ["mechnum", *(f"mechnum.{m}" for m in mechnum.__all__),
        *(f"mechnum.mechanisms.{m}" for m in mechnum.mechanisms.__all__
          if isinstance(getattr(mechnum.mechanisms, m), types.ModuleType) and m != "thesis")]
-# modules that are moving out of the package now (issue 30: the exercises' grader and student
-# edition go to the instructor's package)
-LEAVING = ("mechnum.exercises.grading", "mechnum.exercises.student")
 
 
 def exported(name):
@@ -85,7 +82,7 @@ def test_import_mechnum_gives_every_subpackage_lazily():
         assert getattr(mechnum.mechanisms, name) is not None
 
 
-@pytest.mark.parametrize("name", [m for m in MODULES if m not in LEAVING])
+@pytest.mark.parametrize("name", MODULES)
 def test_every_public_module_lists_its_api(name):
     module = importlib.import_module(name)
     assert isinstance(getattr(module, "__all__", None), list), f"{name} has no __all__"
@@ -95,8 +92,8 @@ def test_every_public_module_lists_its_api(name):
 
 
 def test_the_api_is_small_enough_to_hold_in_mind():
-    api = {m: len(exported(m)) for m in API if m not in LEAVING}
-    support = {m: len(exported(m)) for m in MODULES if m not in API and m not in LEAVING}
+    api = {m: len(exported(m)) for m in API}
+    support = {m: len(exported(m)) for m in MODULES if m not in API}
     assert sum(api.values()) <= MAX_API, api
     assert sum(support.values()) <= MAX_SUPPORT, support
 
@@ -127,7 +124,7 @@ def _namespace(module):
 
 def test_one_definition_per_exported_name():
     where = _definitions()
-    names = {n for m in MODULES if m not in LEAVING for n in exported(m)}
+    names = {n for m in MODULES for n in exported(m)}
     for name in sorted(names & set(where)):
         spaces = [_namespace(m) for m in where[name]]
         assert len(spaces) == len(set(spaces)), f"{name} is defined twice in one namespace: " \
@@ -141,8 +138,6 @@ def test_one_object_one_public_home():
     """An object is exported by one module, or by a package and its own public submodule."""
     homes = {}
     for name in MODULES:
-        if name in LEAVING:
-            continue
         module = importlib.import_module(name)
         for n in exported(name):
             obj = getattr(module, n)
@@ -156,11 +151,9 @@ def test_one_object_one_public_home():
 
 def _public_functions():
     """``{qualified name: function}`` of every exported function (and exported class's
-    methods), without the leaving modules."""
+    methods)."""
     out = {}
     for name in MODULES:
-        if name in LEAVING:
-            continue
         module = importlib.import_module(name)
         for n in exported(name):
             obj = getattr(module, n)

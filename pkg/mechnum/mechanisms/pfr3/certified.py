@@ -167,7 +167,7 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Parameters
     ----------
-    certificate : mechnum.certify.Certificate
+    certificate : ~mechnum.certify.certificate.Certificate
     mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
@@ -178,11 +178,11 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Returns
     -------
-    mechnum.certify.Verified
+    ~mechnum.certify.verify.Verified
 
     Raises
     ------
-    mechnum.certify.CertificateError
+    ~mechnum.certify.certificate.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 

@@ -146,7 +146,7 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Parameters
     ----------
-    certificate : mechnum.certify.Certificate
+    certificate : ~mechnum.certify.certificate.Certificate
     mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
@@ -157,11 +157,11 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Returns
     -------
-    mechnum.certify.Verified
+    ~mechnum.certify.verify.Verified
 
     Raises
     ------
-    mechnum.certify.CertificateError
+    ~mechnum.certify.certificate.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 
