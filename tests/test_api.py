@@ -8,9 +8,14 @@ component starting with an underscore). It is counted in two parts:
   ``mechnum`` (``mechnum.newton``, ..., ``mechnum.rods``, ``mechnum.mechanisms``) and each
   mechanism (``mechnum.mechanisms.rfr2``, ...): at most :data:`MAX_API` names;
 * their **supporting modules**: each mechanism's ``study`` (the data the book reproduces and its
-  reproduction), ``mechnum.mechanisms.thesis`` (the flexible-mechanisms thesis's constants), and
-  the interval modules of the proofs (``mechnum.certify.balls``, ``mechnum.rods.certified``,
-  ...): at most :data:`MAX_SUPPORT` names.
+  reproduction), ``mechnum.mechanisms.thesis`` (the flexible-mechanisms thesis's constants), the
+  interval arithmetic the enclosures share (``mechnum.certify.balls``) and the rods' and the
+  rod mechanisms' enclosures (``mechnum.rods.certified``, ``...rfr2.certified``, ...): at most
+  :data:`MAX_SUPPORT` names, a ratchet (481 names over the package before issue 33, 333 after:
+  the studies' tables as separate constants are most of what is left).
+
+Issue 33 asked for at most 220 names over the whole package; the API proper meets it, the
+package as a whole does not yet (see CHANGELOG): lower :data:`MAX_SUPPORT` as names go.
 
 A name that is a module (``mechnum.newton`` in ``mechnum.__all__``) is no name of the count; a
 result class is no name either: it is returned, never called, and documented with the function
@@ -32,7 +37,7 @@ import mechnum
 
 PACKAGE = Path(mechnum.__file__).resolve().parent
 MAX_API = 220
-MAX_SUPPORT = 240
+MAX_SUPPORT = 120
 # The mechanism protocol (CONTRIBUTING.md): the verbs every mechanism defines for itself, and
 # those the two mechanisms built of rods share; a name of several mechanisms is one of these.
 PROTOCOL = {"Mechanism", "Geometry", "forward", "inverse", "draw", "workspace",
@@ -105,7 +110,7 @@ def _definitions():
     the names of what they check or enclose, apart."""
     found = {}
     for path in sorted(PACKAGE.rglob("*.py")):
-        if path.stem in ("_kernels", "balls") or "exercises" in path.parts:
+        if path.stem in ("_kernels", "balls", "_balls") or "exercises" in path.parts:
             continue
         parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
         module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)

@@ -253,8 +253,8 @@ REPRODUCERS = [
     ("continuation.solve_path(lambda x, c: x ** 2 - c[:, None], [1.0, 1.0], [1.0, 2.0],"
      " lambda x, c: 2 * x[:, :, None])", r"Jacobian in x must be square, \(2, 2\)"),
     ("homotopy.track(None, [1.0 + 0j])", "fun must be a function"),
-    ("certify.ball([1.0, 2.0])", "two real numbers"),
-    ("certify.ball(np.complex128(1 + 1j))", "two real numbers"),
+    ("certify.balls.ball([1.0, 2.0])", "two real numbers"),
+    ("certify.balls.ball(np.complex128(1 + 1j))", "two real numbers"),
     ("certify.definite(None)", "hessian_ball must be a square"),
     ("certify.roots(f, J, 'a')", "box must be numeric"),
     ("certify.roots(None, J, [[-3.0, 3.0]])", "residual must be a function"),

@@ -8,12 +8,13 @@ import numpy as np
 import pytest
 
 from mechnum import certify, rods
-from mechnum.certify import ball, bounds
+from mechnum.certify.balls import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
+from mechnum.rods import _balls as balls
 from mechnum.rods import _regular as regular
-from mechnum.rods import balls, certified
+from mechnum.rods import certified
 from mechnum.rods.certified import TWO_PI
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"

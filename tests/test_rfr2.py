@@ -11,6 +11,7 @@ from mechnum.mechanisms import rfr2
 from mechnum.mechanisms.rfr2 import _analysis as analysis
 from mechnum.mechanisms.rfr2 import _elliptic as elliptic
 from mechnum.mechanisms.rfr2 import _shooting as shooting
+from mechnum.mechanisms.rfr2 import _trajectories as trajectories
 from mechnum.results import STATUSES
 
 MECH, THETA = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
@@ -104,7 +105,7 @@ def test_singularity_determinants(table7):
 
 
 def test_inverse_path_by_both_methods(table7):
-    points = table7.pose[2] + rfr2.study.straight_path(0.05, np.pi, 10)
+    points = table7.pose[2] + trajectories.straight_path(0.05, np.pi, 10)
     fast = rfr2.inverse_path(MECH, points, THETA, table7.x[2], method="elliptic")
     study = rfr2.inverse_path(MECH, points, THETA, table7.x[2], nodes=201)
     assert fast.converged.all() and study.converged.all()
@@ -115,7 +116,7 @@ def test_inverse_path_by_both_methods(table7):
 def test_shooting_path_crosses_a_mode_change(table7):
     # from the study's solution 2 the clamp moment of rod 2 vanishes on the way: closed form
     # (fixed modes) stops there, shooting goes on into mode (1, 2)
-    points = table7.pose[1] + rfr2.study.straight_path(0.5, np.pi, 100)[:30]
+    points = table7.pose[1] + trajectories.straight_path(0.5, np.pi, 100)[:30]
     fast = rfr2.inverse_path(MECH, points, THETA, table7.x[1], method="elliptic")
     study = rfr2.inverse_path(MECH, points, THETA, table7.x[1])
     assert not fast.converged.all() and study.converged.all()
@@ -179,7 +180,7 @@ def test_study_paths():
     corners = rfr2.study.path("inverse rectangles")
     assert corners.shape == (65, 2) and np.abs(corners).max() == pytest.approx(0.1, rel=1e-12)
     with pytest.raises(ValueError, match="bound on the work"):
-        rfr2.study.circles(0.2, 10**4, 10**3)
+        trajectories.circles(0.2, 10**4, 10**3)
 
 
 # --- bad input ------------------------------------------------------------------------------

@@ -1,8 +1,8 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: its scope, the search
+Each file is a :class:`~mechnum.certify.Certificate` as JSON: its scope, the search
 that made it, the inputs, the searched boxes, the leaves with the test each passed, the root
-enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify.verify`, the
+enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify`, the
 residual of the same ``system`` and the chart as the domain
 (:func:`~mechnum.rods.certified.branch_boxes`; see each entry below).
 

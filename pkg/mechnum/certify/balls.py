@@ -31,18 +31,19 @@ from flint import acb, arb
 from numpy.typing import ArrayLike
 
 from mechnum._validate import shown
-from mechnum.certify import guard
+from mechnum.certify import _guard as guard
+from mechnum.certify._guard import interval
 
-__all__ = ["PI", "as_array", "ball", "balls", "bounds", "cos", "ends", "exp", "expm1", "guarded",
-           "hull", "meet", "monotone", "mul", "nonnegative", "rd", "rf", "rg", "sin", "span",
-           "sqrt"]
+# What the rods' and the mechanisms' enclosures use (the rest serves certify's own modules).
+__all__ = ["PI", "ball", "bounds", "cos", "ends", "guarded", "interval", "meet", "monotone",
+           "mul", "sin", "span", "sqrt"]
 
 PI = arb.pi()
 
 
 def _accepts_balls(function):
     """Let ``function`` take the guarded balls a residual is handed
-    (:class:`mechnum.certify.guard.Ball`): it computes on plain balls (it is audited: its
+    (:class:`mechnum.certify.Ball`): it computes on plain balls (it is audited: its
     comparisons and bounds are of enclosures), and a result from guarded balls is guarded."""
     @functools.wraps(function)
     def call(*args):
@@ -79,12 +80,12 @@ def ball(lo: object, hi: object = None) -> arb:
 
 
 def guarded(box: ArrayLike) -> list:
-    """The :class:`~mechnum.certify.guard.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
+    """The :class:`~mechnum.certify.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
     knowing its ends: what a residual is handed.
 
     Examples
     --------
-    >>> from mechnum.certify.guard import interval
+    >>> from mechnum.certify._guard import interval
     >>> [interval(x) for x in guarded([[0.0, 1.0], [2.0, 2.0]])]
     [(0.0, 1.0), (2.0, 2.0)]
     """

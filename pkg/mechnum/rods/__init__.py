@@ -46,7 +46,7 @@ equilibrium through a point and what a shot rod is (:func:`pinned_equilibria`,
 :func:`constrained_index_with_body`); crossings (:func:`self_crossings`,
 :func:`mutual_crossings`); a cantilever's equilibria under a growing dead load, for
 continuation (:class:`DeadLoad`); the pinned rod proven (:func:`certify_pinned`). What every
-mechanism built of rods shares is :mod:`mechnum.mechanisms._assembly`.
+mechanism built of rods shares is ``mechanisms._assembly``.
 In a Newton loop over the rods of a mechanism, call a :class:`ShotRods` (:func:`tip_jacobian`,
 checked once when made) once on the batch of all rods: one sweep gives every tip and every
 ``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per

@@ -36,8 +36,9 @@ def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
 
     Parameters
     ----------
-    blocks : sequence of mechnum.rods.stability.RodBlock
-        The rods' blocks, in the order of the constraints' columns. Each must be nonsingular.
+    blocks : sequence of RodBlock
+        The rods' blocks (:func:`~mechnum.rods.rod_block`), in the order of the constraints'
+        columns. Each must be nonsingular.
     dense : array_like, shape (k, k)
         The symmetric Hessian of the body's ``k`` variables (may be singular).
     constraints : array_like, shape (c, sum of N + k)
@@ -53,7 +54,7 @@ def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
     ------
     ValueError
         If the shapes do not match, a block is not a RodBlock, or ``dense`` is not symmetric
-        (to :data:`mechnum.rods.SYMMETRY_TOL`).
+        (to ``SYMMETRY_TOL = 1e-10``).
     SingularJacobianError
         If a rod's Hessian is singular.
 

@@ -35,7 +35,7 @@ def cantilever(EI: float, L: float, force: ArrayLike, method: str = "elliptic", 
         (:func:`shoot_cantilever`, from the closed form's clamp moment).
     nodes : int, optional
         Nodes of the returned shape (and RK4 nodes for shooting),
-        ``2 <= nodes <=`` :data:`~mechnum.rods.MAX_NODES`.
+        ``2 <= nodes <=`` ``MAX_NODES = 100_000``.
 
     Returns
     -------

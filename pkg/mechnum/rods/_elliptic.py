@@ -135,7 +135,7 @@ def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike
 
     where ``dE = E(phi, k) - E(phi1, k)``, ``dF`` likewise and ``dC = cos(phi) - cos(phi1)``;
     ``m = 2 EI k lambda cos(phi)``. Conventions and ranges: see :mod:`mechnum.rods`. These
-    formulas are evaluated in the regular chart (:func:`mechnum.rods.closed_form` and
+    formulas are evaluated in the regular chart (``closed_form`` and
     :func:`mechnum.rods.shape`), which holds every digit at every admissible
     ``(psi, k_rel)``, ``|k_rel|`` within an ulp of 1 and ``psi = pi`` included.
 
@@ -148,7 +148,7 @@ def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike
     mode : int or array_like of int, optional
         Buckling mode, ``>= 1``.
     nodes : int, optional
-        If given (``2 <= nodes <=`` :data:`~mechnum.rods.MAX_NODES`), also sample the shape
+        If given (``2 <= nodes <=`` ``MAX_NODES = 100_000``), also sample the shape
         at this many equally spaced nodes.
 
     Returns
@@ -206,7 +206,7 @@ def k_rel_for_force(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, R: ArrayLike,
     rounding, see :data:`AXIAL`). This function solves ``lambda L = F(phi2, k) - F(phi1, k)``
     on that half (for ``psi = pi``, ``k_rel > 0``) by Newton's method safeguarded with
     bisection, in a variable ``zeta`` in which the equation is smooth and well conditioned at
-    every load (:func:`mechnum.rods.growing_branch`), and checks its residual. On
+    every load (``growing_branch``), and checks its residual. On
     the other half ``R`` is not monotone and one force has several ``k_rel`` (the study's
     Ilustracion 10).
 
@@ -286,7 +286,7 @@ def elliptic_parameters(EI: ArrayLike, L: ArrayLike, clamp_moment: ArrayLike,
     is ``2 mode - 1`` where ``m(L) = 0``, and the tip amplitude ``phi2 = am(F(phi1, k) +
     lambda L)`` is then ``(mode - 1/2) pi``. Everything is computed from the complementary
     modulus ``k'**2 = 1 - k**2 = sin(psi/2)**2 (1 - v**2)``, ``v = k cos(phi1) / sin(psi/2)``
-    (Carlson's integrals; :func:`mechnum.rods.amplitude`), so that a rod within
+    (Carlson's integrals; ``amplitude``), so that a rod within
     ``1e-12`` of ``|k| = 1`` keeps its mode. ``mode`` rounds ``q`` (it is 0 for a rod whose
     moment has not vanished by ``s = L``); ``phi2`` is unrounded.
 

@@ -49,7 +49,7 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, seed: Rod, *, seg
 
     Returns
     -------
-    mechnum.rods.shooting.Shooting
+    mechnum.rods.Shooting
         ``newton`` is the :class:`~mechnum.newton.NewtonResult` of the segments' states,
         ``x`` the solution's ``(m0, n_x, n_y)`` and ``start`` the seed's.
 

@@ -486,14 +486,14 @@ def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: Array
     Along the rod ``F(phi, k) = F(phi1, k) + lambda s`` gives the amplitude ``phi``, and the
     study's (86), (87), (37) and (42) the position, tangent angle and moment. Every quantity
     comes from the complementary modulus ``k' = sqrt(1 - k**2)``, which the chart gives to full
-    precision: the amplitude from :func:`mechnum.rods.amplitude`, ``E(phi, k)`` in
+    precision: the amplitude from ``amplitude``, ``E(phi, k)`` in
     Carlson's form with ``1 - k**2 sin(phi)**2 = cos(phi)**2 + k'**2 sin(phi)**2`` and the
     tangent angle as ``psi - 2 atan2(dn, k sin(phi))`` with ``dn = sqrt(1 - k**2 sin(phi)**2)``
     (where ``arccos(k sin(phi))`` would lose half the digits as ``k sin(phi) -> 1``). The
     rods of the growing branch of mode 1 under a load ``lambda L <`` :data:`SMALL_LOAD`,
     whose positions the study's formulas find as differences of nearly equal integrals divided
     by ``lambda`` (all digits lost as the load tends to zero), are drawn in the cantilever's
-    chart instead (:func:`mechnum.rods.branch_shape`). The clamp is at the origin
+    chart instead (``branch_shape``). The clamp is at the origin
     and the last node at :func:`clamped_pinned_regular`'s tip, exactly.
 
     Parameters
@@ -502,7 +502,7 @@ def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: Array
         As in :func:`clamped_pinned_regular`.
     nodes : int, optional
         Points per rod, clamp and tip included, ``2 <= nodes <=``
-        :data:`~mechnum.rods.MAX_NODES`.
+        ``MAX_NODES = 100_000``.
 
     Returns
     -------

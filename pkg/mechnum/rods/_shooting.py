@@ -298,7 +298,7 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
     that grows continuously from the unloaded rod (mode 1, bending towards the force), which
     RK4 on ``nodes`` nodes then reproduces to its discretisation error in one or two Newton
     steps; from that start the rod returned is that equilibrium, its tip within
-    :data:`~mechnum.rods.RESOLVED` ``L`` of the closed form's, or the solver raises. A
+    ``RESOLVED = 1e-3`` ``L`` of the closed form's, or the solver raises. A
     start of your own may lead elsewhere (above the Euler load, to the rod bent the other way).
 
     Parameters
@@ -312,7 +312,7 @@ def shoot_cantilever(EI: float, L: float, force: ArrayLike, *, m0: ArrayLike | N
     theta0 : float, optional
         Clamp angle (rad); the clamp is at the origin.
     nodes : int, optional
-        RK4 nodes, ``2 <= nodes <=`` :data:`~mechnum.rods.MAX_NODES`.
+        RK4 nodes, ``2 <= nodes <=`` ``MAX_NODES = 100_000``.
     tol, maxiter
         Newton stops when ``|m(L)| < tol * max(|n| L, EI / L)`` (a residual relative to the
         moments of the problem), or below the rounding floor of the module's description if
@@ -424,7 +424,7 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, seed: ArrayLike | None = N
     :func:`mechnum.rods.tip_jacobian`. A pinned point has many equilibria (buckling modes, both
     senses of bending, loops in tension: :func:`mechnum.rods.pinned_equilibria`): the start
     selects one. The default start is the closed-form cantilever (mode 1, the growing branch)
-    whose tip is at the point (:func:`mechnum.rods.pinned_start`): it leads to the
+    whose tip is at the point (``pinned_start``): it leads to the
     mode-1 rod where the point admits one and Newton reaches it (a point near the reach ``L``
     in near tension may defeat it: the force of a nearly straight rod is ill-determined by its
     tip).

@@ -1,9 +1,9 @@
 """Every clamped-pinned equilibrium that reaches a point, proven (Chapter 3's pinned rod).
 
-:func:`certify_pinned` searches the regular chart ``(psi, t)`` of ``rods``'s regular module
-of each mode with :func:`~mechnum.certify.search.roots`, the closed form enclosed by
-:mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
-branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
+:func:`~mechnum.rods.certify_pinned` searches the regular chart ``(psi, t)`` of ``rods``'s
+regular module of each mode with :func:`~mechnum.certify.roots`, the closed form enclosed over boxes
+(``rods._balls``). The searched boxes are the chart's whole closed domain, one per branch:
+``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
 
 **Beyond the chart** (``|t| > T_MAX``, ``q > Q_MAX = 600``) the rods are excluded analytically.
 On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >= I``), and
@@ -27,15 +27,16 @@ from flint import arb
 from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
-from mechnum.certify import guard
-from mechnum.certify.search import Roots
+from mechnum.certify.balls import interval
+from mechnum.rods import _balls as balls
 from mechnum.rods import _regular as regular
-from mechnum.rods import balls
 
-__all__ = ["AROUND", "CHART_BOX", "MAX_BOXES", "MEMORY", "TAIL_LAMBDA", "TWO_PI", "Certified",
-           "around_boxes", "around_note", "branch_boxes", "branch_of", "certify_pinned",
-           "combine", "enclosed", "forces_exclude", "forces_split", "memoised", "pinned_system",
-           "placed", "stiffness", "tail_reach", "verdict"]
+# The pinned rod's system, and what the rod mechanisms' certified modules build theirs from
+# (certify_pinned is rods'; Certified, the result, is documented with the functions that return
+# it).
+__all__ = ["TAIL_LAMBDA", "around_boxes", "around_note", "branch_boxes", "combine", "enclosed",
+           "forces_exclude", "forces_split", "memoised", "pinned_system", "placed", "stiffness",
+           "tail_reach", "verdict"]
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -55,7 +56,7 @@ MAX_BOXES = 200_000
 
 
 @dataclass(frozen=True, kw_only=True)
-class Certified(Roots):
+class Certified(certify.Roots):
     """A certified search of an application, with the solutions in the package's coordinates.
 
     Attributes
@@ -66,7 +67,7 @@ class Certified(Roots):
         ``(psi_i, k_rel_i)`` per rod).
     stable : list of (bool or None)
         Per solution: True (proven stable), False (proven unstable), None (not decided).
-    parts : tuple of mechnum.certify.search.Roots
+    parts : tuple of mechnum.certify.Roots
         The searches (one per mode, or one for a mechanism), each with its certificate.
     """
 
@@ -161,8 +162,8 @@ def _ends(x: arb) -> tuple:
     """The float interval a ball stands for: the exact box of a ball from
     :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
     own bounds (rounded outward)."""
-    box = guard.interval(x)
-    return box if box is not None else certify.bounds(arb(x))
+    box = interval(x)
+    return box if box is not None else certify.balls.bounds(arb(x))
 
 
 def branch_of(X: list, i: int) -> int:
@@ -192,7 +193,7 @@ def pinned_system(EI: float, L: float, target: ArrayLike, mode: int) -> tuple:
 
     Examples
     --------
-    >>> from mechnum.certify import ball
+    >>> from mechnum.certify.balls import ball
     >>> f, J = pinned_system(1.0, 1.0, [0.8, 0.1], 2)
     >>> [bool(v.contains(0)) for v in f([ball(3.0, 3.1), ball(0.3, 0.5)])]
     [True, True]
@@ -272,7 +273,7 @@ def certify_pinned(EI: float, L: float, target: ArrayLike, modes: Sequence = (1,
 def placed(EI: float, L: float, X: Sequence, i: int, mode: int, origin: ArrayLike,
            angle: float, jacobian: bool) -> tuple:
     """Rod ``i`` of a box of balls ``X = (psi_1, t_1, psi_2, t_2, ...)``, placed at its clamp
-    (:func:`mechnum.rods.balls.place`)."""
+    (``rods._balls.place``)."""
     rod = balls.clamped_pinned(EI, L, X[2 * i], X[2 * i + 1], mode, branch_of(X, i),
                                jacobian=jacobian)
     return balls.place(rod, origin, angle)
@@ -304,7 +305,7 @@ def memoised(rods: Callable) -> Callable:
     memory = {}
 
     def cached(X, jacobian):
-        key = tuple((guard.interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
+        key = tuple((interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
                     for x in X)
         known = memory.get(key)
         if known is not None and (known[0] or not jacobian):
@@ -336,7 +337,7 @@ def verdict(reduced: Sequence) -> bool | None:
 
 def _box(values):
     """Float bounds ``[(lo, hi), ...]`` of balls."""
-    return [certify.bounds(v) for v in values]
+    return [certify.balls.bounds(v) for v in values]
 
 
 def _norm_range(box):

@@ -176,7 +176,7 @@ class Atlas(Result):
 
     def draw(self, ax, *, trajectory=None, **style):
         """The stable count as a map with the folds drawn on it, and optionally a trajectory
-        (:func:`~mechnum.mechanisms._assembly.draw_atlas`); its artists."""
+        (``draw_atlas``); its artists."""
         from mechnum.mechanisms._assembly._drawing import draw_atlas
 
         return draw_atlas(ax, self, trajectory=trajectory, **style)

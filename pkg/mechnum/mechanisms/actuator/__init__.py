@@ -42,7 +42,7 @@ as the routes' numerical error (``annex_slip=True`` in :func:`lagrange_force` re
 *Forward* dynamics, the motion that a given force produces, integrates Lagrange's equation by
 RK4 (:func:`forward_dynamics`); :func:`energy` gives ``T + V`` for the energy balance.
 
-The parameters are those the annex prints (:data:`~mechnum.mechanisms.actuator.study.ANNEX`,
+The parameters are those the annex prints (``ANNEX``,
 in :mod:`mechnum.mechanisms.actuator.study` with the annex's numbers recomputed), suspicious
 ones included: the rocker's centroidal inertia ``I_G4 = g4**2 m2 / 3`` uses the barrel's mass
 ``m2`` (printed ``I_O4 = 0.96`` confirms it), and its centre of mass lies ``g4 = 0.6`` m from

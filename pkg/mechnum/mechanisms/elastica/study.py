@@ -4,7 +4,7 @@ The thesis's first program (its Annex II, 1.1 and 1.2) solves a rod clamped at t
 along +x whose tip is pinned at ``(0.8, 0.1)`` m: a steel rod (``E = 210 GPa``) of length
 1 m and circular section of diameter 2 mm, 61 RK4 nodes, initial guesses
 ``m0 = 0.1`` N m and ``n0 = (0.1, 0.1)`` N, tolerance ``1e-7``. Its Newton loop is not the
-one of :func:`mechnum.rods.shooting.shoot_pinned`: it differentiates by forward differences
+one of :func:`~mechnum.rods.shoot_pinned`: it differentiates by forward differences
 with a step of ``1e-10``, halves a step that increases the largest residual, and stops when the
 largest residual or its change falls below the tolerance. :func:`study_shooting` is that
 loop, on the package's RK4 rod (:func:`mechnum.rods.integrate`); :func:`reproduce`
@@ -23,7 +23,7 @@ from mechnum.results import Result
 
 __all__ = ["COMPUTER", "COMPUTER_HOURS", "COMPUTER_YEARS", "DIAMETER", "EI", "GUESS", "HOURS",
            "LENGTH", "LICENCE", "LICENCE_HOURS", "MATTIASSON", "NODES", "RATES", "TARGET", "TOL",
-           "YOUNG", "StudyShooting", "reproduce", "study_shooting"]
+           "YOUNG", "reproduce", "study_shooting"]
 
 LENGTH = 1.0                                  # m
 YOUNG = 210e9                                 # Pa

@@ -36,7 +36,6 @@ import importlib
 from mechnum.mechanisms.finger._drawing import draw
 from mechnum.mechanisms.finger._model import (
     Linkage,
-    Pose,
     angles_from_points,
     forward,
     freudenstein_coefficients,
@@ -46,7 +45,8 @@ from mechnum.mechanisms.finger._model import (
 )
 
 # An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
-# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+# but not in __all__ (returned, never called): the points of a pose, and the synthesis (a Result).
+from mechnum.mechanisms.finger._model import Pose as Pose
 from mechnum.mechanisms.finger._synthesis import Synthesis as Synthesis
 from mechnum.mechanisms.finger._synthesis import (
     design_matrix,
@@ -55,7 +55,7 @@ from mechnum.mechanisms.finger._synthesis import (
     synthesize,
 )
 
-__all__ = ["Linkage", "Pose", "angles_from_points", "design_matrix", "draw", "forward",
+__all__ = ["Linkage", "angles_from_points", "design_matrix", "draw", "forward",
            "freudenstein_coefficients", "inverse", "lengths_from_coefficients",
            "linkage_from_coefficients", "place_links", "synthesize", "workspace"]
 

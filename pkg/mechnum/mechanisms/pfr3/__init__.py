@@ -26,7 +26,7 @@ are pinned to the vertices of a rigid triangular platform, which carries a force
 The mechanism protocol, the same verbs as the 2RFR's, the mechanism first: :func:`forward`
 (with ``status`` and ``stable``), :func:`inverse`, :func:`singular_points`, :func:`workspace`,
 :func:`atlas` and ``draw(ax, mech, state, *, artists=None)``. The shared parts (results,
-searches, paths, maps) are :mod:`mechnum.mechanisms._assembly`'s; the study's constants
+searches, paths, maps) are ``mechanisms._assembly``'s; the study's constants
 :mod:`mechnum.mechanisms.thesis`'s. Its study (the examples of Tablas 8 and 2 and of the
 shooting programs, the published numbers, the inputs they belong to and their reproduction) is
 :mod:`mechnum.mechanisms.pfr3.study`, imported on first use.

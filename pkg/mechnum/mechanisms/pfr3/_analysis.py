@@ -140,7 +140,7 @@ def stability(mech: model.Mechanism, lambdas: ArrayLike, chart: ArrayLike,
         The equilibrium in the chart.
     segments : (int, int), optional
         Resolutions (segments per rod, coarse and fine, each at most
-        :data:`~mechnum.mechanisms._assembly.MAX_SEGMENTS`); default :func:`resolutions`.
+        ``MAX_SEGMENTS = 20_000``); default :func:`resolutions`.
 
     Returns
     -------
@@ -164,7 +164,7 @@ def index(mech: model.Mechanism, lambdas: ArrayLike, chart: ArrayLike,
           modes: ArrayLike = (1, 1, 1), *,
           segments: ArrayLike | None = None) -> int:
     """The index of one equilibrium at one resolution (``segments`` per rod, at most
-    :data:`~mechnum.mechanisms._assembly.MAX_SEGMENTS`; default the coarse one of
+    ``MAX_SEGMENTS = 20_000``; default the coarse one of
     :func:`resolutions`): negative eigenvalues of its second variation.
 
     Examples

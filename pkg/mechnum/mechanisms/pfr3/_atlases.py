@@ -57,7 +57,7 @@ def atlas(mech: model.Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLik
     a, b : array_like, shapes (nx,) and (ny,)
         The grid's coordinates (m), each strictly increasing or decreasing, neighbours close
         enough for continuation (a few millimetres); ``nx ny`` at most
-        :data:`~mechnum.mechanisms._assembly.MAX_POINTS`. An empty axis gives an empty atlas.
+        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas.
     origin : array_like, shape (3,), optional
         The sliders at ``a = b = 0`` (m); zero by default.
     directions : array_like, shape (2, 3), optional

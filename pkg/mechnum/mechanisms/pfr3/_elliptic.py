@@ -156,10 +156,10 @@ def forward(mech: model.Mechanism, lambdas: ArrayLike, *, modes: ArrayLike = (1,
     modes : (int, int, int), optional
         Buckling modes of the rods (inflections on ``0 < s <= L``).
     n_starts : int, optional
-        Starts of the search, at most :data:`~mechnum.mechanisms._assembly.MAX_STARTS`.
+        Starts of the search, at most ``MAX_STARTS = 100_000``.
     check : int, optional
         Size of the completeness check, in multiples of ``n_starts`` (0: none; at most
-        :data:`~mechnum.mechanisms._assembly.MAX_CHECK`).
+        ``MAX_CHECK = 100``).
     rng : numpy.random.Generator or int, optional
         Random generator or seed (a non-negative integer) of the starts.
 

@@ -135,14 +135,14 @@ def inverse_path(mech: model.Mechanism, poses: ArrayLike, lambdas: ArrayLike, ch
         As in :func:`~mechnum.mechanisms.pfr3.forward`.
     poses : array_like, shape (n, 3)
         Platform poses ``(x, y, phi)``, close to each other (``n`` may be 0; at most
-        :data:`~mechnum.mechanisms._assembly.MAX_POINTS`).
+        ``MAX_POINTS = 1_000_000``).
     lambdas, chart : array_like, shapes (3,) and (6,)
         An equilibrium at (or near) ``poses[0]``: its sliders and rods.
     method : {"elliptic", "shooting"}, optional
         The closed form (fixed modes), or RK4 shooting in the study's unknowns (111) as the
         study does (modes free: a rod whose clamp moment passes through zero changes mode).
     nodes, rigid_end : optional
-        RK4 nodes per rod (at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`) and the rigid
+        RK4 nodes per rod (at most ``MAX_NODES = 100_000``) and the rigid
         segment at each pin, ``0 <= rigid_end < L`` (shooting only).
 
     Returns
@@ -189,7 +189,7 @@ def forward_path(mech: model.Mechanism, lambdas: ArrayLike, chart: ArrayLike,
     ----------
     lambdas : array_like, shape (n, 3) or, closed form only, (n, batch, 3)
         Slider inputs (m), close to each other; with a batch axis, ``batch`` paths at once
-        (``n`` may be 0; at most :data:`~mechnum.mechanisms._assembly.MAX_POINTS` points in all).
+        (``n`` may be 0; at most ``MAX_POINTS = 1_000_000`` points in all).
     chart : array_like, shape (6,) or (batch, 6)
         Equilibria at ``lambdas[0]``.
     method, nodes, rigid_end
@@ -254,7 +254,7 @@ def inverse_map(mech: model.Mechanism, x: ArrayLike, y: ArrayLike, phi: float, p
 
     The equilibrium (at ``pose``, with sliders ``lambdas`` and rods ``chart``) is first moved to
     the grid point nearest to it at the angle ``phi``, then followed along ``y`` both ways, then
-    every ``y`` at once along ``x`` both ways (:func:`mechnum.mechanisms._assembly.follow_grid`).
+    every ``y`` at once along ``x`` both ways (``follow_grid``).
     Continuation stops (the map has NaN) where the branch folds back (``det_ik`` through zero:
     the edge of its workspace), and, with the closed form, where it leaves the chart: a rod
     whose clamp moment vanishes (its mode changes) or whose force turns through its clamped
@@ -264,7 +264,7 @@ def inverse_map(mech: model.Mechanism, x: ArrayLike, y: ArrayLike, phi: float, p
     Parameters
     ----------
     x, y : array_like, shapes (nx,) and (ny,)
-        The grid of centres (m), ``nx ny`` at most :data:`~mechnum.mechanisms._assembly.MAX_POINTS`.
+        The grid of centres (m), ``nx ny`` at most ``MAX_POINTS = 1_000_000``.
     method : {"elliptic", "shooting"}, optional
         The closed form, or RK4 shooting with ``nodes`` nodes per rod.
 
@@ -313,7 +313,7 @@ def workspace(mech: model.Mechanism, state: State, *, directions: int = 24, step
     """Where the inverse problem's branch ends on rays from the platform's centre, at its fixed
     angle: the edge of the workspace that the equilibrium reaches (by shooting, modes free).
 
-    All rays are followed at once (:func:`mechnum.mechanisms._assembly.workspace_edge`), from the
+    All rays are followed at once (``workspace_edge``), from the
     equilibrium ``state``, in steps of ``step`` up to ``reach`` from the centre; from each
     ray's last solution on, the ray is followed again in steps four times shorter, ``levels``
     times, so the edge is located to ``step / 4**levels`` (a step fails near a fold when the
@@ -327,10 +327,10 @@ def workspace(mech: model.Mechanism, state: State, *, directions: int = 24, step
     state : mechnum.mechanisms.State
         An equilibrium: its sliders, rods and modes (``forward(...).state(i)``).
     directions, step, reach, levels : optional
-        As in :func:`mechnum.mechanisms._assembly.workspace_edge` (rays, first step and largest
+        As in ``workspace_edge`` (rays, first step and largest
         distance in m, refinements), each bounded there.
     nodes : int, optional
-        RK4 nodes per rod, at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`.
+        RK4 nodes per rod, at most ``MAX_NODES = 100_000``.
 
     Returns
     -------
@@ -363,7 +363,7 @@ def workspace(mech: model.Mechanism, state: State, *, directions: int = 24, step
 def singular_points(mech: model.Mechanism, grid: Path, *, which: str = "det_ik") -> np.ndarray:
     """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`inverse_map` changes sign: on
     the singularity curves, in the platform's centre ``(x, y)`` (m), to the grid's resolution
-    (:func:`mechnum.mechanisms._assembly.zero_crossings`).
+    (``zero_crossings``).
 
     Examples
     --------

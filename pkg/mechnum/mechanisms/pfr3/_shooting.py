@@ -81,7 +81,7 @@ def shooting_system(mech: model.Mechanism, nodes: int, unknown: str,
     ----------
     mech : ~mechnum.mechanisms.pfr3.Mechanism
     nodes : int
-        RK4 nodes per rod (at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`).
+        RK4 nodes per rod (at most ``MAX_NODES = 100_000``).
     unknown : {"pose", "inputs"}
         The study's (112), ``known`` the sliders (batch, 3), or its (111), ``known`` the pose.
     rigid_end : float, optional
@@ -181,7 +181,7 @@ def forward_shooting(mech: model.Mechanism, lambdas: ArrayLike, seed: ArrayLike,
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
         RK4 nodes per rod (the study's 41; the error falls as ``nodes**-4``), at most
-        :data:`~mechnum.mechanisms._assembly.MAX_NODES`.
+        ``MAX_NODES = 100_000``.
     tol, maxiter : optional
         Newton's tolerance on the scaled residual, most iterations (at most 10,000).
     rigid_end : float, optional

@@ -1,13 +1,13 @@
 """Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
 
-:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
+:func:`~mechnum.mechanisms.pfr3.certify_forward` is the certified counterpart of
 :func:`~mechnum.mechanisms.pfr3.forward`: the same six reduced equations
 (:func:`~mechnum.mechanisms.pfr3.forward_system`: the tips form the platform, ``d_1 / b_1
 = d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
 forces carry ``F``; the moments about the centroid carry ``M``) in the same chart, re-derived
 from the :class:`~mechnum.mechanisms.pfr3.Mechanism`'s public fields and
 :func:`~mechnum.mechanisms.pfr3.clamps`, and enclosed over boxes
-(:mod:`mechnum.rods.balls`). Two exclusion tests of the mechanism's own speed the search up:
+(:mod:`mechnum.rods.certified`). Two exclusion tests of the mechanism's own speed the search up:
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
@@ -35,7 +35,7 @@ from mechnum import _validate, certify
 from mechnum.mechanisms.pfr3._model import clamps
 from mechnum.rods import certified, k_rel_from_t
 
-__all__ = ["MAX_BOXES", "certify_forward", "chart", "system", "verify_certificate"]
+__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is pfr3's
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -57,7 +57,7 @@ def system(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1)) -> tup
     >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
     >>> f, J, rods, exclude = system(TABLE8, TABLE8_LAMBDAS)
     >>> z = chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
-    >>> X = [certify.ball(v - 1e-3, v + 1e-3) for v in z]
+    >>> X = [certify.balls.ball(v - 1e-3, v + 1e-3) for v in z]
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True, True, True], False)
     """
@@ -115,7 +115,7 @@ def system(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1)) -> tup
         if certified.forces_exclude(rs, mech.force):
             return True
         for i, j in ((0, 1), (1, 2), (2, 0)):
-            box = [certify.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
+            box = [certify.balls.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
             low, high = certified._norm_range(box)
             if bool(a < low) or bool(a > high):
                 return True
@@ -146,10 +146,10 @@ def _reduced(rs):
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.pfr3.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -167,7 +167,7 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate
+    certificate : ~mechnum.certify.Certificate
     mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
@@ -178,11 +178,11 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified
+    ~mechnum.certify.Verified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 
@@ -216,7 +216,7 @@ def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 6), optional
         Chart points to search around (boxes of half-width
-        :data:`mechnum.rods.certified.AROUND` times the chart's ranges) instead of the whole
+        ``mechnum.rods.certified.AROUND`` times the chart's ranges) instead of the whole
         chart.
 
     Returns

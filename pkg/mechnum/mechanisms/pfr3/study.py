@@ -52,7 +52,7 @@ __all__ = ["SHOOTING_EXAMPLE", "SHOOTING_POSE", "STUDY_RIGID_END", "TABLE2", "TA
 TABLE8_PUBLISHED = np.array([[5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952],
                              [5.9923, -0.9062, 5.3280, -0.8652, 2.8573, -0.0629]])
 """Tabla 8 as printed, ``(psi_i, k_rel_i)`` of its solutions 1 and 2: the input data of
-:func:`recover_inputs` (the reproduction computes them)."""
+:func:`~mechnum.mechanisms.pfr3.study.recover_inputs` (the reproduction computes them)."""
 TABLE8_TEXT = model.Mechanism([[-0.866, -0.5], [0.866, -0.5], [0.0, 1.0]], model.STUDY_GUIDES,
                               np.radians([45.0, 0.0, -60.0]), 0.2, force=[0.0, 0.5])
 """Tabla 8's inputs as 13.3.1 prints them (``O_i`` rounded, ``theta_2 = 0``); the side, which
@@ -230,7 +230,7 @@ def reproduce(table8: Equilibria | None = None, table2: Equilibria | None = None
 
     Tabla 8 from the equilibria that :func:`forward` finds (each printed solution
     matched with the nearest one, truncated to the printed 4 decimals as the study did), the
-    example's inputs from :func:`~mechnum.mechanisms.pfr3.recover_inputs`, the numbers
+    example's inputs from :func:`~mechnum.mechanisms.pfr3.study.recover_inputs`, the numbers
     of equilibria, the residuals of the study's equations (110) and (113) as printed, and the
     roots of the study's own system for Tabla 2's mechanism within the study's reach.
 

@@ -257,7 +257,7 @@ def forward(mech: Geometry, lambdas: ArrayLike, *, imag_tol: float = IMAG_TOL,
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     lambdas : array_like, shape (3,) or (m, 3)
         The inputs ``(lambda1, lambda2, lambda3)``, metres; an empty batch is valid, and at
         most :data:`MAX_INPUTS`.
@@ -424,7 +424,7 @@ def forward_by_newton(mech: Geometry, lambdas: ArrayLike, seeds: ArrayLike, *,
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     lambdas : array_like, shape (3,)
     seeds : array_like, shape (m, 3)
         Starting poses ``(x, y, psi)``; an empty batch gives no pose; at most

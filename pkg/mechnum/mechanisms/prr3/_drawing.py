@@ -21,7 +21,7 @@ def draw(ax: object, mech: Geometry, state: tuple[ArrayLike, ArrayLike], *,
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     state : (array_like, array_like)
         ``(lambdas, pose)``: the inputs and the platform's pose that they assemble, each of
         shape (3,).

@@ -127,7 +127,7 @@ def polynomial(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     lambdas : array_like, shape (..., 3)
 
     Returns
@@ -139,7 +139,7 @@ def polynomial(mech: Geometry, lambdas: ArrayLike) -> np.ndarray:
     ------
     ValueError
         If ``lambdas`` is ill-shaped or not finite, or so large that a coefficient overflows
-        (:func:`~mechnum.mechanisms.prr3.direct` works in a local frame and has no such limit).
+        (:func:`~mechnum.mechanisms.prr3.forward` works in a local frame and has no such limit).
 
     Examples
     --------
@@ -215,7 +215,7 @@ def equations(mech: Geometry, lambdas: ArrayLike) -> PolynomialSystem:
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     lambdas : array_like, shape (3,)
 
     Returns
@@ -250,7 +250,7 @@ def solutions_from_equations(mech: Geometry, points: ArrayLike) -> np.ndarray:
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     points : array_like, shape (n, 4) or (4,)
         Real solutions; an empty batch gives no pose.
 

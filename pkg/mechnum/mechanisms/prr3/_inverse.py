@@ -35,7 +35,7 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     poses : array_like, shape (..., 3)
     signs : array_like of +-1, shape (3,)
         The branch of each leg.
@@ -82,7 +82,7 @@ def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     pose : array_like, shape (3,)
         ``(x, y, psi)`` in metres and radians.
     tol : float, optional

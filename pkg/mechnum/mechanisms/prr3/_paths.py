@@ -111,7 +111,7 @@ def mode_change_path(mech: Geometry, start: ArrayLike, end: ArrayLike, signs: Ar
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     start, end : array_like, shape (3,)
         Poses ``(x, y, psi)``.
     signs : array_like of +-1, shape (3,)

@@ -39,7 +39,7 @@ def singular_points(mech: Geometry, segment: ArrayLike, *, signs: ArrayLike = ST
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.prr3.geometry.Geometry
+    mech : ~mechnum.mechanisms.prr3.Geometry
     segment : array_like, shape (2, 3)
         The segment's ends ``start`` and ``end``, poses ``(x, y, psi)``.
     signs : array_like of +-1, shape (3,), optional

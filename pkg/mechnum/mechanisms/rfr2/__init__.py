@@ -31,7 +31,7 @@ The mechanism protocol (the same verbs as the 3PFR's, the mechanism first): :fun
 (every equilibrium of given motor angles, with ``status`` and ``stable``), :func:`inverse` (of a
 given end effector), :func:`singular_points`, :func:`workspace`, :func:`atlas`, and
 ``draw(ax, mech, state, *, artists=None)``. The shared parts (results, searches, paths, maps)
-are :mod:`mechnum.mechanisms._assembly`'s; the study's constants :mod:`mechnum.mechanisms.thesis`'s.
+are ``mechanisms._assembly``'s; the study's constants :mod:`mechnum.mechanisms.thesis`'s.
 
 Its study (the example of Table 7, the study's paths, its published numbers and their
 reproduction) is :mod:`mechnum.mechanisms.rfr2.study`, imported on first use.

@@ -52,7 +52,7 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
     a, b : array_like, shapes (nx,) and (ny,)
         The grid's coordinates (rad), each strictly increasing or decreasing, close enough
         for continuation (a few degrees); ``nx ny`` at most
-        :data:`~mechnum.mechanisms._assembly.MAX_POINTS`. An empty axis gives an empty atlas.
+        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas.
     origin : array_like, shape (2,), optional
         The motor angles at ``a = b = 0`` (rad); zero by default.
     directions : array_like, shape (2, 2), optional

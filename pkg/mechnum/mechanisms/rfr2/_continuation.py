@@ -83,7 +83,7 @@ def inverse_path(mech: Mechanism, poses: ArrayLike, theta: ArrayLike, chart: Arr
         As in :func:`~mechnum.mechanisms.rfr2.forward`.
     poses : array_like, shape (n, 2)
         End-effector positions (m), close to each other (``n`` may be 0; at most
-        :data:`~mechnum.mechanisms._assembly.MAX_POINTS`).
+        ``MAX_POINTS = 1_000_000``).
     theta, chart : array_like, shapes (2,) and (4,)
         An equilibrium at (or near) ``poses[0]``: its motor angles and rods.
     method : {"shooting", "elliptic"}, optional
@@ -91,7 +91,7 @@ def inverse_path(mech: Mechanism, poses: ArrayLike, theta: ArrayLike, chart: Arr
         on the way (when its clamp moment passes through zero); or the closed form, faster,
         whose modes are fixed, so that the path stops where a rod's clamp moment vanishes.
     nodes : int, optional
-        RK4 nodes per rod (shooting), at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`.
+        RK4 nodes per rod (shooting), at most ``MAX_NODES = 100_000``.
 
     Returns
     -------
@@ -103,9 +103,9 @@ def inverse_path(mech: Mechanism, poses: ArrayLike, theta: ArrayLike, chart: Arr
     Examples
     --------
     >>> from mechnum.mechanisms.rfr2 import forward
-    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA, straight_path
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
     >>> eq = forward(TABLE7, TABLE7_THETA, rng=0)
-    >>> line = eq.pose[2] + straight_path(0.1, np.pi, 10)
+    >>> line = eq.pose[2] + np.outer(np.linspace(0.0, 0.1, 11), [-1.0, 0.0])  # 0.1 m left
     >>> fast = inverse_path(TABLE7, line, TABLE7_THETA, eq.x[2], method="elliptic")
     >>> bool(fast.converged.all()), np.round(np.degrees(fast.inputs[-1]), 3).tolist()
     (True, [29.576, 22.131])
@@ -138,7 +138,7 @@ def forward_path(mech: Mechanism, thetas: ArrayLike, chart: ArrayLike, modes: Ar
     ----------
     thetas : array_like, shape (n, 2) or, with ``method="elliptic"``, (n, batch, 2)
         Motor angles (rad), close to each other; with a batch axis, ``batch`` paths at once
-        (``n`` may be 0; at most :data:`~mechnum.mechanisms._assembly.MAX_POINTS` points in all).
+        (``n`` may be 0; at most ``MAX_POINTS = 1_000_000`` points in all).
     chart : array_like, shape (4,) or (batch, 4)
         Equilibria at ``thetas[0]``.
     method, nodes
@@ -207,14 +207,14 @@ def forward_map(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, theta: Ar
 
     The equilibrium ``(theta, chart)`` is first moved to the nearest grid point, then followed
     along ``theta2`` both ways, then every ``theta2`` at once along ``theta1`` both ways
-    (:func:`mechnum.mechanisms._assembly.follow_grid`), in closed form. Where the branch folds back
+    (``follow_grid``), in closed form. Where the branch folds back
     (``det_fk`` through zero: the motors can no longer hold it) continuation stops, and the
     map has NaN: other equilibria take over there.
 
     Parameters
     ----------
     theta1, theta2 : array_like, shape (nx,) and (ny,)
-        The grid (rad), ``nx ny`` at most :data:`~mechnum.mechanisms._assembly.MAX_POINTS`.
+        The grid (rad), ``nx ny`` at most ``MAX_POINTS = 1_000_000``.
     theta, chart : array_like, shapes (2,) and (4,)
         An equilibrium.
 
@@ -262,7 +262,7 @@ def workspace(mech: Mechanism, state: State, *, directions: int = 24, step: floa
     """Where the inverse problem's branch of an equilibrium ends on rays from its end effector:
     the edge of the workspace it reaches (by shooting, modes free).
 
-    All rays are followed at once (:func:`mechnum.mechanisms._assembly.workspace_edge`), in steps of
+    All rays are followed at once (``workspace_edge``), in steps of
     ``step`` up to ``reach`` from the equilibrium's end effector, then again from each ray's
     last solution in steps four times shorter, ``levels`` times, so that the edge is located
     to ``step / 4**levels``. Where the branch folds (``det_ik`` through zero) the last points
@@ -276,8 +276,8 @@ def workspace(mech: Mechanism, state: State, *, directions: int = 24, step: floa
         An equilibrium: its motor angles, rods and modes (``forward(...).state(i)``).
     directions, step, reach, levels, nodes : optional
         The rays, the first step and the largest distance (m) and the refinements of
-        :func:`mechnum.mechanisms._assembly.workspace_edge` (bounded there); the RK4 nodes per rod
-        (at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`).
+        ``workspace_edge`` (bounded there); the RK4 nodes per rod
+        (at most ``MAX_NODES = 100_000``).
 
     Returns
     -------
@@ -312,7 +312,7 @@ def workspace(mech: Mechanism, state: State, *, directions: int = 24, step: floa
 def singular_points(mech: Mechanism, grid: Path, *, which: str = "det_ik") -> np.ndarray:
     """Points where ``det_ik`` (or ``det_fk``) of a map of :func:`forward_map` changes sign:
     on the singularity curves, in motor angles (rad), to the grid's resolution
-    (:func:`mechnum.mechanisms._assembly.zero_crossings`).
+    (``zero_crossings``).
 
     Examples
     --------

@@ -41,7 +41,7 @@ def shapes(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike
     chart : array_like, shape (..., 4)
         Equilibria ``(psi1, t1, psi2, t2)``.
     nodes : int, optional
-        Points per rod, at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`.
+        Points per rod, at most ``MAX_NODES = 100_000``.
 
     Returns
     -------

@@ -46,7 +46,7 @@ def shooting_system(mech: Mechanism, nodes: int, unknown: str) -> tuple[Callable
     ----------
     mech : Mechanism
     nodes : int
-        RK4 nodes per rod (at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`).
+        RK4 nodes per rod (at most ``MAX_NODES = 100_000``).
     unknown : {"pose", "inputs"}
         The study's (102), ``X = (m0_1, n1, m0_2, n2, P)`` with ``known`` the motor angles
         (batch, 2), or its (99), ``X = (m0_1, n1, theta1, m0_2, n2, theta2)`` with ``known`` the
@@ -129,7 +129,7 @@ def forward_shooting(mech: Mechanism, theta: ArrayLike, seed: ArrayLike, *,
         Initial ``X`` (:func:`shooting_guess` gives it from a closed-form equilibrium).
     nodes : int, optional
         RK4 nodes per rod (the study's 41 by default; the RK4 error falls as ``nodes**-4``),
-        at most :data:`~mechnum.mechanisms._assembly.MAX_NODES`.
+        at most ``MAX_NODES = 100_000``.
     tol, maxiter : optional
         Newton's tolerance on the scaled residual (``criterion="residual"``), most iterations
         (at most 10,000).

@@ -1,9 +1,8 @@
 """The study's trajectories (Annex II 3.1 and 3.2), whose generators it does not list.
 
-:func:`~mechnum.mechanisms.rfr2.straight_path`, :func:`~mechnum.mechanisms.rfr2.circles` and
-:func:`~mechnum.mechanisms.rfr2.rectangles` give increments of the end effector (or of the motor
-angles); :func:`~mechnum.mechanisms.rfr2.path` those of the study's six trajectories
-(:data:`STUDY_PATHS`).
+:func:`straight_path`, :func:`circles` and :func:`rectangles` give increments of the end
+effector (or of the motor angles); :func:`~mechnum.mechanisms.rfr2.study.path` those of the
+study's six trajectories (:data:`STUDY_PATHS`).
 """
 
 import numpy as np
@@ -96,7 +95,7 @@ increments of ``theta``, rad): generator and the study's parameters."""
 
 def path(kind: str) -> np.ndarray:
     """The increments of one of the study's trajectories
-    (:data:`~mechnum.mechanisms.rfr2.STUDY_PATHS`).
+    (``STUDY_PATHS``: three straight lines, circles and rectangles).
 
     Examples
     --------

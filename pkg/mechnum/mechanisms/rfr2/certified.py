@@ -5,7 +5,7 @@
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
 :class:`~mechnum.mechanisms.rfr2.Mechanism`'s public fields and enclosed over boxes
-(:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots` over the
+(:mod:`mechnum.rods.certified`), searched by :func:`~mechnum.certify.roots` over the
 chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
@@ -13,13 +13,13 @@ tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rod
 Its force is at least ``R = EI TAIL_LAMBDA**2 / L**2``; the other rod's is ``F`` minus it,
 at least ``R - |F|``, so its ``Lambda`` is large too and the forces are antiparallel to within
 ``|e1 + e2| <= 2 |F| / R``. Both tips at one point then need
-``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; :func:`tail_excluded` checks that the motors
+``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; ``tail_excluded`` checks that the motors
 are nearer than that (as for the study's Table 7), else the result is not ``complete``.
 
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
 and the index of the reduced Hessian ``K1 + K2`` (each ``K_i = d n_i / d tip_i`` along the
 rod's branch, :func:`mechnum.rods.certified.stiffness`), by Haynsworth's inertia additivity.
-``stable`` is False where :func:`~mechnum.certify.definite.definite` proves ``K1 + K2`` over
+``stable`` is False where :func:`~mechnum.certify.definite` proves ``K1 + K2`` over
 the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are
 not enclosed).
 """
@@ -37,8 +37,7 @@ from mechnum.mechanisms._assembly import check_type
 from mechnum.mechanisms.rfr2._model import Mechanism
 from mechnum.rods import certified, k_rel_from_t
 
-__all__ = ["MAX_BOXES", "certify_forward", "chart", "system", "tail_excluded",
-           "verify_certificate"]
+__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is rfr2's
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -61,8 +60,9 @@ def system(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1)) -> tuple
     --------
     >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
     >>> f, J, rods, exclude = system(TABLE7, TABLE7_THETA)
-    >>> X = [certify.ball(1.96, 1.97), certify.ball(-0.06, -0.05), certify.ball(4.81, 4.82),
-    ...      certify.ball(0.85, 0.86)]                  # holds a root: no test excludes it
+    >>> ball = certify.balls.ball
+    >>> X = [ball(1.96, 1.97), ball(-0.06, -0.05), ball(4.81, 4.82),
+    ...      ball(0.85, 0.86)]                  # holds a root: no test excludes it
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True], False)
     """
@@ -125,10 +125,10 @@ def tail_excluded(mech: Mechanism, modes: Sequence = (1, 1)) -> bool:
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.rfr2.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -146,7 +146,7 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate
+    certificate : ~mechnum.certify.Certificate
     mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
@@ -157,11 +157,11 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified
+    ~mechnum.certify.Verified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 

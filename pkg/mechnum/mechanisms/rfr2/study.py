@@ -3,10 +3,10 @@ numbers, and their reproduction.
 
 The example of Table 7 (:data:`TABLE7`, :data:`TABLE7_THETA`) and its published solutions
 (:data:`TABLE7_PUBLISHED`), in the study's convention ``(psi1, k_rel1, psi2, k_rel2)``
-(:func:`chart_from_thesis`, :func:`thesis_from_chart`); the study's trajectories
-(:data:`STUDY_PATHS`, :func:`path`, :func:`straight_path`, :func:`circles`,
-:func:`rectangles`); :func:`recover_inputs` finds the inputs of the example from the printed
-solutions, and :func:`reproduce` computes every registry value of the chapter.
+(:func:`chart_from_thesis`, :func:`thesis_from_chart`); the study's six trajectories
+(:func:`path`: straight lines, circles and rectangles); :func:`recover_inputs` finds the inputs
+of the example from the printed solutions, and :func:`reproduce` computes every registry value
+of the chapter.
 """
 
 from __future__ import annotations
@@ -24,25 +24,17 @@ from mechnum.mechanisms.rfr2._model import (
     thesis_from_chart,
 )
 from mechnum.mechanisms.rfr2._shooting import forward_shooting, shooting_guess, shooting_system
-from mechnum.mechanisms.rfr2._trajectories import (
-    STUDY_PATHS,
-    circles,
-    path,
-    rectangles,
-    straight_path,
-)
+from mechnum.mechanisms.rfr2._trajectories import STUDY_PATHS, path
 from mechnum.mechanisms.thesis import EI, LENGTH, STUDY_NODES, YOUNG
 from mechnum.rods import ClampedRods
 
-__all__ = ["STUDY_PATHS", "TABLE7", "TABLE7_PUBLISHED", "TABLE7_THETA", "chart_from_thesis",
-           "circles", "path", "recover_inputs", "rectangles", "reproduce", "straight_path",
-           "thesis_from_chart"]
+__all__ = ["TABLE7", "TABLE7_PUBLISHED", "TABLE7_THETA", "chart_from_thesis", "path",
+           "recover_inputs", "reproduce", "thesis_from_chart"]
 
 TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
                              [1.962541, -0.004391, 4.811041, 0.943413]])
 """Table 7 as printed, ``(psi1, k_rel1, psi2, k_rel2)`` of its solutions 1 and 2: input data of
-:func:`~mechnum.mechanisms.rfr2.recover_inputs` (the reproduction computes them, see
-:func:`~mechnum.mechanisms.rfr2.reproduce`)."""
+:func:`recover_inputs` (the reproduction computes them, see :func:`reproduce`)."""
 
 
 def recover_inputs(solutions: ArrayLike, free: str = "EI") -> dict:

@@ -2,7 +2,7 @@
 
 A certificate holds the searched boxes and, for each, its **leaves** in depth-first order:
 disjoint boxes whose union is the searched box, each with the test that decided it
-(:mod:`mechnum.certify.krawczyk`) and, for Krawczyk's test, the box it was proven on (the leaf
+(:mod:`mechnum.certify`) and, for Krawczyk's test, the box it was proven on (the leaf
 itself, or the leaf enlarged, inside the searched box, when its root sits near a face) and an
 enclosure of its root. It says what it proves in one field, ``scope``:
 
@@ -12,14 +12,14 @@ enclosure of its root. It says what it proves in one field, ``scope``:
   any other root (the boxes are, for example, small boxes around sampled roots). Such a
   certificate has no ``complete``.
 
-``search`` names the search that made it (:data:`mechnum.certify.search.SEARCH`), so that
+``search`` names the search that made it (``SEARCH``), so that
 other searches can store their own certificates in this format. Nothing stored is trusted:
-:func:`~mechnum.certify.verify.verify` re-derives the roots, the count, ``complete`` and the
+:func:`~mechnum.certify.verify` re-derives the roots, the count, ``complete`` and the
 cover from the leaves and the caller's functions and domain, and compares.
 
-JSON (:meth:`~mechnum.certify.certificate.Certificate.to_json`): floats are written with
+JSON (:meth:`~mechnum.certify.Certificate.to_json`): floats are written with
 Python's shortest round-trip ``repr``, so every leaf comes back bit for bit;
-:meth:`~mechnum.certify.certificate.Certificate.from_json` checks every key, type and shape and
+:meth:`~mechnum.certify.Certificate.from_json` checks every key, type and shape and
 raises :class:`CertificateError` naming what is wrong.
 
 Examples
@@ -33,7 +33,7 @@ Examples
 >>> Certificate.from_json('{"format": "' + FORMAT + '", "count": "seven"}')
 Traceback (most recent call last):
 ...
-mechnum.certify.certificate.CertificateError: a malformed certificate: missing keys \
+mechnum.certify.CertificateError: a malformed certificate: missing keys \
 ['boxes', 'complete', 'inputs', 'leaves', 'roots', 'scope', 'search', 'work']
 """
 
@@ -177,7 +177,7 @@ class Leaf:
 @dataclass(frozen=True, kw_only=True)
 class Certificate:
     """The leaves of a search, storable as JSON and re-checkable by
-    :func:`~mechnum.certify.verify.verify`. Every field is checked on construction
+    :func:`~mechnum.certify.verify`. Every field is checked on construction
     (:class:`CertificateError`).
 
     Attributes

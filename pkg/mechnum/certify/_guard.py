@@ -4,8 +4,8 @@ A proof by interval arithmetic holds only if the residual computes, from the bal
 given, balls that contain every value of ``f`` over them. A residual that leaves ball
 arithmetic (takes ``float(X[0].mid())`` and calls :func:`math.sin` on it, or branches on
 ``X[0] > 0`` where the answer is uncertain) returns a ball that may miss values of ``f``, and
-the search then proves nothing. :func:`~mechnum.certify.search.roots` and
-:func:`~mechnum.certify.verify.verify` therefore hand the residual, the Jacobian and the
+the search then proves nothing. :func:`~mechnum.certify.roots` and
+:func:`~mechnum.certify.verify` therefore hand the residual, the Jacobian and the
 exclusion test :class:`Ball`\\ s (:func:`mechnum.certify.balls.guarded`): Arb balls
 (``flint.arb``) whose arithmetic and methods return :class:`Ball`\\ s again, and which refuse,
 with a :class:`BallArithmeticError` naming the operation,
@@ -35,7 +35,8 @@ arithmetic, not all of them. The caller must still make sure that
 * ``residual`` and ``jacobian`` enclose a function and its derivative, continuously
   differentiable on every searched box (a wrong formula is a wrong proof, whatever the balls);
 * nothing reaches a number by a route the guard cannot see: an explicit ``flint.arb(x)`` (the
-  sanctioned exit, used by the package's own audited enclosures in :mod:`mechnum.rods.balls`),
+  sanctioned exit, used by the package's own audited enclosures of the rods,
+  ``mechnum.rods._balls``),
   ``flint.acb`` or ``flint.arb_mat`` built from the balls (their results are plain flint
   objects), static functions such as ``arb.atan2``, the text of ``str(x)``, or state kept
   between calls;
@@ -52,12 +53,12 @@ Examples
 >>> math.sin(float(x.mid()))
 Traceback (most recent call last):
 ...
-mechnum.certify.guard.BallArithmeticError: float() of a ball [3.15000000000000 +/- 8.91e-17]: \
+mechnum.certify.BallArithmeticError: float() of a ball [3.15000000000000 +/- 8.91e-17]: \
 a residual must stay in ball arithmetic (use the ball's own methods, such as x.sin())
 >>> x > 3.1
 Traceback (most recent call last):
 ...
-mechnum.certify.guard.BallArithmeticError: x > y is not certain for x = [3e+0 +/- 0.301], \
+mechnum.certify.BallArithmeticError: x > y is not certain for x = [3e+0 +/- 0.301], \
 y = 3.1: a residual cannot branch on it
 """
 
@@ -142,7 +143,7 @@ class Ball(arb):
     >>> int(x)
     Traceback (most recent call last):
     ...
-    mechnum.certify.guard.BallArithmeticError: int() of a ball [2e+0 +/- 0.501]: a residual \
+    mechnum.certify.BallArithmeticError: int() of a ball [2e+0 +/- 0.501]: a residual \
 must stay in ball arithmetic (use the ball's own methods, such as x.sin())
     """
 
@@ -225,7 +226,7 @@ for _name, _value in vars(arb).items():
 
 
 def interval(x: arb) -> tuple | None:
-    """The exact float ends ``(lo, hi)`` of the box a :class:`Ball` was made from
+    """The exact float ends ``(lo, hi)`` of the box a :class:`~mechnum.certify.Ball` was made from
     (:func:`mechnum.certify.balls.guarded`), or None (a plain ball, or a Ball computed from
     others).
 
@@ -269,7 +270,7 @@ def values(residual: Callable, X: list, n: int, *, point: bool = False) -> list:
     >>> values(lambda X: [X[0] - 1], [Ball(arb(3))], 2)
     Traceback (most recent call last):
     ...
-    mechnum.certify.guard.ResidualError: the residual must return a sequence of 2, got 1
+    mechnum.certify.ResidualError: the residual must return a sequence of 2, got 1
 
     Raises
     ------

@@ -1,6 +1,6 @@
 """Re-check a certificate, trusting nothing it stores.
 
-:func:`verify` takes a :class:`~mechnum.certify.certificate.Certificate`, the caller's own
+:func:`verify` takes a :class:`~mechnum.certify.Certificate`, the caller's own
 functions and the caller's own **domain** (the boxes the question is about: for the book's
 mechanisms the whole chart, both branches of every rod), and derives everything again:
 
@@ -15,7 +15,7 @@ mechanisms the whole chart, both branches of every rod), and derives everything 
    and lies in its searched box, and its enclosure lies in the test box and holds the root;
 4. the roots (:func:`distinct_roots`), their count and ``complete`` (scope ``"all"``, no leaf
    undecided, no two enclosures that may or may not hold the same root), compared with the
-   stored ones: a mismatch is a :class:`~mechnum.certify.certificate.CertificateError` that
+   stored ones: a mismatch is a :class:`~mechnum.certify.CertificateError` that
    names both values.
 """
 
@@ -30,9 +30,9 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum._validate import shown
-from mechnum.certify import krawczyk as kr
+from mechnum.certify import _krawczyk as kr
+from mechnum.certify._certificate import SCOPES, Certificate, CertificateError
 from mechnum.certify.balls import as_array
-from mechnum.certify.certificate import SCOPES, Certificate, CertificateError
 from mechnum.results import Result
 
 __all__ = ["Verified", "covers", "distinct_roots", "overlapping", "sorted_roots", "verify"]
@@ -91,7 +91,7 @@ def distinct_roots(leaves: Sequence) -> tuple:
 
     Examples
     --------
-    >>> from mechnum.certify.certificate import Leaf
+    >>> from mechnum.certify._certificate import Leaf
     >>> same = [Leaf([[0.0, 1.0]], "krawczyk", [[0.0, 1.5]], [[0.4, 0.6]]),
     ...         Leaf([[1.0, 2.0]], "krawczyk", [[0.5, 2.0]], [[0.45, 0.55]])]
     >>> roots, undecided = distinct_roots(same)
@@ -123,7 +123,7 @@ def covers(leaves: Sequence, box: np.ndarray) -> bool:
 
     Examples
     --------
-    >>> from mechnum.certify.certificate import Leaf
+    >>> from mechnum.certify._certificate import Leaf
     >>> halves = [Leaf([[0.0, 0.5]], "residual"), Leaf([[0.5, 1.0]], "residual")]
     >>> covers(halves, np.array([[0.0, 1.0]])), covers(halves[:1], np.array([[0.0, 1.0]]))
     (True, False)
@@ -281,10 +281,10 @@ def verify(certificate: Certificate, residual: Callable, jacobian: Callable,
     Parameters
     ----------
     certificate : Certificate
-        From :meth:`~mechnum.certify.search.Roots.certificate` or
-        :meth:`~mechnum.certify.certificate.Certificate.load`.
+        From :meth:`~mechnum.certify.Roots.certificate` or
+        :meth:`~mechnum.certify.Certificate.load`.
     residual, jacobian : callable
-        The caller's functions (see :func:`~mechnum.certify.search.roots`), not the
+        The caller's functions (see :func:`~mechnum.certify.roots`), not the
         certificate's: the leaves must pass their tests on them.
     exclude : callable, optional
         The caller's exclusion test, if the search had one.
@@ -320,7 +320,7 @@ def verify(certificate: Certificate, residual: Callable, jacobian: Callable,
     >>> verify(cert, f, J, domain=[[-3.0, 4.0]])
     Traceback (most recent call last):
     ...
-    mechnum.certify.certificate.CertificateError: the certificate searched 1 boxes \
+    mechnum.certify.CertificateError: the certificate searched 1 boxes \
 [[[-3.0, 3.0]]], the domain is 1 boxes [[[-3.0, 4.0]]]: scope 'all' needs the whole domain
     """
     if not isinstance(certificate, Certificate):

@@ -38,7 +38,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from flint import arb, arb_mat
 
-from mechnum.certify import guard
+from mechnum.certify import _guard as guard
 from mechnum.certify.balls import ball, bounds, guarded
 
 __all__ = ["CONTRACTING", "INFLATION", "MAX_CONDITION", "disjoint", "excluded_by", "inflate",

@@ -29,7 +29,7 @@ enclosed is the closed form as written; that it is the elastica is the study's d
 
 Examples
 --------
->>> from mechnum.certify import ball, bounds
+>>> from mechnum.certify.balls import ball, bounds
 >>> from mechnum.rods import _regular as regular
 >>> rod = clamped_pinned(1.0, 1.0, ball(2.0, 2.001), ball(0.5, 0.501), 1, 1)
 >>> exact = regular.clamped_pinned_regular(1.0, 1.0, 2.0005, 0.5005).tip
@@ -181,7 +181,7 @@ def clamped_pinned(EI: float, L: float, psi: object, t: object, mode: int, sign:
                          f"{mode!r}")
     EI, L = arb(float(EI)), arb(float(L))
     # plain balls from here on: this module's enclosures use ball predicates and bounds on
-    # purpose, and are tested against the closed form (mechnum.certify.guard)
+    # purpose, and are tested against the closed form (mechnum.certify._guard)
     psi, t = arb(psi), arb(t)
     psi, a, b, w, v, dv_w, spans = _chart(psi, t, sign)
     a_lo, a_hi = B.ends(a)

@@ -1,7 +1,7 @@
 """Branch and prune: every root of a system in a box, each proven, or the boxes left undecided.
 
-:func:`~mechnum.certify.search.roots` takes boxes from a stack (depth first) and tests each
-(:func:`mechnum.certify.krawczyk.test_box`): a box is **excluded** (the residual's enclosure, or
+:func:`~mechnum.certify.roots` takes boxes from a stack (depth first) and tests each
+(``test_box``): a box is **excluded** (the residual's enclosure, or
 its mean-value form, or Krawczyk's operator proves it holds no root), **proven** (Krawczyk's
 operator maps it, or the box enlarged around a root near its face and cut back to the searched
 box, into its interior: exactly one root), or **bisected**. The direction of the cut is the one
@@ -27,11 +27,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.certify import guard
-from mechnum.certify import krawczyk as kr
+from mechnum.certify import _guard as guard
+from mechnum.certify import _krawczyk as kr
+from mechnum.certify._certificate import EXCLUSIONS, SCOPES, Certificate, Leaf
+from mechnum.certify._verify import distinct_roots, overlapping, sorted_roots
 from mechnum.certify.balls import as_array, guarded
-from mechnum.certify.certificate import EXCLUSIONS, SCOPES, Certificate, Leaf
-from mechnum.certify.verify import distinct_roots, overlapping, sorted_roots
 from mechnum.results import Result
 
 __all__ = ["MAX_BOXES", "MAX_BOXES_LIMIT", "MIN_WIDTH", "MIN_WIDTH_RANGE", "NARROW",
@@ -88,7 +88,7 @@ class Roots(Result):
         Time of the search.
     searched : ndarray, shape (m, n, 2)
         The searched boxes.
-    leaves : tuple of tuple of mechnum.certify.certificate.Leaf
+    leaves : tuple of tuple of mechnum.certify.Leaf
         Each searched box's leaves, in depth-first order (:meth:`certificate`).
     """
 
@@ -120,7 +120,7 @@ class Roots(Result):
 
     def certificate(self, inputs: dict | None = None) -> Certificate:
         """The leaves with the test each passed, as a
-        :class:`~mechnum.certify.certificate.Certificate` of this search's ``scope``.
+        :class:`~mechnum.certify.Certificate` of this search's ``scope``.
 
         Parameters
         ----------
@@ -213,7 +213,7 @@ def roots(residual: Callable, jacobian: Callable, box: ArrayLike, *, max_boxes: 
     ----------
     residual : callable
         ``residual(X) -> sequence of n balls``: an enclosure of ``f`` over the box ``X``, for
-        every point of it. ``X`` is a list of ``n`` balls (:class:`mechnum.certify.guard.Ball`,
+        every point of it. ``X`` is a list of ``n`` balls (:class:`mechnum.certify.Ball`,
         ``flint.arb`` that refuse to leave ball arithmetic); it is called on boxes and on
         points (balls of radius 0), where it must be finite.
     jacobian : callable
@@ -230,7 +230,7 @@ def roots(residual: Callable, jacobian: Callable, box: ArrayLike, *, max_boxes: 
     exclude : callable, optional
         ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
         box ``X`` holds no root (tried after the residual's enclosure;
-        :func:`~mechnum.certify.verify.verify` needs it too).
+        :func:`~mechnum.certify.verify` needs it too).
     split : callable, optional
         ``split(X) -> (d, value)`` or None: where the caller would cut the box ``X`` (for
         example at the edge of the directions that a force balance allows, so that one half is
@@ -253,10 +253,10 @@ def roots(residual: Callable, jacobian: Callable, box: ArrayLike, *, max_boxes: 
     ValueError
         If a box is not finite, has ``lo > hi``, two boxes overlap, or an argument is out of
         range.
-    mechnum.certify.guard.ResidualError
+    mechnum.certify.ResidualError
         If a function returns the wrong length, something that is not a ball, or a residual
         that is not finite at a point.
-    mechnum.certify.guard.BallArithmeticError
+    mechnum.certify.BallArithmeticError
         If a function converts a ball to a number or branches on an uncertain comparison.
 
     Examples
