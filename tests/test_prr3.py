@@ -108,6 +108,8 @@ def test_vertices_form_the_platform_triangle(g, poses):
     v = _geometry.vertices(g, np.reshape(poses, (-1, 3)))
     assert v.shape == (len(poses), 3, 2)
     sides = np.linalg.norm(v - np.roll(v, 1, axis=1), axis=-1)
+    # the sides of a rotated and shifted triangle: round-off of the rotation and of the shift
+    # (poses up to 1e3 m), relative to the side and to the coordinates' size
     assert_allclose(sides, g.a, rtol=1e-9, atol=1e-12 * (1 + np.abs(v).max(initial=0)))
     assert_allclose(v[:, 0], np.reshape(poses, (-1, 3))[:, :2], rtol=0)
     if len(poses):  # counter-clockwise: P3 to the left of P1 P2

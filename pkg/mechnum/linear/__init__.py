@@ -34,12 +34,13 @@ from mechnum.linear._spectra import (
 from mechnum.linear._stationary import IterationResult as IterationResult
 from mechnum.linear._stationary import SorSweep as SorSweep
 from mechnum.linear._stationary import (
+    gauss_seidel,
     jacobi,
     sor,
     sor_sweep,
 )
 from mechnum.linear._sweeps import sweep_by_components
 
-__all__ = ["condition_number", "conjugate_gradient", "iterative_refinement", "jacobi",
-           "least_squares", "optimal_omega", "poisson2d", "poisson3d", "sor",
+__all__ = ["condition_number", "conjugate_gradient", "gauss_seidel", "iterative_refinement",
+           "jacobi", "least_squares", "optimal_omega", "poisson2d", "poisson3d", "sor",
            "sor_spectral_radii", "sor_sweep", "sweep_by_components", "young_omega"]

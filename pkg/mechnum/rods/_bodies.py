@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.rods._stability import RodBlock, block_terms, symmetric
+from mechnum.rods._stability import RodBlock, block_terms, rod_blocks, symmetric
 
 
 def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
@@ -69,9 +69,7 @@ def constrained_index_with_body(blocks: Sequence[RodBlock], dense: ArrayLike,
     >>> constrained_index_with_body([block], [[0.0]], G)
     0
     """
-    if not all(isinstance(block, RodBlock) for block in blocks):
-        raise ValueError(f"blocks must be RodBlocks (from rod_block), got "
-                         f"{[type(b).__name__ for b in blocks]}")
+    blocks = rod_blocks(blocks)
     dense = symmetric(dense, "dense")
     G = _validate.array(constraints, "constraints", ndim=2)
     rods = sum(len(b.diagonal) for b in blocks)

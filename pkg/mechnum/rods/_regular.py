@@ -417,7 +417,11 @@ def in_chart(chart: ArrayLike) -> np.ndarray:
     >>> in_chart(np.array([[1.0, 0.5, 2.0, -0.5], [1.0, 0.0, 2.0, 0.5]])).tolist()
     [True, False]
     """
-    chart = np.asarray(chart, dtype=float)
+    if not (isinstance(chart, np.ndarray) and chart.dtype == float):   # a solver's iterates are
+        chart = _validate.array(chart, "chart", finite=False)         # float arrays already
+    if chart.ndim < 1 or chart.shape[-1] % 2:
+        raise ValueError(f"chart must have a last axis of 2 r numbers (psi_i, t_i), got shape "
+                         f"{chart.shape}")
     psi, t = chart[..., 0::2], chart[..., 1::2]
     with np.errstate(invalid="ignore"):
         return np.all((psi > 0) & (psi < TWO_PI) & (t != 0) & (np.abs(t) <= T_MAX), axis=-1)

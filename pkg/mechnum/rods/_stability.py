@@ -206,9 +206,7 @@ def block_terms(blocks: Sequence[RodBlock], constraints: np.ndarray) -> tuple[in
     >>> negative, S.shape
     (1, (2, 2))
     """
-    if not all(isinstance(block, RodBlock) for block in blocks):
-        raise ValueError(f"blocks must be RodBlocks (from rod_block), got "
-                         f"{[type(b).__name__ for b in blocks]}")
+    blocks = rod_blocks(blocks)
     sizes = [len(b.diagonal) for b in blocks]
     if constraints.shape[1] < sum(sizes):
         raise ValueError(f"constraints have {constraints.shape[1]} columns for {sum(sizes)} "
@@ -228,6 +226,24 @@ def block_terms(blocks: Sequence[RodBlock], constraints: np.ndarray) -> tuple[in
                                         f"undecided (use constrained_eigenvalues)") from None
         start += n
     return negative, S
+
+
+def rod_blocks(blocks: object) -> list:
+    """``blocks`` as a list if it is a sequence of :class:`RodBlock`, else a ValueError that
+    names them.
+
+    Examples
+    --------
+    >>> rod_blocks(None)
+    Traceback (most recent call last):
+    ...
+    ValueError: blocks must be a sequence of RodBlocks (from rod_block), got None
+    """
+    if not isinstance(blocks, (list, tuple)) or not all(isinstance(b, RodBlock) for b in blocks):
+        shown = ([type(b).__name__ for b in blocks] if isinstance(blocks, (list, tuple))
+                 else _validate.shown(blocks))
+        raise ValueError(f"blocks must be a sequence of RodBlocks (from rod_block), got {shown}")
+    return list(blocks)
 
 
 def constrained_index(blocks: Sequence[RodBlock], constraints: ArrayLike) -> int:
@@ -269,6 +285,7 @@ def constrained_index(blocks: Sequence[RodBlock], constraints: ArrayLike) -> int
     >>> [constrained_index([b], b.tip_gradient) for b in (below, above)]
     [0, 1]
     """
+    blocks = rod_blocks(blocks)
     G = _validate.array(constraints, "constraints", ndim=2)
     negative, S = block_terms(blocks, G)
     if G.shape[1] != sum(len(b.diagonal) for b in blocks):

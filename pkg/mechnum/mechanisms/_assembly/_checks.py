@@ -164,13 +164,14 @@ def grid_axes(x, y, names=("x", "y"), *, monotonic: bool = False):
     return x, y
 
 
-def plane_grid(a, b, origin, directions, width: int) -> tuple:
+def plane_grid(a, b, origin, directions, width: int, bound: tuple = (np.inf, "", "")) -> tuple:
     """The grid of an atlas, ``inputs[i, j] = origin + a[i] directions[0] + b[j]
     directions[1]``, checked: ``(inputs (nx, ny, width), (a, b), origin, directions)``.
 
     ``origin`` (width,) defaults to zero, ``directions`` (2, width) to the first two axes of
     the inputs; the two directions must be finite and independent. Each axis must be strictly
-    increasing or decreasing (:func:`grid_axes`).
+    increasing or decreasing (:func:`grid_axes`). ``bound = (limit, words, reason)``: every
+    input of the grid must lie within ``limit`` (``words`` in the message) of zero.
 
     Examples
     --------
@@ -188,5 +189,11 @@ def plane_grid(a, b, origin, directions, width: int) -> tuple:
     if np.linalg.matrix_rank(directions) < 2:
         raise ValueError(f"directions must be two independent directions, got "
                          f"{_validate.shown(directions)}")
-    inputs = origin + a[:, None, None] * directions[0] + b[None, :, None] * directions[1]
+    with np.errstate(over="ignore", invalid="ignore"):
+        inputs = origin + a[:, None, None] * directions[0] + b[None, :, None] * directions[1]
+        largest = np.abs(inputs).max() if inputs.size else 0.0
+    limit, words, reason = bound
+    if not largest <= limit:
+        raise ValueError(f"the grid's inputs must lie within {words} of zero ({reason}), got "
+                         f"up to {largest:.3g}")
     return inputs, (a, b), origin, directions

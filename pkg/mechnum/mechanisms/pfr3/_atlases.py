@@ -22,6 +22,10 @@ from mechnum.mechanisms.pfr3._elliptic import forward
 from mechnum.mechanisms.pfr3._paths import forward_trace
 from mechnum.rods import ClampedRods
 
+MAX_SLIDER = 1e100
+"""The largest slider input of an atlas's grid (m): the plane's dot products of larger ones
+overflow (a grid at 1e300 m did), and no mechanism closes with its sliders that far anyway."""
+
 
 def search(mech: model.Mechanism, modes: tuple, task: tuple) -> list:
     """The full search at the sliders of a task ``(rngs, lambdas)``: for each point,
@@ -57,7 +61,8 @@ def atlas(mech: model.Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLik
     a, b : array_like, shapes (nx,) and (ny,)
         The grid's coordinates (m), each strictly increasing or decreasing, neighbours close
         enough for continuation (a few millimetres); ``nx ny`` at most
-        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas.
+        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas. Every slider input
+        of the grid within ``1e100`` m of zero.
     origin : array_like, shape (3,), optional
         The sliders at ``a = b = 0`` (m); zero by default.
     directions : array_like, shape (2, 3), optional
@@ -76,8 +81,9 @@ def atlas(mech: model.Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLik
     Raises
     ------
     ValueError
-        If ``mech`` is no Mechanism, an axis is not a finite monotonic 1-D array, the grid
-        too large, ``origin`` or ``directions`` not as above, ``modes`` not three integers
+        If ``mech`` is no Mechanism, an axis is not a finite monotonic 1-D array, a slider
+        input beyond ``1e100`` m, the grid too large, ``origin`` or ``directions`` not as
+        above, ``modes`` not three integers
         ``>= 1``, or ``executor`` invalid.
 
     Examples
@@ -89,7 +95,9 @@ def atlas(mech: model.Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLik
     """
     assembly.check_type(mech, model.Mechanism)
     modes = tuple(int(m) for m in assembly.check_modes(modes, 3))
-    grid, axes, origin, directions = assembly.plane_grid(a, b, origin, directions, 3)
+    grid, axes, origin, directions = assembly.plane_grid(
+        a, b, origin, directions, 3,
+        (MAX_SLIDER, "1e+100 m", "the plane's products would overflow"))
     family = ClampedRods(mech.EI, mech.L, modes)
 
     def lift(lambdas, chart):

@@ -7,7 +7,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms.prr3 import _kernels as kernels
-from mechnum.mechanisms.prr3._geometry import Geometry, check, radicands, vectors
+from mechnum.mechanisms.prr3._geometry import Geometry, check, resolved, vectors
 
 # A radicand within 1e-12 L^2 of zero is a tangent leg: the two values of its input then
 # differ by 2 sqrt(1e-12) L = 2e-6 L, the study's own merging distance (1e-6 L) in size,
@@ -50,8 +50,8 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
     Raises
     ------
     ValueError
-        If ``poses`` is ill-shaped or not finite, ``signs`` are not three values +-1, or ``tol``
-        is not a positive number.
+        If ``poses`` is ill-shaped, not finite or beyond ``1e100`` m, ``signs`` are not three
+        values +-1, or ``tol`` is not a positive number.
 
     Examples
     --------
@@ -64,8 +64,13 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
     if not np.all(np.abs(signs) == 1):
         raise ValueError(f"signs must be three values +1 or -1, got {signs.tolist()}")
     tol = _validate.tolerance(tol)
-    poses = vectors(poses, "poses")
-    root = _tangent_roots(radicands(mech, poses), tol, mech.L)
+    return _branch_inputs(check(mech), resolved(vectors(poses, "poses"), "poses"), signs, tol)
+
+
+def _branch_inputs(mech, poses, signs, tol):
+    """:func:`branch_inputs` on checked input, any finite pose (NaN where a leg cannot reach:
+    all of them far away)."""
+    root = _tangent_roots(kernels.radicands(mech, poses), tol, mech.L)
     v = kernels.vertices(mech, poses)
     centre = np.stack([v[..., 0, 0], mech.B2 - v[..., 1, 0], mech.H3 - v[..., 2, 1]], -1)
     return centre + signs * root
@@ -109,10 +114,11 @@ def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.
     """
     pose = _validate.array(pose, "pose", shape=(3,))
     tol = _validate.tolerance(tol)
-    first = branch_inputs(mech, pose, STUDY_ORDER, tol=tol)
+    mech = check(mech)
+    first = _branch_inputs(mech, pose, np.array(STUDY_ORDER, dtype=float), tol)
     if np.any(np.isnan(first)):
         return np.empty((0, 3))
-    second = branch_inputs(mech, pose, np.negative(STUDY_ORDER), tol=tol)
+    second = _branch_inputs(mech, pose, np.negative(STUDY_ORDER, dtype=float), tol)
     values = [(f,) if f == s else (f, s) for f, s in zip(first, second)]  # equal: tangent
     return np.array(list(product(*values)))
 
@@ -155,4 +161,4 @@ def workspace(mech: Geometry, poses: ArrayLike, *, tol: float = TANGENT_TOL) -> 
     if poses.shape[-1:] != (3,):
         raise ValueError(f"poses must have a last axis of 3 (x, y, psi), got shape {poses.shape}")
     tol = _validate.tolerance(tol)
-    return np.all(radicands(mech, poses) >= -tol * mech.L ** 2, axis=-1)
+    return np.all(kernels.radicands(mech, poses) >= -tol * mech.L ** 2, axis=-1)

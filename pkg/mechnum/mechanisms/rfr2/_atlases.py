@@ -19,6 +19,11 @@ from mechnum.mechanisms.rfr2._continuation import grid_trace
 from mechnum.mechanisms.rfr2._elliptic import forward
 from mechnum.mechanisms.rfr2._model import Mechanism, rods
 
+MAX_ANGLE = 4 * np.pi
+"""The largest motor angle of an atlas, two turns either way (rad): an angle is defined modulo a
+turn, so no atlas needs more, and a larger one is a slip (degrees passed as radians: 40 degrees
+as 40 rad is six turns; 1e300 rad gave overflow warnings and a grid of meaningless angles)."""
+
 
 def search(mech: Mechanism, modes: tuple, task: tuple) -> list:
     """The full search at the motor angles of a task ``(rngs, thetas)``: for each point,
@@ -52,7 +57,8 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
     a, b : array_like, shapes (nx,) and (ny,)
         The grid's coordinates (rad), each strictly increasing or decreasing, close enough
         for continuation (a few degrees); ``nx ny`` at most
-        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas.
+        ``MAX_POINTS = 1_000_000``. An empty axis gives an empty atlas. Every motor angle of
+        the grid at most ``4 pi`` (two turns) in size.
     origin : array_like, shape (2,), optional
         The motor angles at ``a = b = 0`` (rad); zero by default.
     directions : array_like, shape (2, 2), optional
@@ -62,8 +68,8 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
         The rods' buckling modes (as in :func:`~mechnum.mechanisms.rfr2.forward`).
     executor : None, int or dask.distributed.Client, optional
         Where the full searches run: None, all local cores (joblib); ``n``, ``n`` local
-        workers (1: serially, here); a dask Client, its cluster. The result does not depend
-        on it.
+        workers (1: serially, here; more than the local cores are cut to them, with a
+        warning); a dask Client, its cluster. The result does not depend on it.
 
     Returns
     -------
@@ -74,9 +80,9 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
     Raises
     ------
     ValueError
-        If ``mech`` is no Mechanism, an axis is not a finite monotonic 1-D array, the grid
-        too large, ``origin`` or ``directions`` not as above, ``modes`` not two integers
-        ``>= 1``, or ``executor`` none of the above.
+        If ``mech`` is no Mechanism, an axis is not a finite monotonic 1-D array, a motor
+        angle beyond ``4 pi``, the grid too large, ``origin`` or ``directions`` not as above,
+        ``modes`` not two integers ``>= 1``, or ``executor`` none of the above.
 
     Examples
     --------
@@ -88,7 +94,9 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
     """
     assembly.check_type(mech, Mechanism)
     modes = tuple(int(m) for m in assembly.check_modes(modes, 2))
-    grid, axes, origin, directions = assembly.plane_grid(a, b, origin, directions, 2)
+    grid, axes, origin, directions = assembly.plane_grid(
+        a, b, origin, directions, 2, (MAX_ANGLE, "4 pi rad", "two turns; in degrees? np.radians "
+                                      "converts them"))
     default = not np.any(origin) and np.array_equal(directions, np.eye(2))
     labels = (("theta1 (deg)", "theta2 (deg)") if default else tuple(
         f"{name} (deg) along ({', '.join(f'{c:.2f}' for c in d)})"

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from numpy.typing import ArrayLike
 
+from mechnum import _validate
 from mechnum.mechanisms import _assembly as assembly
 from mechnum.mechanisms.rfr2._model import LAYOUT, Mechanism, full_system, rods
 
@@ -38,6 +39,7 @@ def jacobians(mech: Mechanism, theta: ArrayLike, chart: ArrayLike,
     (True, [-1.0, 1.0, -1.0])
     """
     assembly.check_type(mech, Mechanism)
+    theta, chart = _validate.array(theta, "theta"), _validate.array(chart, "chart")
     tip = rods(mech, theta, chart, modes, jacobian=False)[0]
     D = full_system(mech, modes)(chart, theta, tip[..., 0, :])[1]
     return assembly.determinants(D, LAYOUT)
