@@ -295,7 +295,7 @@ def test_every_forbidden_name_is_a_function_of_the_library():
 
 DELEGATES = {  # answers of a line or two that call the library's own solution
     "1.1": ("loop_equations", "from types import SimpleNamespace\n"
-            "from mechnum.mechanisms.hacksaw import kernels\n"
+            "from mechnum.mechanisms.hacksaw import _kernels as kernels\n"
             "def loop_equations(q, theta2, r1y, r2, r3):\n"
             "    g = SimpleNamespace(r1y=r1y, r2=r2, r3=r3)\n"
             "    q = np.asarray(q, dtype=float)\n"
@@ -314,7 +314,7 @@ DELEGATES = {  # answers of a line or two that call the library's own solution
     "3.1": ("rk4_step", "import importlib\nimport mechnum.ode\n"
             "def rk4_step(f, s, y, h):\n"
             "    return importlib.reload(mechnum.ode).rk4(f, y, [s, s + h])[-1]"),
-    "3.2": ("pinned_residual", "from mechnum.rods import rod\n"
+    "3.2": ("pinned_residual", "from mechnum.rods import _rod as rod\n"
             "def pinned_residual(q, EI, L, target, nodes):\n"
             "    m0, nx, ny = (float(v) for v in q)\n"
             "    x, y, t, m = rod.sweep(EI, L, m0, nx, ny, 0.0, nodes, keep=False)\n"
@@ -323,12 +323,12 @@ DELEGATES = {  # answers of a line or two that call the library's own solution
             "    return np.polynomial.polynomial.polycompanion(np.asarray(c, dtype=float))"),
     "4.2": ("prr3_newton_step", "import importlib\n"
             "def prr3_newton_step(pose, lam, g):\n"
-            "    direct = importlib.import_module('mechnum.mechanisms.prr3.direct')\n"
+            "    direct = importlib.import_module('mechnum.mechanisms.prr3._direct')\n"
             "    new, _ = direct._newton_step(g, np.asarray(pose, float)[None], "
             "np.asarray(lam, float))\n    return new[0]"),
-    "5.1": ("elliptic_tip", "import importlib, mechnum.rods.elliptic\n"
+    "5.1": ("elliptic_tip", "import importlib, mechnum.rods._elliptic\n"
             "def elliptic_tip(EI, L, psi, k_rel, mode):\n"
-            "    e = importlib.reload(mechnum.rods.elliptic)\n"
+            "    e = importlib.reload(mechnum.rods._elliptic)\n"
             "    return e.clamped_pinned(EI, L, psi, k_rel, mode).tip"),
     "7.2": ("force_by_virtual_power", "from mechnum.mechanisms import actuator\n"
             "def force_by_virtual_power(kin, mech, g):\n"

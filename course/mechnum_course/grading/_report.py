@@ -66,8 +66,8 @@ def cell(text):
 
     Examples
     --------
-    >>> cell('=HYPERLINK("http://x")'), cell("alice")
-    ('\'=HYPERLINK("http://x")', 'alice')
+    >>> print(cell('=HYPERLINK("http://x")'), cell("alice"))
+    '=HYPERLINK("http://x") alice
     """
     return "'" + text if text.startswith(("=", "+", "-", "@", "\t", "\r")) else text
 

@@ -99,5 +99,5 @@ SOLUTIONS = {
     "3.2": Solution(pinned_residual, {"a sign in m'": _moment_sign,
                                       "target minus tip": _target_minus_tip,
                                       "an off-by-one grid": _nodes_as_steps},
-                    forbidden=("mechnum.rods.integrate", "mechnum.rods.rod.sweep")),
+                    forbidden=("mechnum.rods.integrate", "mechnum.rods._rod.sweep")),
 }

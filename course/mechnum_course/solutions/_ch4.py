@@ -109,5 +109,5 @@ SOLUTIONS = {
     "4.2": Solution(prr3_newton_step, {"a transposed Jacobian": _transposed_jacobian,
                                        "the factor 2 of the Jacobian": _no_factor_two,
                                        "a sign": _plus},
-                    forbidden=("mechnum.mechanisms.prr3.direct._newton_step",)),
+                    forbidden=("mechnum.mechanisms.prr3._direct._newton_step",)),
 }
