@@ -12,6 +12,7 @@ and a computed one) and on the real chapters. The built books are compared when 
 import json
 import os
 import re
+import shutil
 import zipfile
 from html.parser import HTMLParser
 from pathlib import Path
@@ -244,9 +245,12 @@ def wheel(tmp_path_factory):
         assert links, "the student edition serves no wheel"
         return (Path(STUDENT) / "book" / links[0]).resolve()
     out = tmp_path_factory.mktemp("wheel")
+    build = ROOT / "pkg" / "build"  # removed before and after, as make downloads does: a
+    shutil.rmtree(build, ignore_errors=True)  # stale one holds modules the package dropped
     subprocess.run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps",
                     "--disable-pip-version-check", "--wheel-dir", str(out), str(ROOT / "pkg")],
                    check=True)
+    shutil.rmtree(build, ignore_errors=True)
     return next(out.glob("mechnum-*.whl"))
 
 
