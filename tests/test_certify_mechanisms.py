@@ -2,10 +2,12 @@
 not samples): the enclosures of the closed form, the chapters' counts, the sampled solvers
 against the certified ones, and the stored certificates."""
 
+import dataclasses
 import pathlib
 
 import numpy as np
 import pytest
+from flint import arb
 
 from mechnum import certify, rods
 from mechnum.certify import ball, bounds
@@ -178,3 +180,71 @@ def test_boxes_around_points_stay_in_the_chart_and_the_branch():
     for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):
         with pytest.raises(ValueError, match="points of the chart"):
             certified.around_boxes(points, 1)
+
+
+def test_arcs_meet_modulo_two_pi_at_any_number_of_turns():
+    """The polar force test's arcs, shifted by whole turns (up to 10**6), agree with the
+    arcs reduced to one turn (in floats, with a margin: arcs closer than it are skipped)."""
+    rng = np.random.default_rng(29)
+    pi = balls.B.PI
+    checked = 0
+    for _ in range(400):
+        a0, b0 = rng.uniform(-np.pi, np.pi, 2)
+        wa, wb = rng.uniform(0.01, 3.0), rng.uniform(0.01, 3.0)
+        turns = int(rng.choice([-10**6, -7, -3, 3, 4, 9, 10**6]))
+        gap = (b0 - a0) % TWO_PI                   # b's start, from a's start, in [0, 2 pi)
+        meet = gap <= wa or gap + wb >= TWO_PI
+        margin = min(abs(gap - wa), abs(gap + wb - TWO_PI))
+        if margin < 1e-6:
+            continue
+        a = (arb(a0) + 2 * turns * pi, arb(a0 + wa) + 2 * turns * pi)
+        assert certified._arcs_meet(a, (arb(b0), arb(b0 + wb))) == meet
+        checked += 1
+    assert checked > 350
+
+
+def _one_root_around(system, mech, inputs, point, half):
+    f, J, _, exclude = system(mech, inputs)
+    box = np.column_stack((point - half, point + half))
+    r = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    return r, certify.verify(r.certificate(), f, J, exclude, domain=box)
+
+
+@pytest.mark.parametrize("turns", [2, -3, 10**6])
+def test_rfr2_motor_angles_plus_whole_turns_keep_their_equilibria(turns):
+    """The same 2RFR with its motor angles turned by whole turns: a box around a known
+    equilibrium is proven to hold it (the polar test once excluded it, 'complete, 0')."""
+    point = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0).chart[0]
+    theta = rfr2.TABLE7_THETA + 2 * np.pi * turns
+    r, v = _one_root_around(rfr2_certified.system, rfr2.TABLE7, theta, point, 1e-3)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_pfr3_clamp_angles_plus_whole_turns_keep_their_equilibria():
+    """The same 3PFR with its clamps turned by three whole turns keeps Table 8's first
+    equilibrium (the polar test once excluded its box)."""
+    mech = dataclasses.replace(pfr3.TABLE8, clamp_angles=pfr3.TABLE8.clamp_angles + 6 * np.pi)
+    point = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0).chart[0]
+    r, v = _one_root_around(pfr3_certified.system, mech, pfr3.TABLE8_LAMBDAS, point, 1e-6)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_the_verifier_refuses_an_exclusion_by_the_old_arc_test(monkeypatch):
+    """A certificate made with the arcs compared at shifts -2..2 only (the old test) excludes
+    a box around an equilibrium at motor angles + 2 turns; the verifier, re-running the
+    caller's exclusion test, refuses it."""
+    def old(a, b):
+        two_pi = 2 * balls.B.PI
+        return any(not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1]))
+                   for k in (-2, -1, 0, 1, 2))
+    point = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0).chart[0]
+    theta = rfr2.TABLE7_THETA + 4 * np.pi
+    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, theta)
+    box = np.column_stack((point - 1e-3, point + 1e-3))
+    with monkeypatch.context() as patch:
+        patch.setattr(certified, "_arcs_meet", old)
+        bad = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    assert (bad.count, bad.complete) == (0, True)          # the old hole
+    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, theta)
+    with pytest.raises(certify.CertificateError, match="exclusion test fails"):
+        certify.verify(bad.certificate(), f, J, exclude, domain=box)
