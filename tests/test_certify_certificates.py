@@ -410,7 +410,7 @@ def test_the_sweeps_find_what_comparing_every_pair_finds():
     quadratic first version, on random valid leaves around a few roots (grid-aligned ends,
     so that faces touch and enclosures nest or overlap)."""
     rng = np.random.default_rng(5)
-    for trial in range(60):
+    for _ in range(60):
         n, m = int(rng.integers(1, 4)), int(rng.integers(0, 40))
         lo = rng.integers(0, 12, (m, n)) / 4
         boxes = np.stack((lo, lo + rng.integers(0, 6, (m, n)) / 4), axis=-1)
