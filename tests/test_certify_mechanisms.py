@@ -3,6 +3,7 @@ not samples): the enclosures of the closed form, the chapters' counts, the sampl
 against the certified ones, and the stored certificates."""
 
 import dataclasses
+import json
 import pathlib
 
 import numpy as np
@@ -151,6 +152,21 @@ def test_the_stored_pinned_certificates_verify_complete(mode):
     half = certify.roots(f, J, certified.branch_boxes(1)[:1]).certificate()
     with pytest.raises(certify.CertificateError, match="needs the whole domain"):
         certify.verify(half, f, J, domain=certified.branch_boxes(1))
+
+
+def test_a_leaf_the_rods_refuse_is_a_certificate_error():
+    """A zero-width leaf on the face t = 0 (the branches' edge, where the rods' closed form
+    is refused) spliced into the stored mode-1 cover still merges into its box; verify then
+    names the leaf and the rods' reason in a CertificateError."""
+    data = json.loads((CERTIFICATES / "ch3_pinned_mode1.json").read_text())
+    part = data["leaves"][0]
+    i = next(i for i, leaf in enumerate(part) if leaf["box"][1][0] == 0.0)
+    part.insert(i, {"box": [part[i]["box"][0], [0.0, 0.0]], "test": "residual"})
+    f, J = certified.pinned_system(1.0, 1.0, [0.8, 0.1], 1)
+    with pytest.raises(certify.CertificateError,
+                       match=r"leaf .* \(residual\): the caller's functions refuse it: .*both"):
+        certify.verify(certify.Certificate.from_json(json.dumps(data)), f, J,
+                       domain=certified.branch_boxes(1))
 
 
 def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():

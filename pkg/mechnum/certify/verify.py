@@ -29,6 +29,7 @@ from mechnum._validate import shown
 from mechnum.certify import krawczyk as kr
 from mechnum.certify.balls import as_array
 from mechnum.certify.certificate import SCOPES, Certificate, CertificateError
+from mechnum.certify.guard import ResidualError
 
 
 def _within(inner, outer):
@@ -361,8 +362,9 @@ def verify(certificate, residual, jacobian, exclude=None, *, domain=None,
     Raises
     ------
     CertificateError
-        If anything derived differs from what the certificate stores or needs; the message
-        names the leaf or box and both values.
+        If anything derived differs from what the certificate stores or needs, or the
+        caller's functions refuse a leaf (a ``ValueError``: a box they are not defined on);
+        the message names the leaf or box and both values.
     ValueError
         If an argument is not what it must be (no ``domain``, say).
 
@@ -402,7 +404,14 @@ def verify(certificate, residual, jacobian, exclude=None, *, domain=None,
     for b, (box, part) in enumerate(zip(certificate.boxes, certificate.leaves)):
         _check_cover(b, box, part)
         for i, leaf in enumerate(part):
-            problem = _check_leaf(leaf, residual, jacobian, counter, exclude, box)
+            try:
+                problem = _check_leaf(leaf, residual, jacobian, counter, exclude, box)
+            except ResidualError:
+                raise
+            except ValueError as error:            # the caller's functions refuse the leaf
+                raise CertificateError(f"leaf {i} of box {b}, {leaf.box.tolist()} "
+                                       f"({leaf.test}): the caller's functions refuse it: "
+                                       f"{error}") from error
             if problem:
                 raise CertificateError(f"leaf {i} of box {b}, {leaf.box.tolist()} "
                                        f"({leaf.test}): {problem}")
