@@ -50,12 +50,12 @@ def meeting_pairs(boxes: np.ndarray, *, closed: bool = False) -> np.ndarray:
     """The pairs ``(i, j)``, ``i < j``, of boxes ``(m, n, 2)`` whose interiors meet
     (``lo_i < hi_j`` and ``lo_j < hi_i`` in every coordinate), or, if ``closed``, that meet
     as closed boxes (``<=``); sorted. Sort and sweep: ``O(m log m)`` plus the pairs whose
-    ranges meet along the sweep's coordinate (at most :data:`MAX_PAIRS`).
+    ranges meet along the sweep's coordinate (at most ``MAX_PAIRS``).
 
     Raises
     ------
     ValueError
-        If more than :data:`MAX_PAIRS` pairs would have to be compared.
+        If more than ``MAX_PAIRS`` pairs would have to be compared.
 
     Examples
     --------
