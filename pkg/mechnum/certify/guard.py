@@ -21,7 +21,8 @@ with a :class:`BallArithmeticError` naming the operation,
 ``x.mid()``, ``x.lower()``, ``x.upper()`` and ``x.rad()`` are Balls too (exact points), and
 so are the ends of the box a ball was made from (:func:`interval`): none of them converts to a
 float, and a pickled or copied Ball (``__getstate__``, ``__reduce_ex__``) is refused, so no
-method of a Ball hands out a float. Comparisons with them are certain (they are points) and
+method of a Ball hands out a float of its points (the predicates kept give bools, bit counts and
+text). Comparisons with them are certain (they are points) and
 therefore allowed: a residual can still learn where its box lies, by comparisons alone (a
 bisection on ``x.mid() > c`` recovers the midpoint bit by bit, and one on ``x > c`` the
 ball's ends); see below.
@@ -61,6 +62,8 @@ Examples
 >>> lo, hi = interval(x)                            # the box's exact ends, as Balls
 >>> type(hi).__name__, hi.is_exact(), bool(hi == 3.3)
 ('Ball', True, True)
+>>> bool(x.mid() > 3.1)              # certain (a point): allowed, and it tells where x lies
+True
 >>> math.sin(sum(interval(x)) / 2)
 Traceback (most recent call last):
 ...
