@@ -16,9 +16,9 @@ import pytest
 from flint import arb
 
 from mechnum import certify
-from mechnum.certify import Ball, BallArithmeticError, ResidualError, guard
+from mechnum.certify import Ball, BallArithmeticError, ResidualError
+from mechnum.certify import _krawczyk as kr
 from mechnum.certify import balls as B
-from mechnum.certify import krawczyk as kr
 
 BOX = [[3.0, 3.3]]                   # holds pi, the root of sin
 J_SIN = lambda X: [[X[0].cos()]]     # noqa: E731
@@ -33,8 +33,8 @@ LEAKS = {
     "int": lambda X: [arb(int(X[0])) - 3 + arb("0.5")],
     "a float of a ball's bound": lambda X: [arb(math.sin(float(X[0].upper())))],
     "the exponent of a ball": lambda X: [arb(X[0].man_exp()[1])],
-    "floats from bounds": lambda X: [arb(math.sin(certify.bounds(X[0])[0]))],
-    "the box's ends": lambda X: [X[0] * 0 + math.sin(sum(guard.interval(X[0])) / 2)],
+    "floats from bounds": lambda X: [arb(math.sin(certify.balls.bounds(X[0])[0]))],
+    "the box's ends": lambda X: [X[0] * 0 + math.sin(sum(B.interval(X[0])) / 2)],
     "the ball's state": lambda X: [X[0] * 0 + math.sin(_state(X[0]))],
     "a copy": lambda X: [X[0] * 0 + math.sin(copy.copy(X[0]))],
 }
@@ -72,8 +72,8 @@ def test_the_verifier_hands_guarded_balls_too():
 
 def test_ball_arithmetic_stays_guarded_and_answers_certain_questions():
     x = B.guarded([[3.0, 3.3]])[0]
-    lo, hi = guard.interval(x)
-    assert type(lo) is Ball and lo == 3.0 and hi == 3.3 and guard.interval(x + 0) is None
+    lo, hi = B.interval(x)
+    assert type(lo) is Ball and lo == 3.0 and hi == 3.3 and B.interval(x + 0) is None
     assert not hasattr(x, "interval")
     for leave in (pickle.dumps, copy.copy, copy.deepcopy):
         with pytest.raises(BallArithmeticError, match="pickling"):
