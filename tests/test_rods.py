@@ -17,7 +17,7 @@ from mechnum.errors import ConvergenceError, MechnumError
 from mechnum.mechanisms import elastica
 from mechnum.rods import NoEquilibriumError, shooting
 from mechnum.rods import rod as rod_module
-from mechnum.rods.growing import START_TOL
+from mechnum.rods.pinned import START_TOL
 
 PI = np.pi
 EPS = np.finfo(float).eps

@@ -148,32 +148,39 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
     max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     halvings = _validate.maxiter(halvings, "halvings", maximum=HALVINGS_LIMIT)
     eqs = Equations(fun, jac)
-    run = _Run(eqs, x, rule, independent)
+    run = _Run(eqs, x.copy(), rule, independent)
     steps, full = [], []
     for k in range(rule.maxiter + 1):
-        run.check(full[-1] if full else None)
-        active = run.running.copy()
-        if not active.any() or k == rule.maxiter:
+        run.check()
+        rows = np.flatnonzero(run.running)
+        if not rows.size or k == rule.maxiter:
             break
-        dx, full_norm = run.step(active)
-        full.append(np.where(active, full_norm, np.nan))
+        rows, dx = run.step(rows)
+        full.append(run.full)
+        if not rows.size:
+            steps.append(np.full(len(x), np.nan))
+            continue
         dx, shrink = bounded(dx, max_step)
+        x_old = run.x[rows]
         if damping:
-            sure = run.meets_step(full_norm, run.x + dx)
-            trial, failed, _ = line_search(run.call, run.x, run.f, run.J, dx, run.running,
-                                           run.rnorm, sure, rule.norm, domain,
-                                           shrink=shrink, stacked=independent,
-                                           halvings=halvings)
-            run.stop(failed != "", failed[failed != ""])
+            sure = run.meets_step(run.full[rows], x_old + dx)
+            trial, failed, _ = line_search(run.call, x_old, run.f[rows],
+                                           None if run.J is None else run.J[rows], dx,
+                                           np.ones(len(rows), dtype=bool), run.rnorm[rows],
+                                           sure, rule.norm, domain, shrink=shrink,
+                                           stacked=independent, halvings=halvings)
+            moved = failed == ""
+            run.stop(rows[~moved], failed[~moved])
             x_new, f_new, J_new = trial.x, trial.f, trial.J
         else:
-            x_new = run.x + dx  # dx is zero for the systems that are not moving
+            x_new = x_old + dx
+            moved = np.ones(len(rows), dtype=bool)
             if domain is not None:  # a step out of the domain is not taken, nor evaluated
-                outside = run.running & ~inside(domain, x_new)
-                run.stop(outside, "left-domain")
-                x_new[outside] = run.x[outside]
-            f_new, J_new = run.call(x_new, run.running)
-        steps.append(run.advance(x_new, f_new, J_new))
+                moved = inside(domain, x_new)
+                run.stop(rows[~moved], "left-domain")
+                x_new[~moved] = x_old[~moved]
+            f_new, J_new = run.call(x_new, moved)
+        steps.append(run.advance(rows, moved, x_new, f_new, J_new))
     run.stop(run.running, "maxiter")
     shape = (len(steps), len(x))
     result = BatchNewtonResult(
@@ -189,7 +196,11 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
 
 class _Run:
     """The state of :func:`solve_batch`: iterates, residuals (and Jacobians from ``fun``), and
-    the status of every system (``""`` while it runs)."""
+    the status of every system (``""`` while it runs).
+
+    Every iteration works on the rows of the running systems only (gathered once, scattered
+    back once), so that its cost follows the systems still running, not the batch.
+    """
 
     def __init__(self, eqs, x, rule, independent):
         self.eqs, self.rule, self.independent = eqs, rule, independent
@@ -200,24 +211,33 @@ class _Run:
         self.f, self.J = eqs.value(x)
         self.rnorm = norms(self.f, rule.norm)
         self.limit = rule.tol * self.rnorm if rule.relative else rule.tol
+        self.full = None    # the norms of the last full steps (NaN where none was taken)
+        self.rows = np.arange(0)    # the rows of the iteration under way
 
-    def call(self, points, rows):
-        """``(f, J or None)`` at ``points``, at least of the systems ``rows``."""
+    def call(self, points, which):
+        """``(f, J or None)`` at ``points`` of the rows under way, at least at ``which`` (a
+        mask of them); the other systems, if ``fun`` depends on the position in the batch,
+        at their own iterates."""
         if not self.independent:
+            full = self.x.copy()
+            full[self.rows] = points
+            f, J = self.eqs.value(full)
+            return f[self.rows], None if J is None else J[self.rows]
+        if which.all():
             return self.eqs.value(points)
         f = np.full(points.shape, np.nan)
         J = None if self.eqs.jac is not True else np.full(points.shape + points.shape[-1:],
                                                           np.nan)
-        if rows.any():
-            f_rows, J_rows = self.eqs.value(points[rows])
-            f[rows] = f_rows
+        if which.any():
+            f_rows, J_rows = self.eqs.value(points[which])
+            f[which] = f_rows
             if J is not None:
-                J[rows] = J_rows
+                J[which] = J_rows
         return f, J
 
     def stop(self, which, why):
-        """End the systems ``which`` (a mask) with the status ``why``."""
-        if which.any():
+        """End the systems ``which`` (a mask, or indices) with the status ``why``."""
+        if which.any() if which.dtype == bool else which.size:
             self.status[which] = why
             self.running[which] = False
 
@@ -229,53 +249,57 @@ class _Run:
         with np.errstate(invalid="ignore"):
             return np.isfinite(full_norm) & (full_norm <= self.rule.tol * scale)
 
-    def check(self, last_full):
+    def check(self):
         """Stop the systems whose residual is not finite or that meet the criterion."""
+        rows = np.flatnonzero(self.running)
         with np.errstate(invalid="ignore"):
-            self.stop(self.running & ~np.isfinite(self.rnorm), "non-finite")
+            self.stop(rows[~np.isfinite(self.rnorm[rows])], "non-finite")
+            rows = rows[self.running[rows]]
             if self.rule.criterion == "residual":
-                met = self.rnorm <= self.limit
+                met = self.rnorm[rows] <= (self.limit[rows] if np.ndim(self.limit)
+                                          else self.limit)
+            elif self.full is None:
+                return
             else:
-                met = (np.zeros(len(self.x), dtype=bool) if last_full is None
-                       else self.meets_step(last_full, self.x))
-        self.stop(self.running & met, "converged")
+                met = self.meets_step(self.full[rows], self.x[rows])
+        self.stop(rows[met], "converged")
 
-    def step(self, active):
-        """The full Newton steps of the systems ``active`` (zero elsewhere) and their norms;
-        the systems whose Jacobian is singular or not finite are stopped."""
-        subset = self.independent and not active.all()  # then jac is called on active rows
-        J_all = self.J if self.J is not None else None
-        if subset:
-            J = self.eqs.jacobian(self.x[active], self.f[active],
-                                  None if J_all is None else J_all[active])
+    def step(self, rows):
+        """The full Newton steps of the systems ``rows``; the systems whose Jacobian is
+        singular or not finite are stopped. Returns the rows that go on and their steps
+        (their norms in ``full``, with 0 for the stopped ones)."""
+        self.rows = rows
+        if self.J is not None:
+            J = self.J[rows]
+        elif self.independent:
+            J = self.eqs.jacobian(self.x[rows], self.f[rows])
         else:
-            J = self.eqs.jacobian(self.x, self.f, J_all)
-            J = J if active.all() else J[active]
+            J = self.eqs.jacobian(self.x, self.f)[rows]
         finite = np.isfinite(J).all(axis=(-2, -1))
-        bad = active.copy()
-        bad[active] = ~finite
-        self.stop(bad, "non-finite")
-        dx = np.zeros_like(self.x)
-        rows = np.flatnonzero(active)[finite]
-        if rows.size:
-            dx[rows], stuck, _ = newton_step(J[finite], self.f[rows])
-            singular = np.zeros(len(self.x), dtype=bool)
-            singular[rows[stuck]] = True
-            self.stop(singular, "singular")
-        return dx, norms(dx, self.rule.norm)
+        self.stop(rows[~finite], "non-finite")
+        dx = np.zeros((len(rows), self.x.shape[1]))
+        go = finite.copy()
+        if finite.any():
+            dx[finite], stuck, _ = newton_step(J[finite] if not finite.all() else J,
+                                               self.f[rows[finite]])
+            go[np.flatnonzero(finite)[stuck]] = False
+            self.stop(rows[finite][stuck], "singular")
+        self.full = np.full(len(self.x), np.nan)
+        self.full[rows] = norms(dx, self.rule.norm)
+        self.rows = rows[go]
+        return self.rows, dx[go]
 
-    def advance(self, x_new, f_new, J_new):
-        """Move the running systems to their new points; the norms of their steps."""
-        running = self.running
-        self.iterations += running
-        size = norms(x_new - self.x, self.rule.norm)
-        keep = running[:, None]
-        self.x = np.where(keep, x_new, self.x)
-        self.f = np.where(keep, f_new, self.f)
+    def advance(self, rows, moved, x_new, f_new, J_new):
+        """Move the systems ``rows[moved]`` to their new points; the norms of their steps."""
+        out = np.full(len(self.x), np.nan)
+        rows, x_new, f_new = rows[moved], x_new[moved], f_new[moved]
+        self.iterations[rows] += 1
+        out[rows] = norms(x_new - self.x[rows], self.rule.norm)
+        self.x[rows], self.f[rows] = x_new, f_new
         if self.J is not None and J_new is not None:
-            self.J = np.where(keep[:, :, None], J_new, self.J)
-        self.rnorm = norms(self.f, self.rule.norm)
-        return np.where(running, size, np.nan)
+            self.J[rows] = J_new[moved]
+        self.rnorm[rows] = norms(f_new, self.rule.norm)
+        return out
 
 
 def _message(status, rnorm, rule):

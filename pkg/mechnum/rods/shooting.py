@@ -33,8 +33,8 @@ from numpy.typing import ArrayLike
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.results import Result
-from mechnum.rods.growing import closed_form, pinned_start
-from mechnum.rods.pinned import RESOLVED, classify
+from mechnum.rods.growing import closed_form
+from mechnum.rods.pinned import RESOLVED, classify, pinned_start
 from mechnum.rods.rod import MAX_NODES, Rod, as_vectors, integrate, rod_scales, tip_states
 
 _EPS = np.finfo(float).eps
@@ -424,7 +424,7 @@ def shoot_pinned(EI: float, L: float, tip: ArrayLike, guess: ArrayLike | None = 
     :func:`mechnum.rods.rod.tip_jacobian`. A pinned point has many equilibria (buckling modes, both
     senses of bending, loops in tension: :func:`mechnum.rods.pinned.pinned_equilibria`): the start
     selects one. The default start is the closed-form cantilever (mode 1, the growing branch)
-    whose tip is at the point (:func:`mechnum.rods.growing.pinned_start`): it leads to the
+    whose tip is at the point (:func:`mechnum.rods.pinned.pinned_start`): it leads to the
     mode-1 rod where the point admits one and Newton reaches it (a point near the reach ``L``
     in near tension may defeat it: the force of a nearly straight rod is ill-determined by its
     tip).

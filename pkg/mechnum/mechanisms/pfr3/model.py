@@ -40,7 +40,7 @@ from mechnum import _validate
 from mechnum.errors import GeometryError, UnreachablePoseError
 from mechnum.mechanisms import thesis
 from mechnum.mechanisms.thesis import EI, LENGTH
-from mechnum.rods import regular
+from mechnum.rods import kernels, regular
 from mechnum.rods.assembly import Layout, check_modes, check_type
 
 LAYOUT = Layout(rods=3, inputs=3, pose=3)
@@ -319,8 +319,8 @@ def rods(mech: Mechanism, lambdas: ArrayLike, z: ArrayLike, modes: ArrayLike = (
     except ValueError:
         raise ValueError(f"z of shape {z.shape} and lambdas of shape {c.shape[:-1]} do not "
                          "broadcast together") from None
-    rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
-                               check_modes(modes, 3), _validate.flag(jacobian, "jacobian"))
+    rod = kernels.closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
+                              check_modes(modes, 3), jacobian=_validate.flag(jacobian, "jacobian"))
     tip, force, d_chart, _ = regular.place(rod, c, mech.clamp_angles)
     return tip, force, rod.clamp_moment, d_chart
 

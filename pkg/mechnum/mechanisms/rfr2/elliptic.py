@@ -20,10 +20,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.mechanisms.rfr2.analysis import crossings, stability, strain
+from mechnum.mechanisms.rfr2.analysis import crossings, stabilities, strain
 from mechnum.mechanisms.rfr2.drawing import draw
 from mechnum.mechanisms.rfr2.model import Mechanism, Names, in_chart, rods, thesis_from_chart
-from mechnum.rods import assembly, regular
+from mechnum.rods import assembly, kernels, regular
 
 # Starts of the all-solutions search are drawn with |t| <= 0.985 (forces up to ~(q/2)**2 =
 # 1000 EI / L**2, far beyond what the study's mechanism can balance); iterates may go on to T_MAX.
@@ -129,7 +129,8 @@ def inverse_system(mech: Mechanism, P: ArrayLike, modes: ArrayLike = (1, 1)):
     reach = np.hypot(*(P - mech.origins).T)
 
     def parts(z, jacobian):
-        rod = regular._closed_form(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes, jacobian)
+        rod = kernels.closed_form(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes,
+                                  jacobian=jacobian)
         length = np.hypot(rod.tip[..., 0], rod.tip[..., 1])
         theta = motor_angles(mech, P, rod.tip)
         c, s = np.cos(theta), np.sin(theta)
@@ -218,7 +219,7 @@ def _equilibria(mech, theta, P, modes, found, nfev, njev, inputs, pose):
     _, force, moment, _, _ = rods(mech, theta, z, modes, jacobian=False)
     index, cross, own = np.zeros((0, 2), int), np.zeros(0, int), np.zeros((0, 2), int)
     if n:
-        index = np.array([stability(mech, theta[i], z[i], modes) for i in range(n)])
+        index = stabilities(mech, theta, z, modes)
         cross, own = crossings(mech, theta, z, modes)
     return Equilibria(x=z, status=np.full(n, "converged"), iterations=njev, nfev=nfev,
                       njev=njev, message=assembly.equilibria_message(n, found),
@@ -227,6 +228,29 @@ def _equilibria(mech, theta, P, modes, found, nfev, njev, inputs, pose):
                       clamp_moments=moment, index=index, rods_cross=cross, self_cross=own,
                       strain=strain(mech, theta, z, modes), strain_limit=mech.strain_limit,
                       search=found)
+
+
+def _in_chart(z):
+    """:func:`in_chart` unchecked (the search's iterates are finite rows of four)."""
+    psi, t = z[:, 0::2], z[:, 1::2]
+    return ((psi > 0) & (psi < regular.TWO_PI) & (t != 0) & (np.abs(t) <= regular.T_MAX)).all(
+        axis=1)
+
+
+def _search(mech, theta, modes, n_starts, check, rng):
+    """The search of :func:`forward_elliptic` alone, its roots unclassified: ``(found, nfev,
+    njev)``. Every start of it and of its check in one damped Newton over all of them
+    (:func:`mechnum.newton.solve_all`), on the compiled closed form
+    (:func:`mechnum.rods.kernels.meeting`: residual and Jacobian in one call)."""
+    assembly.check_type(mech, Mechanism)
+    theta = _validate.array(theta, "theta", shape=(2,))
+    modes = np.asarray(assembly.check_modes(modes, 2), dtype=float)
+
+    def both(z):
+        return kernels.meeting(mech.EI, mech.L, mech.origins, theta, modes, mech.force, z)
+
+    return assembly.search(both, True, sample, domain=_in_chart, n_starts=n_starts, check=check,
+                           rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER)
 
 
 def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1), *,
@@ -277,11 +301,8 @@ def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1
     >>> np.round(eq.solutions, 6).tolist()[0], eq.stable.tolist(), eq.search.complete
     ([1.962541, -0.004391, 4.811041, 0.943413], [True, True, True], True)
     """
-    fun, jac = forward_system(mech, theta, modes)
+    found, nfev, njev = _search(mech, theta, modes, n_starts, check, rng)
     theta, modes = np.asarray(theta, dtype=float), assembly.check_modes(modes, 2)
-    found, nfev, njev = assembly.search(fun, jac, sample, domain=in_chart, n_starts=n_starts,
-                                        check=check, rng=rng, tol=SEARCH_TOL,
-                                        maxiter=SEARCH_MAXITER)
     P = rods(mech, theta, found.roots, modes, jacobian=False)[0][:, 0]
     return _equilibria(mech, np.broadcast_to(theta, (len(P), 2)), P, modes, found, nfev,
                        njev, theta, P)
@@ -324,7 +345,8 @@ def inverse(mech: Mechanism, P: ArrayLike, modes: ArrayLike = (1, 1), *, n_start
                                         check=check, rng=rng, tol=SEARCH_TOL,
                                         maxiter=SEARCH_MAXITER)
     z = found.roots
-    tip = regular._closed_form(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes, False).tip
+    tip = kernels.closed_form(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes,
+                              jacobian=False).tip
     theta = motor_angles(mech, P, tip)
     return _equilibria(mech, theta, P, modes, found, nfev, njev, theta, P)
 

@@ -20,7 +20,7 @@ from mechnum import _validate
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import thesis
 from mechnum.mechanisms.thesis import DIAMETER, EI, LENGTH, YOUNG  # noqa: F401 (rfr2.model's names)
-from mechnum.rods import regular
+from mechnum.rods import kernels, regular
 from mechnum.rods.assembly import Layout, check_modes, check_type
 
 LAYOUT = Layout(rods=2, inputs=2, pose=2)
@@ -185,8 +185,8 @@ def rods(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike =
     """
     check_type(mech, Mechanism)
     theta, z = broadcast(theta, chart)
-    rod = regular._closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
-                               check_modes(modes, 2), _validate.flag(jacobian, "jacobian"))
+    rod = kernels.closed_form(mech.EI, mech.L, z[..., 0::2], z[..., 1::2],
+                              check_modes(modes, 2), jacobian=_validate.flag(jacobian, "jacobian"))
     tip, force, d_chart, d_angle = regular.place(rod, mech.origins, theta)
     return tip, force, rod.clamp_moment, d_chart, d_angle
 

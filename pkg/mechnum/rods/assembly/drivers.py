@@ -105,11 +105,10 @@ def search(fun, jac, sample, *, domain, n_starts, check, rng, tol, maxiter, same
     """
     n_starts = _validate.maxiter(n_starts, "n_starts", maximum=MAX_STARTS)
     check = _validate.maxiter(check, "check", minimum=0, maximum=MAX_CHECK)
-    f, j, counts = _counted(fun, jac)
-    found = newton.solve_all(f, sample, j, n_starts=n_starts, check=check,
+    found = newton.solve_all(fun, sample, jac, n_starts=n_starts, check=check,
                              rng=_validate.rng(rng), domain=domain, tol=tol, maxiter=maxiter,
                              same=same)
-    return found, counts["nfev"], counts["njev"]
+    return found, found.nfev, found.njev
 
 
 def shoot(fun, jac, guess, known, *, width: int, tol: float, maxiter: int):
