@@ -1,14 +1,15 @@
 """Tests of mechnum.mechanisms.rfr2: the flexible 2RFR mechanism of Chapter 5."""
 
+import inspect
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from mechnum import newton
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import rfr2
 from mechnum.published import check_row, read_registry
+from mechnum.results import STATUSES
 
 MECH, THETA = rfr2.TABLE7, rfr2.TABLE7_THETA
 REGISTRY = Path(__file__).resolve().parents[1] / "book" / "published_values.csv"
@@ -206,7 +207,7 @@ def test_angles_with_no_equilibrium_give_an_empty_result():
 def test_unreachable_end_effector_is_not_converged():
     sol = rfr2.inverse_shooting(MECH, [3.0, 0.0], np.zeros(8) + 0.1)
     assert not sol.newton.converged.any()
-    assert set(sol.newton.status) <= set(newton.STATUSES)
+    assert set(sol.newton.status) <= set(STATUSES)
 
 
 def test_bad_chart_is_a_value_error():
@@ -436,9 +437,9 @@ def test_every_start_of_the_lockstep_search_ends_as_it_does_alone(theta, modes):
     each start, run alone as a batch of one (its halvings one at a time), ends with the same
     status, after the same iterations, at the same point."""
     from mechnum.mechanisms.rfr2 import elliptic
-    from mechnum.newton.core import SEARCH_HALVINGS
     from mechnum.rods import kernels
 
+    halvings = inspect.signature(newton.solve_all).parameters["halvings"].default
     found = elliptic._search(rfr2.TABLE7, theta, modes, 25, 3, 7)
     rng = np.random.default_rng(7)
     starts = np.concatenate((rfr2.sample(rng, 25), rfr2.sample(rng, 75)))
@@ -450,13 +451,13 @@ def test_every_start_of_the_lockstep_search_ends_as_it_does_alone(theta, modes):
     alone = [newton.solve_batch(both, start[None], True, tol=elliptic.SEARCH_TOL,
                                 maxiter=elliptic.SEARCH_MAXITER, damping=True,
                                 domain=elliptic._in_chart, raise_on_failure=False,
-                                halvings=SEARCH_HALVINGS) for start in starts]
+                                halvings=halvings) for start in starts]
     lockstep = found[0]
     assert lockstep.status.tolist() == [r.status[0] for r in alone]
     assert lockstep.iterations.tolist() == [r.iterations[0] for r in alone]
     assert len(set(lockstep.status.tolist())) > 2             # the test sees several outcomes
     ends = np.array([r.x[0] for r in alone])[lockstep.status == "converged"]
-    for root in lockstep.roots:           # the same roots, and no other
+    for root in lockstep.x:           # the same roots, and no other
         assert (np.abs(ends - root).max(axis=1) < 1e-12).any()
-    gap = np.abs(ends[:, None] - lockstep.roots[None]).max(axis=-1).min(axis=1)
+    gap = np.abs(ends[:, None] - lockstep.x[None]).max(axis=-1).min(axis=1)
     assert gap.max() < 1e-8

@@ -45,6 +45,10 @@ enough: RK4 on the requested grid differs from the closed form by more."""
 START_MAXITER = 60
 """Most iterations of that start's Newton (two to four on a transverse load, up to some seven
 on loads within 45 degrees of transverse, from ``P L**2 / EI = 0.1`` to 15)."""
+START_HALVINGS = 20
+"""Most halvings of that Newton's step (as :func:`mechnum.newton.solve`'s damping by
+default): a start whose step must be cut further has stopped short, and its best iterate is
+the start."""
 START_TABLE = np.linspace(0.0, 0.99, 67)
 """The chart's ``t`` at which the start's table of transversely loaded cantilevers is computed:
 deflections up to ``0.97 L`` (``P L**2 / EI`` up to some 700; a point beyond starts from the
@@ -388,7 +392,7 @@ def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.n
     n_y = np.where(n_y == 0.0, np.copysign(3.0 * _EPS, Y), n_y)   # on the clamp line
     start = kernels.pinned_starts(np.column_stack((X, Y)), np.column_stack((0.0 * Y, n_y)),
                                   tol=START_TOL, maxiter=START_MAXITER,
-                                  halvings=newton.MAX_HALVINGS)
+                                  halvings=START_HALVINGS)
     n = start[:, 1:] * EI / L ** 2
     return np.column_stack((start[:, 0] * EI / L, c * n[:, 0] - s * n[:, 1],
                             s * n[:, 0] + c * n[:, 1]))
