@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mechnum import newton
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import rfr2
 from mechnum.published import check_row, read_registry
