@@ -161,8 +161,7 @@ def solve_batch(fun: Callable, seeds: ArrayLike, jac: Callable | bool | None = N
     run = _Run(eqs, x.copy(), rule, independent)
     steps, full = [], []
     for k in range(rule.maxiter + 1):
-        run.check()
-        rows = np.flatnonzero(run.running)
+        rows = run.check()
         if not rows.size or k == rule.maxiter:
             break
         rows, dx = run.step(rows)
@@ -170,13 +169,14 @@ def solve_batch(fun: Callable, seeds: ArrayLike, jac: Callable | bool | None = N
         if not rows.size:
             steps.append(np.full(len(x), np.nan))
             continue
-        dx, shrink = bounded(dx, max_step)
-        x_old = run.x[rows]
+        dx, shrink = (dx, None) if max_step is None else bounded(dx, max_step)
+        at = run.at
+        x_old = run.x[at]
         if damping:
-            sure = run.meets_step(run.full[rows], x_old + dx)
-            trial, failed, _ = line_search(run.call, x_old, run.f[rows],
-                                           None if run.J is None else run.J[rows], dx,
-                                           np.ones(len(rows), dtype=bool), run.rnorm[rows],
+            sure = run.meets_step(run.full[at], x_old + dx)
+            trial, failed, _ = line_search(run.call, x_old, run.f[at],
+                                           None if run.J is None else run.J[at], dx,
+                                           np.ones(len(rows), dtype=bool), run.rnorm[at],
                                            sure, rule.norm, domain, shrink=shrink,
                                            stacked=independent, halvings=halvings)
             moved = failed == ""
@@ -209,7 +209,8 @@ class _Run:
     the status of every system (``""`` while it runs).
 
     Every iteration works on the rows of the running systems only (gathered once, scattered
-    back once), so that its cost follows the systems still running, not the batch.
+    back once), so that its cost follows the systems still running, not the batch: only the
+    array of iterates, which ``fun`` and ``jac`` receive, is copied (never changed in place).
     """
 
     def __init__(self, eqs, x, rule, independent):
@@ -222,13 +223,19 @@ class _Run:
         self.rnorm = norms(self.f, rule.norm)
         self.limit = rule.tol * self.rnorm if rule.relative else rule.tol
         self.full = None    # the norms of the last full steps (NaN where none was taken)
-        self.rows = np.arange(0)    # the rows of the iteration under way
+        self.rows = self.at = np.arange(0)    # the rows of the iteration under way
+
+    def _index(self, rows):
+        """``rows`` as an index: the whole batch as a slice (views, no copies)."""
+        return slice(None) if len(rows) == len(self.x) else rows
 
     def call(self, points, which):
         """``(f, J or None)`` at ``points`` of the rows under way, at least at ``which`` (a
         mask of them); the other systems, if ``fun`` depends on the position in the batch,
         at their own iterates."""
         if not self.independent:
+            if isinstance(self.at, slice):
+                return self.eqs.value(points)
             full = self.x.copy()
             full[self.rows] = points
             f, J = self.eqs.value(full)
@@ -260,55 +267,83 @@ class _Run:
             return np.isfinite(full_norm) & (full_norm <= self.rule.tol * scale)
 
     def check(self):
-        """Stop the systems whose residual is not finite or that meet the criterion."""
+        """Stop the systems whose residual is not finite or that meet the criterion; the rows
+        of those that run on."""
         rows = np.flatnonzero(self.running)
+        at = self._index(rows)
         with np.errstate(invalid="ignore"):
-            self.stop(rows[~np.isfinite(self.rnorm[rows])], "non-finite")
-            rows = rows[self.running[rows]]
+            bad = ~np.isfinite(self.rnorm[at])
+            if bad.any():
+                self.stop(rows[bad], "non-finite")
+                rows = rows[~bad]
+                at = rows
             if self.rule.criterion == "residual":
-                met = self.rnorm[rows] <= (self.limit[rows] if np.ndim(self.limit)
-                                          else self.limit)
+                met = self.rnorm[at] <= (self.limit[at] if np.ndim(self.limit) else self.limit)
             elif self.full is None:
-                return
+                return rows
             else:
-                met = self.meets_step(self.full[rows], self.x[rows])
-        self.stop(rows[met], "converged")
+                met = self.meets_step(self.full[at], self.x[at])
+        if met.any():
+            self.stop(rows[met], "converged")
+            rows = rows[~met]
+        return rows
 
     def step(self, rows):
         """The full Newton steps of the systems ``rows``; the systems whose Jacobian is
         singular or not finite are stopped. Returns the rows that go on and their steps
-        (their norms in ``full``, with 0 for the stopped ones)."""
+        (their norms in ``full``, with 0 for the stopped ones); ``at`` indexes them."""
         self.rows = rows
+        self.at = at = self._index(rows)
         if self.J is not None:
-            J = self.J[rows]
+            J = self.J[at]
         elif self.independent:
-            J = self.eqs.jacobian(self.x[rows], self.f[rows])
+            J = self.eqs.jacobian(self.x[at], self.f[at])
         else:
-            J = self.eqs.jacobian(self.x, self.f)[rows]
-        finite = np.isfinite(J).all(axis=(-2, -1))
-        self.stop(rows[~finite], "non-finite")
-        dx = np.zeros((len(rows), self.x.shape[1]))
-        go = finite.copy()
-        if finite.any():
-            dx[finite], stuck, _ = newton_step(J[finite] if not finite.all() else J,
-                                               self.f[rows[finite]])
-            go[np.flatnonzero(finite)[stuck]] = False
-            self.stop(rows[finite][stuck], "singular")
-        self.full = np.full(len(self.x), np.nan)
-        self.full[rows] = norms(dx, self.rule.norm)
-        self.rows = rows[go]
-        return self.rows, dx[go]
+            J = self.eqs.jacobian(self.x, self.f)[at]
+        # (one test of the whole stack first: reducing over its small last axes is slow)
+        finite = (np.ones(len(rows), dtype=bool) if np.isfinite(J).all()
+                  else np.isfinite(J).all(axis=(-2, -1)))
+        if finite.all():
+            dx, stuck, _ = newton_step(J, self.f[at])
+            go = ~stuck
+        else:
+            self.stop(rows[~finite], "non-finite")
+            dx, go = np.zeros((len(rows), self.x.shape[1])), finite.copy()
+            if finite.any():
+                dx[finite], stuck, _ = newton_step(J[finite], self.f[rows[finite]])
+                go[np.flatnonzero(finite)[stuck]] = False
+        self.stop(rows[finite & ~go], "singular")
+        self.full = norms(dx, self.rule.norm)
+        if not isinstance(at, slice):       # NaN for the systems not stepping
+            taken, self.full = self.full, np.full(len(self.x), np.nan)
+            self.full[at] = taken
+        if not go.all():
+            self.rows = rows = rows[go]
+            self.at, dx = rows, dx[go]
+        return rows, dx
 
     def advance(self, rows, moved, x_new, f_new, J_new):
         """Move the systems ``rows[moved]`` to their new points; the norms of their steps."""
-        out = np.full(len(self.x), np.nan)
-        rows, x_new, f_new = rows[moved], x_new[moved], f_new[moved]
-        self.iterations[rows] += 1
-        out[rows] = norms(x_new - self.x[rows], self.rule.norm)
-        self.x[rows], self.f[rows] = x_new, f_new
+        if not moved.all():
+            rows, x_new, f_new = rows[moved], x_new[moved], f_new[moved]
+            J_new = None if J_new is None else J_new[moved]
+        at = self._index(rows)
+        self.iterations[at] += 1
+        out = norms(x_new - self.x[at], self.rule.norm)
+        if not isinstance(at, slice):       # NaN for the systems not moving
+            taken, out = out, np.full(len(self.x), np.nan)
+            out[at] = taken
+        # a new array of iterates (never one changed in place: fun and jac may remember the
+        # last array they were called with), the new points themselves when all moved
+        if isinstance(at, slice):
+            self.x = x_new
+        else:
+            self.x = self.x.copy()
+            self.x[at] = x_new
+        self.f[at] = f_new
         if self.J is not None and J_new is not None:
-            self.J[rows] = J_new[moved]
-        self.rnorm[rows] = norms(f_new, self.rule.norm)
+            self.J[at] = J_new
+        self.rnorm[at] = norms(f_new, self.rule.norm)
         return out
 
 

@@ -16,6 +16,7 @@ Examples
 ([-1.0, 1.0], False)
 """
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -85,7 +86,7 @@ def norms(v: np.ndarray, norm: float) -> np.ndarray:
         return np.linalg.norm(v, norm)
     if norm == np.inf:
         return largest(np.abs(v))
-    ones = np.ones(v.shape[-1])
+    ones = _ones(v.shape[-1])
     if norm == 1:
         return np.abs(v) @ ones
     with np.errstate(over="ignore"):   # as np.linalg.norm: the root of the sum of squares
@@ -99,6 +100,14 @@ def norms(v: np.ndarray, norm: float) -> np.ndarray:
     top = largest(a)
     scaled = np.sqrt((a / np.maximum(top, _TINY)[..., None]) ** 2 @ ones) * top
     return np.where(overflow, scaled, out)
+
+
+@functools.cache
+def _ones(n):
+    """A vector of ``n`` ones, made once (read-only)."""
+    out = np.ones(n)
+    out.flags.writeable = False
+    return out
 
 
 def largest(a: np.ndarray) -> np.ndarray:
@@ -282,9 +291,13 @@ def newton_step(jac: np.ndarray, fx: np.ndarray) -> tuple:
                 dx[i] = np.linalg.solve(jac[i], -fx[i])
             except np.linalg.LinAlgError:
                 exact[i] = True
-    fsize = norms(fx, 1)
+    fsize, size = norms(fx, 1), norms(dx, 1)
     with np.errstate(over="ignore", invalid="ignore"):  # inf or NaN growth is flagged below
-        growth = largest(np.abs(jac).reshape(jac.shape[:-2] + (-1,))) * norms(dx, 1)
+        # the stack's largest entry bounds every J's: where that bound is trusted, all are
+        entry = np.abs(jac)
+        if not exact.any() and (entry.max() * size <= _MAX_COND * fsize).all():
+            return dx, exact, None
+        growth = largest(entry.reshape(jac.shape[:-2] + (-1,))) * size
         trusted = growth <= _MAX_COND * fsize  # False where growth is inf or NaN
     if trusted.all() and not exact.any():
         return dx, exact, None

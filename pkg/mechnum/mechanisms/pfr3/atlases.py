@@ -6,8 +6,9 @@ axes ``a``, ``b`` and the unit directions ``u``, ``v`` and checks that the grid 
 :func:`~mechnum.mechanisms.pfr3.atlases.atlas` runs :func:`mechnum.rods.assembly.atlas_of` (its
 module explains the method) with the 3PFR's closed form: the full search is
 :func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic` with its defaults (none where
-no platform can close between the clamps), the continuation
-:func:`~mechnum.mechanisms.pfr3.paths.forward_trace`.
+no platform can close between the clamps), the continuation that of
+:func:`~mechnum.mechanisms.pfr3.paths.forward_path` (the rods and the pose as the sliders move,
+:func:`~mechnum.mechanisms.pfr3.model.full_system`).
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ from mechnum import _validate
 from mechnum.errors import GeometryError
 from mechnum.mechanisms.pfr3 import model
 from mechnum.mechanisms.pfr3.equilibria import forward_elliptic
-from mechnum.mechanisms.pfr3.paths import forward_trace
 from mechnum.rods import assembly
 from mechnum.rods.assembly import atlas as atlases
 
@@ -154,9 +154,14 @@ def atlas(mech: model.Mechanism, lambdas_grid: ArrayLike, *, modes: ArrayLike = 
         tip = model.rods(mech, lambdas, z, modes, jacobian=False)[0]
         return np.concatenate((z, model.pose_of_tips(mech, tip)), axis=-1)
 
-    trace = forward_trace(mech, np.array(modes, dtype=float), tol=atlases.STEP_TOL,
-                          criterion="step")
-    problem = atlases.AtlasProblem(partial(search, mech, modes), trace, lift, 6)
+    full, columns = model.full_system(mech, modes), model.LAYOUT.forward_columns
+
+    def system(u, lambdas):
+        G, D = full(u[:, :6], lambdas, u[:, 6:])
+        return G, D[..., columns]
+
+    problem = atlases.AtlasProblem(partial(search, mech, modes), system,
+                                   lambda u: model.in_chart(u[:, :6]), lift, 6)
     labels = tuple(f"{name} (m) along ({', '.join(f'{c:.2f}' for c in d)})"
                    for name, d in zip("ab", directions))
     return atlases.atlas_of(problem, grid, (axes, origin, directions), labels, 1.0, modes,

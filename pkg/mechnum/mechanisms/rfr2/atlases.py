@@ -3,9 +3,10 @@
 :func:`~mechnum.mechanisms.rfr2.atlas` runs :func:`mechnum.rods.assembly.atlas_of` (its
 module explains the method: full searches at anchors and where continuation cannot vouch for
 the count, continuation everywhere else) with the 2RFR's closed form: the full search is
-:func:`~mechnum.mechanisms.rfr2.forward_elliptic` with its defaults, the continuation
-``continuation.grid_trace``, as :func:`forward_map` follows one
-equilibrium.
+:func:`~mechnum.mechanisms.rfr2.forward_elliptic`'s with its defaults, and the stability of
+what it finds (not its crossings or strain, which the atlas does not show); the continuation
+follows the rods and the end effector as the motors turn, on the compiled closed form
+(:func:`mechnum.rods.kernels.joined`).
 """
 
 from __future__ import annotations
@@ -15,22 +16,25 @@ from functools import partial
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mechnum.mechanisms.rfr2.continuation import grid_trace
-from mechnum.mechanisms.rfr2.elliptic import forward_elliptic
+from mechnum.mechanisms.rfr2.analysis import stabilities
+from mechnum.mechanisms.rfr2.elliptic import CHECK, N_STARTS, _in_chart, _search
 from mechnum.mechanisms.rfr2.model import Mechanism, rods
-from mechnum.rods import assembly
+from mechnum.rods import assembly, kernels
 from mechnum.rods.assembly import atlas as atlases
 
 
 def search(mech: Mechanism, modes: tuple, task) -> list:
     """The full search at the motor angles of a task ``(indices, thetas)``: for each point,
     ``(chart, stable, complete, nfev)`` of :func:`forward_elliptic`, its starts drawn from
-    ``default_rng([SEED, index])`` (the atlas's tasks, run on its executor's workers)."""
+    ``default_rng([SEED, index])`` (the atlas's tasks, run on its executor's workers); only
+    the stability of the equilibria is classified."""
     out = []
-    for index, theta in zip(*task):
-        eq = forward_elliptic(mech, theta, modes,
-                              rng=np.random.default_rng([atlases.SEED, int(index)]))
-        out.append((eq.chart, eq.stable, eq.search.complete, eq.nfev))
+    for point, theta in zip(*task):
+        found, nfev, _ = _search(mech, theta, modes, N_STARTS, CHECK,
+                                 np.random.default_rng([atlases.SEED, int(point)]))
+        z = found.x
+        index = stabilities(mech, np.broadcast_to(theta, (len(z), 2)), z, modes)
+        out.append((z, (index == 0).all(axis=1), found.complete, nfev))
     return out
 
 
@@ -91,8 +95,12 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
         return np.concatenate((chart, rods(mech, theta, chart, modes, jacobian=False)[0][
             ..., 0, :]), axis=-1)
 
-    trace = grid_trace(mech, np.array(modes, dtype=float), tol=atlases.STEP_TOL,
-                       criterion="step")
-    problem = atlases.AtlasProblem(partial(search, mech, modes), trace, lift, 4)
+    float_modes = np.array(modes, dtype=float)
+
+    def system(u, theta):
+        return kernels.joined(mech.EI, mech.L, mech.origins, theta, float_modes, mech.force, u)
+
+    problem = atlases.AtlasProblem(partial(search, mech, modes), system,
+                                   lambda u: _in_chart(u[:, :4]), lift, 4)
     return atlases.atlas_of(problem, grid, ((theta1, theta2), np.zeros(2), np.eye(2)),
                          ("theta1 (deg)", "theta2 (deg)"), np.degrees(1.0), modes, executor)

@@ -31,6 +31,8 @@ START_T = 0.985
 # Newton's step tolerance in the (dimensionless) chart, and its most iterations from a start.
 SEARCH_TOL = 1e-12
 SEARCH_MAXITER = 40
+# Starts of the search, and of its completeness check in multiples of them (the defaults).
+N_STARTS, CHECK = 200, 10
 
 
 def _scales(mech):
@@ -254,7 +256,7 @@ def _search(mech, theta, modes, n_starts, check, rng):
 
 
 def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1), *,
-                     n_starts: int = 200, check: int = 10,
+                     n_starts: int = N_STARTS, check: int = CHECK,
                      rng: np.random.Generator | int | None = None):
     """Every equilibrium of the mechanism at the motor angles ``theta`` with the given modes.
 

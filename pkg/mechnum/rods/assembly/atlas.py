@@ -12,10 +12,13 @@ fully only where the continuation cannot vouch for the count:
    check) runs at the anchors: one point per block of :data:`ANCHOR_SPACING` x
    :data:`ANCHOR_SPACING` grid points, at its centre.
 2. **Flood.** Every equilibrium found is followed from its point to each of the four neighbours
-   (:func:`~mechnum.rods.assembly.follow`: a converged step on the same branch, never across a
-   fold; a step that fails is tried again in :data:`REFINE` shorter steps), and from every
-   point it reaches on to theirs, until it reaches no new point; each point keeps the distinct
-   equilibria that arrive (within :data:`SAME` in the chart).
+   (a converged step on the same branch, never across a fold, as
+   :func:`~mechnum.rods.assembly.follow` decides it; a step that fails is tried again in
+   :data:`REFINE` shorter steps), and from every point it reaches on to theirs, until it
+   reaches no new point; each point keeps the distinct equilibria that arrive (within
+   :data:`SAME` in the chart). Each round of the flood takes its steps for all its edges at
+   once, in one lockstep damped Newton on the mechanism's system
+   (:func:`~mechnum.rods.assembly.lockstep.track_paths`).
 3. **Vouching.** A point's count is *vouched* by continuation when every equilibrium known
    there continued to every neighbour, onto distinct equilibria there, and every equilibrium
    known at every neighbour continued to it: no branch ends on an edge of the point, from
@@ -52,6 +55,7 @@ import numpy as np
 from mechnum.results import Result
 from mechnum.rods.assembly import parallel
 from mechnum.rods.assembly.checks import MAX_POINTS, STATUS_DTYPE
+from mechnum.rods.assembly.lockstep import track_paths
 from mechnum.rods.assembly.results import State
 
 ANCHOR_SPACING = 8
@@ -95,9 +99,12 @@ class AtlasProblem:
         ``search((indices, inputs)) -> list of (chart (r, c), stable (r,), complete, nfev)``:
         the full search at each point of a task, with ``rng=default_rng([SEED, index])``.
         Importable (it runs on the executor's workers).
-    trace : callable
-        ``trace(params (steps, batch, k), u0 (batch, m)) -> Trace``: continuation of the direct
-        problem (:func:`~mechnum.rods.assembly.follow`, ``resume=False``).
+    system : callable
+        ``system(u (rows, m), inputs (rows, k)) -> (G (rows, m), D (rows, m, m))``: the direct
+        problem in the continuation's unknowns ``u`` (the chart first), its residual and
+        Jacobian in one call, unchecked.
+    domain : callable
+        ``domain(u (rows, m)) -> (rows,) bool``: where ``system`` is defined (the chart).
     lift : callable
         ``lift(inputs (r, k), chart (r, c)) -> u (r, m)``: a search's equilibria as the
         continuation's unknowns (the chart first).
@@ -106,7 +113,8 @@ class AtlasProblem:
     """
 
     search: object
-    trace: object
+    system: object
+    domain: object
     lift: object
     chart: int
 
@@ -260,24 +268,25 @@ def _continue(problem, inputs, start, end, u0, tally):
     one step, then, for the equilibria that fail, :data:`REFINE` steps as long together.
     Returns which arrived, where, and which of the others left the chart's domain (the first
     of the short steps to fail did so with the status "left-domain")."""
-    path = np.stack((inputs[start], inputs[end]))
     ok, x = np.zeros(len(start), dtype=bool), np.full(u0.shape, np.nan)
     left = np.zeros(len(start), dtype=bool)
     for attempt in range(2):
         rows = np.flatnonzero(~ok)
-        if attempt:
-            path = np.linspace(inputs[start[rows]], inputs[end[rows]], REFINE + 1)
-        tr = problem.trace(path, u0[rows])
-        tally["nfev"] += tr.nfev
-        tally["njev"] += tr.njev
+        path = np.stack((inputs[start], inputs[end])) if attempt == 0 else np.linspace(
+            inputs[start[rows]], inputs[end[rows]], REFINE + 1)
+        status, end_x, iterations, calls = track_paths(problem.system, problem.domain,
+                                                       problem.chart, path, u0[rows],
+                                                       tol=STEP_TOL)
+        tally["nfev"] += calls
+        tally["njev"] += calls
         tally["steps"] += len(rows) * (len(path) - 1)
-        np.add.at(tally["iterations"], end[rows], tr.iterations[1:].sum(axis=0))
-        arrived = tr.status[-1] == "converged"
-        ok[rows[arrived]], x[rows[arrived]] = True, tr.x[-1][arrived]
+        np.add.at(tally["iterations"], end[rows], iterations[1:].sum(axis=0))
+        arrived = status[-1] == "converged"
+        ok[rows[arrived]], x[rows[arrived]] = True, end_x[arrived]
         if ok.all():
             break
-    first = np.argmax(tr.status != "converged", axis=0)
-    left[rows] = (tr.status[first, np.arange(len(rows))] == "left-domain") & ~ok[rows]
+    first = np.argmax(status != "converged", axis=0)
+    left[rows] = (status[first, np.arange(len(rows))] == "left-domain") & ~ok[rows]
     return ok, x, left
 
 
