@@ -209,10 +209,11 @@ def forward_elliptic(mech: model.Mechanism, lambdas: ArrayLike, modes: ArrayLike
     lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
     modes = assembly.check_modes(modes, 3)
     model.check_closure(mech, lambdas)
-    fun, jac = model.forward_system(mech, lambdas, modes)
-    found, nfev, njev = assembly.search(fun, jac, sampler(mech, lambdas), domain=model.in_chart,
-                                        n_starts=n_starts, check=check, rng=rng,
-                                        tol=SEARCH_TOL, maxiter=SEARCH_MAXITER, same=SAME)
+    both = model._forward_equations(mech, lambdas, modes)[2]
+    found, nfev, njev = assembly.search(both, True, sampler(mech, lambdas),
+                                        domain=model.in_chart, n_starts=n_starts, check=check,
+                                        rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER,
+                                        same=SAME)
     tip = model.rods(mech, lambdas, found.x, modes, jacobian=False)[0]
     every = np.broadcast_to(lambdas, (len(tip), 3))
     return _classify(mech, modes, found, nfev, njev, every, lambdas,

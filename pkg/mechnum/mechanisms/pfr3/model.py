@@ -364,6 +364,12 @@ def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1
     >>> fun(z).shape, jac(z).shape, bool(np.abs(fun(z)).max() < 2e-3)   # 4 printed decimals
     ((1, 6), (1, 6, 6), True)
     """
+    return _forward_equations(mech, lambdas, modes)[:2]
+
+
+def _forward_equations(mech, lambdas, modes):
+    """:func:`forward_system`'s ``fun`` and ``jac``, and ``both(z) -> (fun(z), jac(z))`` from
+    one evaluation of the rods (the search's)."""
     check_type(mech, Mechanism)
     lambdas = _validate.array(lambdas, "lambdas", shape=(3,))
     modes = check_modes(modes, 3)
@@ -386,14 +392,13 @@ def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1
     def fun(z):
         return parts(z, False)[0]
 
-    def jac(z):
-        d, w, force, d_chart = parts(z, True)[1]
+    def jacobian(d, w, force, d_chart):
         dtip = d_chart[..., 0, :] + 1j * d_chart[..., 1, :]          # (batch, rod, param)
         dforce = d_chart[..., 2:, :]                                  # (batch, rod, 2, param)
         # d d_i / d(param of rod r) = dtip_r (delta_ir - 1/3)
         dd = (np.eye(3)[None, :, :, None] - 1.0 / 3.0) * dtip[:, None, :, :]  # (b, i, r, p)
         dw = dd * inverse[None, :, None, None]
-        J = np.empty((len(z), 6, 3, 2))
+        J = np.empty((len(d), 6, 3, 2))
         J[:, 0], J[:, 1] = (dw[:, 0] - dw[:, 1]).real, (dw[:, 0] - dw[:, 1]).imag
         J[:, 2] = 2.0 * (np.conj(w[:, 0, None, None]) * dw[:, 0]).real
         J[:, 3:5] = np.moveaxis(dforce, 2, 1) / f
@@ -401,9 +406,16 @@ def forward_system(mech: Mechanism, lambdas: ArrayLike, modes: ArrayLike = (1, 1
                   - dd.imag * force[:, :, None, None, 0]).sum(axis=1)
         torque += d.real[..., None] * dforce[:, :, 1] - d.imag[..., None] * dforce[:, :, 0]
         J[:, 5] = torque / (f * mech.L)
-        return J.reshape(len(z), 6, 6)
+        return J.reshape(len(d), 6, 6)
 
-    return fun, jac
+    def jac(z):
+        return jacobian(*parts(z, True)[1])
+
+    def both(z):
+        G, rest = parts(z, True)
+        return G, jacobian(*rest)
+
+    return fun, jac, both
 
 
 def full_system(mech: Mechanism, modes: ArrayLike = (1, 1, 1)):
