@@ -219,7 +219,8 @@ class _Run:
         self.status = np.full(len(x), "", dtype="<U11")
         self.running = np.ones(len(x), dtype=bool)  # status == "", kept up to date
         self.x = x
-        self.f, self.J = eqs.value(x)
+        # copies: these are updated in place, and fun may return arrays it keeps (a memo)
+        self.f, self.J = (None if a is None else a.copy() for a in eqs.value(x))
         self.rnorm = norms(self.f, rule.norm)
         self.limit = rule.tol * self.rnorm if rule.relative else rule.tol
         self.full = None    # the norms of the last full steps (NaN where none was taken)
