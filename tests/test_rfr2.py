@@ -441,7 +441,7 @@ def test_every_start_of_the_lockstep_search_ends_as_it_does_alone(theta, modes):
     from mechnum.rods import kernels
 
     halvings = inspect.signature(newton.solve_all).parameters["halvings"].default
-    found = elliptic._search(rfr2.TABLE7, theta, modes, 25, 3, 7)
+    found = elliptic.search_roots(rfr2.TABLE7, theta, modes, 25, 3, 7)
     rng = np.random.default_rng(7)
     starts = np.concatenate((rfr2.sample(rng, 25), rfr2.sample(rng, 75)))
     M = rfr2.TABLE7
@@ -451,7 +451,7 @@ def test_every_start_of_the_lockstep_search_ends_as_it_does_alone(theta, modes):
 
     alone = [newton.solve_batch(both, start[None], True, tol=elliptic.SEARCH_TOL,
                                 maxiter=elliptic.SEARCH_MAXITER, damping=True,
-                                domain=elliptic._in_chart, raise_on_failure=False,
+                                domain=elliptic.in_chart_rows, raise_on_failure=False,
                                 halvings=halvings) for start in starts]
     lockstep = found[0]
     assert lockstep.status.tolist() == [r.status[0] for r in alone]

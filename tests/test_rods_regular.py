@@ -85,6 +85,14 @@ def test_closed_form_computes_each_integral_once_on_the_rows_that_need_it(monkey
         assert evaluated["rows"] == count, row
 
 
+def test_one_rod_of_several_stiffnesses_broadcasts():
+    # EI of shape (3,) against one (psi, t): three rods, the force and Jacobian scale with EI
+    rod = regular.closed_form(np.array([1.0, 2.0, 4.0]), L, 2.0, 0.5)
+    one = regular.closed_form(1.0, L, 2.0, 0.5)
+    assert rod.force.shape == (3, 2) and rod.jacobian.shape == (3, 5, 2)
+    np.testing.assert_allclose(rod.jacobian[2, 2:], 4.0 * one.jacobian[2:], rtol=1e-15)
+
+
 def test_chart_stays_accurate_in_near_straight_tension():
     # k_rel within 1e-9 of -1: the closed form against an RK4 rod shot from the same clamp
     from scipy.integrate import solve_ivp

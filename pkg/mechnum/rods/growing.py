@@ -126,14 +126,28 @@ def chart_tip(a: np.ndarray, b: np.ndarray, v: np.ndarray, w: np.ndarray) -> tup
     a, b, v, w = np.broadcast_arrays(*_validate.numbers(
         dict(a=a, b=b, v=v, w=w), positive=("b", "w"), nonnegative=("v",), scalars=False))
     X = w * a * a / (a * a + b * b * v * v)
-    return tip_deviations(a, b, v, w, elliprf(X, 1.0, w), elliprd(X, 1.0, w))
+    return tip_deviations(a, b, v, w, elliprf(X, 1.0, w), elliprd(X, 1.0, w), check=False)
 
 
-def tip_deviations(a, b, v, w, RF, RD, rates=True) -> tuple:
-    """:func:`chart_tip` unchecked, from the partial wave's ``R_F = R_F(X, 1, w)`` and
-    ``R_D = R_D(X, 1, w)`` (:mod:`mechnum.rods.regular` has them): arrays of one shape. Its
-    Carlson integrals: ``R_D(1, w, X)`` with the ``rates`` (which it returns only then: else
-    ``(du, dw)``), and :func:`_rf_excess`'s where its series does not serve."""
+def tip_deviations(a, b, v, w, RF, RD, rates=True, *, check=True) -> tuple:
+    """:func:`chart_tip` from the partial wave's ``R_F = R_F(X, 1, w)`` and ``R_D = R_D(X, 1,
+    w)`` (:mod:`mechnum.rods.regular` has them: ``check=False`` is its fast path, arrays of one
+    shape). Its Carlson integrals: ``R_D(1, w, X)`` with the ``rates`` (which it returns only
+    then: else ``(du, dw)``), and :func:`_rf_excess`'s where its series does not serve.
+
+    Examples
+    --------
+    >>> a, b, v, w = (np.array([x]) for x in (np.cos(1.0), np.sin(1.0), 0.3, 0.91))
+    >>> X = w * a * a / (a * a + b * b * v * v)
+    >>> fast = tip_deviations(a, b, v, w, elliprf(X, 1.0, w), elliprd(X, 1.0, w))
+    >>> bool(np.allclose(fast, chart_tip(a, b, v, w), rtol=0, atol=0))
+    True
+    """
+    if _validate.flag(check, "check"):
+        a, b, v, w, RF, RD = np.broadcast_arrays(*_validate.numbers(
+            dict(a=a, b=b, v=v, w=w, RF=RF, RD=RD), positive=("b", "w", "RF", "RD"),
+            nonnegative=("v",), scalars=False))
+        rates = _validate.flag(rates, "rates")
     aa, sa = np.abs(a), np.where(a < 0, -1.0, 1.0)
     m, p = a * a + b * b * v * v, b * b * w
     k = np.sqrt(m)
@@ -380,9 +394,8 @@ def _rf_near(aa, mean, A, X, Y):
 
 class _Branch:
     """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and its
-    shape: the force direction's ``a``
-    (signed as ``n_y``) and ``b``, ``v``, ``s = sqrt(1 - v**2)``, ``Lam = lambda L`` and
-    ``(c, d) = (cos psi, sin psi)``.
+    shape: the force direction's ``a`` (signed as ``n_y``) and ``b``, ``v``,
+    ``s = sqrt(1 - v**2)``, ``Lam = lambda L`` and ``(c, d) = (cos psi, sin psi)``.
 
     In the force's frame, the point at arc fraction ``sigma`` lies ``L (sigma c + along)``
     along the force and ``-2 sign(a) b L (v - eta) / Lam`` across it, with ``along = 2 (b

@@ -331,7 +331,7 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
         y[other] = u[other] * sin[other] - w2[other] * cos[other]
     if grow is not None:
         small = tip_deviations(a[grow], b[grow], v[grow], w[grow], RF[grow], RD[grow],
-                               jacobian)
+                               jacobian, check=False)
         du, dw, c, s = small[0], small[1], cos[grow], sin[grow]
         u[grow], w2[grow] = c + du, s + dw
         x[grow], y[grow] = 1.0 + (du * c + dw * s), du * s - dw * c
@@ -362,7 +362,7 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     u_d[0], w2_d[0] = u_d[0] + w2, w2_d[0] - u
     u_d, w2_d, Lam_d, vb_d = (z.reshape((2,) + shape) for z in (u_d, w2_d, Lam_d, vb_d))
     J = np.empty(np.broadcast_shapes(shape, np.shape(EI), L.shape) + (5, 2))
-    dR = 2.0 * EI * Lam * Lam_d / L ** 2
+    dR = [2.0 * EI * Lam * Lam_d[i] / L ** 2 for i in range(2)]
     J[..., 2:4, 0] = np.stack((dR[0] * cos - R * sin, dR[0] * sin + R * cos), -1)
     J[..., 2:4, 1] = dR[1][..., None] * np.stack((cos, sin), -1)
     for i in range(2):

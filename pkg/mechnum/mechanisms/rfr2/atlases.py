@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum.mechanisms.rfr2.analysis import stabilities
-from mechnum.mechanisms.rfr2.elliptic import CHECK, N_STARTS, _in_chart, _search
+from mechnum.mechanisms.rfr2.elliptic import CHECK, N_STARTS, in_chart_rows, search_roots
 from mechnum.mechanisms.rfr2.model import Mechanism, rods
 from mechnum.rods import assembly, kernels
 from mechnum.rods.assembly import atlas as atlases
@@ -30,8 +30,8 @@ def search(mech: Mechanism, modes: tuple, task) -> list:
     the stability of the equilibria is classified."""
     out = []
     for point, theta in zip(*task):
-        found, nfev, _ = _search(mech, theta, modes, N_STARTS, CHECK,
-                                 np.random.default_rng([atlases.SEED, int(point)]))
+        found, nfev, _ = search_roots(mech, theta, modes, N_STARTS, CHECK,
+                                      np.random.default_rng([atlases.SEED, int(point)]))
         z = found.x
         index = stabilities(mech, np.broadcast_to(theta, (len(z), 2)), z, modes)
         out.append((z, (index == 0).all(axis=1), found.complete, nfev))
@@ -101,6 +101,6 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
         return kernels.joined(mech.EI, mech.L, mech.origins, theta, float_modes, mech.force, u)
 
     problem = atlases.AtlasProblem(partial(search, mech, modes), system,
-                                   lambda u: _in_chart(u[:, :4]), lift, 4)
+                                   lambda u: in_chart_rows(u[:, :4]), lift, 4)
     return atlases.atlas_of(problem, grid, ((theta1, theta2), np.zeros(2), np.eye(2)),
                          ("theta1 (deg)", "theta2 (deg)"), np.degrees(1.0), modes, executor)

@@ -232,18 +232,32 @@ def _equilibria(mech, theta, P, modes, found, nfev, njev, inputs, pose):
                       search=found)
 
 
-def _in_chart(z):
-    """:func:`in_chart` unchecked (the search's iterates are finite rows of four)."""
+def in_chart_rows(z: np.ndarray) -> np.ndarray:
+    """:func:`in_chart` unchecked, for a solver's iterates (finite rows of four).
+
+    Examples
+    --------
+    >>> in_chart_rows(np.array([[1.0, 0.5, 2.0, -0.5], [1.0, 0.0, 2.0, 0.5]])).tolist()
+    [True, False]
+    """
     psi, t = z[:, 0::2], z[:, 1::2]
     return ((psi > 0) & (psi < regular.TWO_PI) & (t != 0) & (np.abs(t) <= regular.T_MAX)).all(
         axis=1)
 
 
-def _search(mech, theta, modes, n_starts, check, rng):
+def search_roots(mech: Mechanism, theta: np.ndarray, modes, n_starts: int, check: int, rng):
     """The search of :func:`forward_elliptic` alone, its roots unclassified: ``(found, nfev,
     njev)``. Every start of it and of its check in one damped Newton over all of them
     (:func:`mechnum.newton.solve_all`), on the compiled closed form
-    (:func:`mechnum.rods.kernels.meeting`: residual and Jacobian in one call)."""
+    (:func:`mechnum.rods.kernels.meeting`: residual and Jacobian in one call).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
+    >>> found, nfev, njev = search_roots(TABLE7, TABLE7_THETA, (1, 1), 200, 10, 0)
+    >>> len(found.x), found.complete
+    (3, True)
+    """
     assembly.check_type(mech, Mechanism)
     theta = _validate.array(theta, "theta", shape=(2,))
     modes = np.asarray(assembly.check_modes(modes, 2), dtype=float)
@@ -251,8 +265,8 @@ def _search(mech, theta, modes, n_starts, check, rng):
     def both(z):
         return kernels.meeting(mech.EI, mech.L, mech.origins, theta, modes, mech.force, z)
 
-    return assembly.search(both, True, sample, domain=_in_chart, n_starts=n_starts, check=check,
-                           rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER)
+    return assembly.search(both, True, sample, domain=in_chart_rows, n_starts=n_starts,
+                           check=check, rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER)
 
 
 def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1), *,
@@ -303,7 +317,7 @@ def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1
     >>> np.round(eq.solutions, 6).tolist()[0], eq.stable.tolist(), eq.search.complete
     ([1.962541, -0.004391, 4.811041, 0.943413], [True, True, True], True)
     """
-    found, nfev, njev = _search(mech, theta, modes, n_starts, check, rng)
+    found, nfev, njev = search_roots(mech, theta, modes, n_starts, check, rng)
     theta, modes = np.asarray(theta, dtype=float), assembly.check_modes(modes, 2)
     P = rods(mech, theta, found.x, modes, jacobian=False)[0][:, 0]
     return _equilibria(mech, np.broadcast_to(theta, (len(P), 2)), P, modes, found, nfev,
