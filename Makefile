@@ -8,11 +8,11 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student student-src downloads grade pdf pdf-answer-key \
-	pdf-student test unit lint explore notebooks notebooks-other-machine html-check bench execute \
-	lab clean certify
+.PHONY: book book-committed book-student student-src downloads grade nbgrader pdf \
+	pdf-answer-key pdf-student test unit lint explore notebooks notebooks-other-machine html-check \
+	bench execute lab clean certify
 
-$(STAMP): environment.txt pkg/pyproject.toml
+$(STAMP): environment.txt pkg/pyproject.toml course/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
@@ -55,7 +55,7 @@ downloads: $(STAMP)
 	$(BIN)/python .ci/chapters_zip.py book $(DOWNLOADS)/mechnum-chapters.zip
 
 # The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
-# It is built from a copy of the sources without the solutions (mechnum.exercises.student), so
+# It is built from a copy of the sources without the solutions (mechnum_course.student), so
 # that the pages, their .ipynb downloads and the served zip hold none; the copy renders the
 # committed outputs (the tests have checked them) instead of executing again, except the
 # exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
@@ -65,7 +65,8 @@ STUDENT_TITLE := title+= (student edition)
 student-src: downloads
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
 	cp -r _toc.yml CITATION.cff book $(STUDENT_SRC)/
-	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
+	mkdir -p $(STUDENT_SRC)/course && cp course/rubric.md $(STUDENT_SRC)/course/
+	$(BIN)/python -m mechnum_course.student $(STUDENT_SRC)/book
 	$(BIN)/python .ci/book_config.py $(STUDENT_SRC)/_config.yml "$(STUDENT_TITLE)" \
 		sphinx.config.hide_solutions=true execute.execute_notebooks=off \
 		"sphinx.config.printed_edition=the students' edition, every exercise without its solution"
@@ -76,12 +77,22 @@ student-src: downloads
 book-student: student-src $(REVEAL)
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
 
-# Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
-# and summary.txt are written into the folder; mechnum.exercises.grading says how).
+# Grade a folder of student notebooks: make grade SUBMISSIONS=folder [OUT=folder] (grades.csv,
+# feedback/<student>.md and summary.txt, by default in SUBMISSIONS/grading). Each notebook runs
+# confined, only to extract its functions; each function is graded from its source in a fresh
+# confined process on the public and hidden cases (course/mechnum_course/grading, and the book's
+# page "Grading the exercises", which also gives the command for a container with no network).
 grade: $(STAMP)
-	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; \
-		exit 2; }
-	$(NB_ENV) $(BIN)/python -m mechnum.exercises.grading $(SUBMISSIONS)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>" \
+		"[OUT=<folder>]"; exit 2; }
+	$(NB_ENV) $(BIN)/python -m mechnum_course.grading $(SUBMISSIONS) $(if $(OUT),--out $(OUT))
+
+# The self-checked exercises as an nbgrader course in _build/nbgrader (mechnum_course.nbgrader):
+# source notebooks with solution regions and autograded tests that hold the hidden cases.
+NBGRADER := _build/nbgrader
+nbgrader: $(STAMP)
+	rm -rf $(NBGRADER)
+	$(BIN)/python -m mechnum_course.nbgrader $(NBGRADER)
 
 # The property-based tests draw the same examples on every run (tests/conftest.py), also when
 # pytest-xdist shares them out between the cores; `make explore` draws new ones, to search for
@@ -90,11 +101,11 @@ grade: $(STAMP)
 XDIST := -n auto --dist worksteal
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
-		pkg/mechnum tests
+		pkg/mechnum course/mechnum_course tests
 
 # The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
 lint: $(STAMP)
-	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg course tests bench
 
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests

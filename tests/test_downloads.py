@@ -73,7 +73,7 @@ def test_the_extras_pin_the_versions_the_book_is_tested_with():
                 tested[package.lower()] = release
     project = tomllib.loads((ROOT / "pkg" / "pyproject.toml").read_text(encoding="utf-8"))
     extras = project["project"]["optional-dependencies"]
-    assert {"book", "lab", "grade"} <= set(extras)
+    assert {"book", "lab"} <= set(extras)  # the grader is the instructors' (course/)
     for extra, requirements in extras.items():
         for requirement in requirements:
             package, _, release = requirement.partition("==")
