@@ -325,7 +325,7 @@ def _joint_numpy(EI, L, z, angles, origins, modes, load, jacobian, pinned):
     r = len(modes)
     rod = numpy_closed_form(EI, L, z[:, 0:2 * r:2], z[:, 1:2 * r:2], modes, jacobian=jacobian,
                             check=False)
-    tip, force, d_chart, _ = place(rod, origins, angles)
+    tip, force, d_chart, _ = place(rod, origins, angles, check=False)
     other = z[:, None, 2 * r:] if pinned else tip[:, 1:]
     tips = r if pinned else r - 1
     f = np.concatenate(((tip[:, :tips] - other).reshape(len(z), -1) / L,

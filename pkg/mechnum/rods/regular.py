@@ -372,14 +372,14 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     return RegularRod(tip, force, moment, J)
 
 
-def place(rod: RegularRod, origin: ArrayLike,
-          angle: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
+def place(rod: RegularRod, origin: ArrayLike, angle: ArrayLike, *,
+          check: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
     """A local-frame :class:`RegularRod` clamped at ``origin`` with its tangent at ``angle``.
 
     Returns the global tip and force, and their derivatives: with respect to the chart
     ``(psi, t)``, shape ``(..., 4, 2)`` (rows ``tip_x, tip_y, force_x, force_y``; None if the
     rod has no Jacobian), and with respect to the clamp ``angle``, shape ``(..., 4)``. The
-    clamp moment does not change.
+    clamp moment does not change. ``check=False`` skips the checks (a solvers' fast path).
 
     Raises
     ------
@@ -394,19 +394,19 @@ def place(rod: RegularRod, origin: ArrayLike,
     >>> np.allclose(tip, [1.0 - rod.tip[1], rod.tip[0]]), d_chart.shape, d_angle.shape
     (True, (4, 2), (4,))
     """
-    if not isinstance(rod, RegularRod):
-        raise ValueError(f"rod must be a RegularRod, got {type(rod).__name__}")
-    origin, angle = as_vectors(origin, "origin", 2), _validate.array(angle, "angle")
-    batch_shape(rod=rod.tip.shape[:-1], origin=origin.shape[:-1], angle=angle.shape)
+    if _validate.flag(check, "check"):
+        if not isinstance(rod, RegularRod):
+            raise ValueError(f"rod must be a RegularRod, got {type(rod).__name__}")
+        origin, angle = as_vectors(origin, "origin", 2), _validate.array(angle, "angle")
+        batch_shape(rod=rod.tip.shape[:-1], origin=origin.shape[:-1], angle=angle.shape)
     c, s = np.cos(angle), np.sin(angle)
-    rot = np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)   # (..., 2, 2)
-    tip, force = (rot @ rod.tip[..., None])[..., 0], (rot @ rod.force[..., None])[..., 0]
-    d_angle = np.concatenate((np.stack((-tip[..., 1], tip[..., 0]), -1),
-                              np.stack((-force[..., 1], force[..., 0]), -1)), axis=-1)
-    d_chart = None
-    if rod.jacobian is not None:
-        d_chart = np.concatenate((rot @ rod.jacobian[..., 0:2, :],
-                                  rot @ rod.jacobian[..., 2:4, :]), axis=-2)
+    tip, force = (np.stack((c * x[..., 0] - s * x[..., 1], s * x[..., 0] + c * x[..., 1]), -1)
+                  for x in (rod.tip, rod.force))
+    d_angle = np.stack((-tip[..., 1], tip[..., 0], -force[..., 1], force[..., 0]), -1)
+    d_chart, J, c, s = None, rod.jacobian, c[..., None], s[..., None]
+    if J is not None:       # the rows (tip_x, tip_y) and (force_x, force_y) turned alike
+        d_chart = np.stack([f(J[..., i, :], J[..., i + 1, :]) for i in (0, 2) for f in (
+            lambda x, y: c * x - s * y, lambda x, y: s * x + c * y)], -2)
     return tip + origin, force, d_chart, d_angle
 
 
