@@ -292,3 +292,16 @@ def test_parallel_runs_in_order_on_every_executor():
     assert parallel.run(abs, [], None) == []
     assert [len(c) for c in parallel.chunks(list(range(9)), 1)] == [3, 2, 2, 2]
     assert parallel.chunks([], None) == []
+
+
+def test_two_ends_on_each_side_of_an_edge_pair_up_crosswise():
+    # two equilibria at each of two points, listed in opposite orders, the same past the
+    # chart (their last unknown) within a step: each has its partner, whatever the order
+    store = atlases._Store(2, 2, 1)
+    store.insert(np.array([0, 0, 1, 1]), np.array([[0.1, 5.0], [0.2, 7.0], [0.3, 7.01],
+                                                   [0.4, 5.01]]),
+                 np.array([True, False, False, True]))
+    store.move = 0.1
+    assert atlases._paired(store, 0, np.array([0, 1]), 1, np.array([0, 1]))
+    store.stable[1] = [True, False]                 # the verdicts no longer match: no pairs
+    assert not atlases._paired(store, 0, np.array([0, 1]), 1, np.array([0, 1]))

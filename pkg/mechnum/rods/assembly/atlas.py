@@ -354,7 +354,9 @@ def _paired(store, a, ended_a, b, ended_b) -> bool:
     c = store.chart
     if len(ended_a) != len(ended_b) or store.u.shape[-1] == c or store.move == 0.0:
         return False
-    gap = np.abs(store.u[a, ended_a, None, c:] - store.u[b, None, ended_b, c:]).max(axis=-1)
+    # (ended_a, ended_b): u[b, None, ended_b] would put ended_b's axis first (the indices
+    # b and ended_b apart), so the pairs are formed from the two gathered blocks
+    gap = np.abs(store.u[a, ended_a, c:][:, None] - store.u[b, ended_b, c:][None]).max(axis=-1)
     gap[store.stable[a, ended_a][:, None] != store.stable[b, ended_b][None, :]] = np.inf
     nearest = gap.argmin(axis=1)
     return (len(set(nearest.tolist())) == len(nearest)
