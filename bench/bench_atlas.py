@@ -5,9 +5,9 @@ angles, how the cost grows with the grid, on one worker and on a dask cluster.
   equilibria) at 11 x 11, 21 x 21 and 41 x 41 points, one worker; the exponent of its cost in
   the number of points, fitted (least squares of log time on log points), is printed (``-s``).
   Target: the 41 x 41 atlas in 8 s (median of 3). The same 41 x 41 atlas with the numpy closed
-  form (:func:`mechnum.rods.kernels.reference`) is reported (target 15 s) and asserted to be
+  form (``mechnum.rods._kernels.reference``) is reported (target 15 s) and asserted to be
   the same atlas in every field.
-* Its peer, in the same run: the full search (:func:`~mechnum.mechanisms.rfr2.forward_elliptic`,
+* Its peer, in the same run: the full search (:func:`~mechnum.mechanisms.rfr2.forward`,
   the ten-times check included) at every grid point, which the atlas replaces by continuation
   wherever continuation vouches for the count; timed at one grid point in 41 (one per row, on
   the diagonal) and its time for the whole grid estimated from theirs.
@@ -25,9 +25,9 @@ import numpy as np
 import pytest
 
 from mechnum.mechanisms import rfr2
-from mechnum.rods import kernels
+from mechnum.rods import _kernels as kernels
 
-MECH = rfr2.TABLE7
+MECH = rfr2.study.TABLE7
 WINDOW = ((30.0, 70.0), (40.0, 80.0))     # degrees
 SIZES = (11, 21, 41)
 TARGET, NUMPY_TARGET = 8.0, 15.0          # seconds for the 41 x 41 atlas on one worker
@@ -74,8 +74,8 @@ def test_atlas_41x41_numpy_closed_form(benchmark, capsys):
     compiled = RUNS.get(41, (None,))[0] or _atlas(41)
     for name in FIELDS:
         assert np.array_equal(getattr(at, name), getattr(compiled, name)), name
-    assert np.array_equal(np.isnan(at.chart), np.isnan(compiled.chart))
-    assert np.nanmax(np.abs(at.chart - compiled.chart)) < 1e-12
+    assert np.array_equal(np.isnan(at.x), np.isnan(compiled.x))
+    assert np.nanmax(np.abs(at.x - compiled.x)) < 1e-12
     seconds = benchmark.stats.stats.median
     with capsys.disabled():
         print(f"\n2RFR atlas 41 x 41 with the numpy closed form: {seconds:.1f} s (target "
@@ -84,13 +84,13 @@ def test_atlas_41x41_numpy_closed_form(benchmark, capsys):
 
 
 def _full_search_on_the_diagonal():
-    return [rfr2.forward_elliptic(MECH, (a, b), rng=0) for a, b in zip(*_axes(41))]
+    return [rfr2.forward(MECH, (a, b), rng=0) for a, b in zip(*_axes(41))]
 
 
 def test_full_search_at_every_point_peer(benchmark, capsys):
     found = benchmark.pedantic(_full_search_on_the_diagonal, rounds=1, iterations=1)
     at = RUNS.get(41, (None,))[0] or _atlas(41)
-    assert [len(eq.chart) for eq in found] == np.diag(at.counts).tolist()
+    assert [len(eq.x) for eq in found] == np.diag(at.counts).tolist()
     estimate = benchmark.stats.stats.median * 41
     benchmark.extra_info["full search at every point, estimated seconds"] = estimate
     with capsys.disabled():

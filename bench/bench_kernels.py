@@ -1,5 +1,5 @@
-"""Benchmarks of the compiled closed form (:mod:`mechnum.rods.kernels`) against the numpy one
-(:mod:`mechnum.rods.regular`, its reference), and what compiling it costs.
+"""Benchmarks of the compiled closed form (``mechnum.rods._kernels``) against the numpy one
+(``mechnum.rods``' regular module, its reference), and what compiling it costs.
 
 * Per point: the residual and Jacobian of the 2RFR's two rods (:func:`kernels.meeting`, what
   the search evaluates) at 2000 chart points, compiled and with numpy; the time per point and
@@ -20,16 +20,17 @@ import time
 import numpy as np
 
 from mechnum.mechanisms import rfr2
-from mechnum.rods import kernels
+from mechnum.mechanisms.rfr2._elliptic import sample
+from mechnum.rods import _kernels as kernels
 
-MECH, THETA = rfr2.TABLE7, rfr2.TABLE7_THETA
-POINTS = rfr2.sample(np.random.default_rng(0), 2000)
+MECH, THETA = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
+POINTS = sample(np.random.default_rng(0), 2000)
 TIMES = {}
 FIRST_CALLS = """
 import time
 start = time.perf_counter()
 import numpy as np
-from mechnum.rods import kernels
+from mechnum.rods import _kernels as kernels
 imported = time.perf_counter()
 kernels.closed_form(1.0, 1.0, 2.0, 0.5, 1.0)
 kernels.meeting(1.0, 1.0, np.zeros((2, 2)), [0.1, 0.2], [1.0, 1.0], [0.0, 0.0],

@@ -8,11 +8,13 @@ import numpy as np
 import pytest
 
 from mechnum import certify, rods
-from mechnum.certify import ball, bounds
+from mechnum.certify.balls import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
-from mechnum.rods import balls, certified, regular
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
+from mechnum.rods import certified
 from mechnum.rods.certified import TWO_PI
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
@@ -60,10 +62,14 @@ def test_chapter3_pinned_rod_is_certified_complete(pinned):
     looped = pinned.solutions[np.argmin(np.abs(pinned.solutions[:, 1] - 0.99961))]
     rod = regular.clamped_pinned_regular(1.0, 1.0, looped[0],
                                          regular.t_from_k_rel(looped[0], looped[1]), 2)
+    # the reviewer's values are printed to 5 significant digits (2.7309): rel 1e-4 is that rounding
     np.testing.assert_allclose(rod.clamp_moment, 2.7309, rtol=1e-4)
+    # the reviewer's force is printed to 4 digits (423.2, 56.3): rel 1e-3 covers the rounding of the
+    # smaller component
     np.testing.assert_allclose(rod.force, [423.2, 56.3], rtol=1e-3)
     for (psi, t), (_, _, mode) in zip(pinned.x, pinned.solutions):
         tip = regular.clamped_pinned_regular(1.0, 1.0, psi, t, mode).tip
+        # a certified root, its tip recomputed in floating point: round-off of O(1) numbers
         assert np.abs(tip - [0.8, 0.1]).max() < 1e-12
     assert pinned.stable == [None] * 9
 
@@ -72,6 +78,8 @@ def test_pinned_sampling_equals_certified(pinned):
     sampled = rods.pinned_equilibria(1.0, 1.0, [0.8, 0.1], modes=(1, 2, 3))
     assert len(sampled) == pinned.count
     for row in pinned.solutions:
+        # the sampled roots (Newton to the residual 1e-13) and the certified ones (their
+        # enclosures' midpoints, far narrower) agree to round-off of the chart; 1e-8 is wide
         assert np.any(np.all(np.abs(sampled - row) < 1e-8, axis=1))
 
 
@@ -88,8 +96,8 @@ def _same_set(certified, sampled, tol):
 
 
 def test_table7_sampled_equilibria_are_proven():
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     assert result.count == 3 and not result.complete and "lower bound" in result.message
     assert result.scope == "existence" and result.certificate().scope == "existence"
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -99,8 +107,8 @@ def test_table7_sampled_equilibria_are_proven():
 
 
 def test_table8_sampled_equilibria_are_proven():
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    result = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     assert result.count == 9 and result.scope == "existence" and not result.complete
     assert result.status == "converged" and len(result.parts[0].undecided) == 0
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -109,34 +117,35 @@ def test_table8_sampled_equilibria_are_proven():
 
 
 def test_a_box_without_an_equilibrium_is_excluded():
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA,
                                   around=[[1.0, 0.5, 1.0, 0.5]])
     assert result.count == 0 and result.status == "converged"
 
 
 def test_the_stored_table7_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch5_table7_modes11.json")
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA, (1, 1))
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, (1, 1))
     chart = certified.branch_boxes(2)
     checked = certify.verify(cert, f, J, exclude, domain=chart)
     assert (checked.count, checked.scope, checked.complete) == (3, "existence", None)
     with pytest.raises(certify.CertificateError, match="the caller asks for 'all'"):
         certify.verify(cert, f, J, exclude, domain=chart, scope="all")
-    again = rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA)
+    again = rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
     assert (again.count, again.scope) == (3, "existence")
     with pytest.raises(certify.CertificateError, match="leaf"):          # other motor angles
-        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA + 0.01)
+        rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA + 0.01)
 
 
 def test_the_stored_table8_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, (1, 1, 1))
+    table8, lambdas = pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS
+    f, J, _, exclude = pfr3_certified.system(table8, lambdas, (1, 1, 1))
     checked = certify.verify(cert, f, J, exclude, domain=certified.branch_boxes(3))
     assert (checked.count, checked.scope, checked.complete) == (9, "existence", None)
-    other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
+    other = pfr3_certified.system(pfr3.study.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
         certify.verify(cert, other[0], other[1], other[3], domain=certified.branch_boxes(3))
-    assert pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS).count == 9
+    assert pfr3_certified.verify_certificate(cert, table8, lambdas).count == 9
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])
@@ -173,6 +182,7 @@ def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
 def test_boxes_around_points_stay_in_the_chart_and_the_branch():
     boxes = certified.around_boxes([[0.0, -0.5], [3.0, 1e-9], [TWO_PI, regular.T_MAX]], 1)
     assert boxes[0, 0, 0] == 0.0 and boxes[0, 1, 1] < 0.0
+    # exact comparisons: the boxes are cut at the chart's ends, which are floats (no tolerance)
     assert boxes[1, 1, 0] == 0.0 and boxes[1, 1, 1] > 1e-9
     assert boxes[2, 0, 1] == TWO_PI and boxes[2, 1, 1] == regular.T_MAX
     for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):

@@ -1,4 +1,5 @@
-"""Tests of mechnum.published: the printed-digits rules, the registry and its one table."""
+"""Tests of the book's registry rules (book/published.py): the printed-digits rules, the registry
+and its one table."""
 
 from decimal import Decimal
 
@@ -6,8 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from mechnum.published import (
+from published import (
     COLUMNS,
     agrees,
     below,
@@ -25,6 +25,8 @@ from mechnum.published import (
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
                                            ("6.032e-4", 5e-8), ("0", 0.5)])
 def test_half_unit(printed, half):
+    # half a unit of the last printed digit is a power of ten over two: pytest's default rel 1e-6
+    # only absorbs its float representation
     assert half_unit(printed) == pytest.approx(half)
 
 

@@ -1,5 +1,5 @@
-"""The compiled closed form (mechnum.rods.kernels) against the numpy reference
-(mechnum.rods.regular): Carlson's integrals, the rods, and the joint systems of the searches.
+"""The compiled closed form (mechnum.rods._kernels) against the numpy reference (the regular
+module of mechnum.rods): Carlson's integrals, the rods, and the joint systems of the searches.
 
 Errors are measured in each quantity's own units (tip over L, force over EI / L**2, clamp
 moment over EI / L), vector by vector (the tip, the force, each row of a Jacobian: its largest
@@ -14,7 +14,10 @@ import pytest
 from scipy.special import elliprd, elliprf
 
 from mechnum.mechanisms import rfr2
-from mechnum.rods import kernels, regular
+from mechnum.mechanisms.rfr2 import _elliptic as elliptic
+from mechnum.mechanisms.rfr2._model import full_system
+from mechnum.rods import _kernels as kernels
+from mechnum.rods import _regular as regular
 
 EI, L = 0.0522, 0.83
 UNITS = np.array([L, L, EI / L ** 2, EI / L ** 2, EI / L])
@@ -76,7 +79,7 @@ def test_compiled_rods_agree_with_the_numpy_closed_form(seed):
     # psi uniform in (0, 2 pi), |t| up to the search's starts' START_T = 0.985: 1 - |k_rel|
     # down to 1e-14 (the study's extreme equilibria have 1e-7), every mode up to 3, both
     # branches
-    values, jacobian = _worst(*_chart_points(20_000, seed, rfr2.elliptic.START_T))
+    values, jacobian = _worst(*_chart_points(20_000, seed, elliptic.START_T))
     assert values < 1e-13 and jacobian < 1e-13, (values, jacobian)
 
 
@@ -118,13 +121,13 @@ def test_one_rod_and_broadcasting_give_the_reference_shapes():
 def test_the_joint_systems_agree_with_the_reference(modes):
     """meeting (the 2RFR's direct problem in the chart) and joined (the chart and P, as the
     atlas follows it), compiled and in numpy, at random points of the chart and angles."""
-    M = rfr2.TABLE7
+    M = rfr2.study.TABLE7
     rng = np.random.default_rng(5)
-    z = rfr2.sample(rng, 2000)
+    z = elliptic.sample(rng, 2000)
     theta = rng.uniform(0.0, np.pi, (2000, 2))
     u = np.concatenate((z, rng.normal(0.0, 0.3, (2000, 2))), axis=1)
     m = np.array(modes, dtype=float)
-    for system, x, angles in ((kernels.meeting, z, rfr2.TABLE7_THETA),
+    for system, x, angles in ((kernels.meeting, z, rfr2.study.TABLE7_THETA),
                               (kernels.joined, u, theta)):
         f, J = system(M.EI, M.L, M.origins, angles, m, M.force, x)
         with kernels.reference():
@@ -139,14 +142,16 @@ def test_the_joint_systems_agree_with_the_reference(modes):
 
 def test_the_joint_systems_are_the_2rfr_equations():
     # the reference joint system is the 2RFR's own forward_system and full_system
-    M = rfr2.TABLE7
-    z = rfr2.sample(np.random.default_rng(6), 50)
-    fun, jac = rfr2.forward_system(M, rfr2.TABLE7_THETA, (1, 2))
-    theta, P = np.tile(rfr2.TABLE7_THETA, (50, 1)), np.full((50, 2), 0.1)
+    M = rfr2.study.TABLE7
+    z = elliptic.sample(np.random.default_rng(6), 50)
+    system = rfr2.forward_system(M, rfr2.study.TABLE7_THETA, (1, 2))
+    theta, P = np.tile(rfr2.study.TABLE7_THETA, (50, 1)), np.full((50, 2), 0.1)
     with kernels.reference():
-        f, J = kernels.meeting(M.EI, M.L, M.origins, rfr2.TABLE7_THETA, [1.0, 2.0], M.force, z)
-        assert np.array_equal(f, fun(z)) and np.array_equal(J, jac(z))
-        G, D = rfr2.full_system(M, (1, 2))(z, theta, P)
+        f, J = kernels.meeting(M.EI, M.L, M.origins, rfr2.study.TABLE7_THETA, [1.0, 2.0],
+                               M.force, z)
+        F, JF = system(z)
+        assert np.array_equal(f, F) and np.array_equal(J, JF)
+        G, D = full_system(M, (1, 2))(z, theta, P)
         g, E = kernels.joined(M.EI, M.L, M.origins, theta, [1.0, 2.0], M.force,
                               np.concatenate((z, P), axis=1))
     assert np.array_equal(g, G) and np.array_equal(E, D[..., [0, 1, 2, 3, 6, 7]])
