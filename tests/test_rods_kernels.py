@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from scipy.special import elliprd, elliprf
 
+from mechnum import rods
 from mechnum.mechanisms import rfr2
 from mechnum.mechanisms.rfr2 import _elliptic as elliptic
 from mechnum.mechanisms.rfr2._model import full_system
@@ -155,3 +156,21 @@ def test_the_joint_systems_are_the_2rfr_equations():
         g, E = kernels.joined(M.EI, M.L, M.origins, theta, [1.0, 2.0], M.force,
                               np.concatenate((z, P), axis=1))
     assert np.array_equal(g, G) and np.array_equal(E, D[..., [0, 1, 2, 3, 6, 7]])
+
+
+def test_meeting_rods_check_once_and_evaluate_the_kernels():
+    M, theta = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
+    z = elliptic.sample(np.random.default_rng(8), 20)
+    rods_meet = rods.MeetingRods(M.EI, M.L, M.origins, (1, 2), M.force)
+    f, J = rods_meet.meeting(theta, z)
+    g, K = kernels.meeting(M.EI, M.L, M.origins, theta, [1.0, 2.0], M.force, z)
+    assert np.array_equal(f, g) and np.array_equal(J, K)
+    u = np.concatenate((z, np.full((20, 2), 0.1)), axis=1)
+    G, D = rods_meet.joined(theta, u)
+    assert G.shape == (20, 6) and D.shape == (20, 6, 6)
+    for bad, message in (((M.EI, M.L, M.origins[:1], (1, 2), M.force), "one clamp per rod"),
+                         ((M.EI, M.L, M.origins, (1, 0), M.force), "mode"),
+                         ((-1.0, M.L, M.origins, (1, 1), M.force), "EI"),
+                         ((M.EI, M.L, M.origins, (1, 1), [1.0, np.nan]), "load")):
+        with pytest.raises(ValueError, match=message):
+            rods.MeetingRods(*bad)
