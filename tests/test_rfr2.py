@@ -268,12 +268,12 @@ def test_inverse_finds_every_equilibrium_at_an_end_effector(table7):
 
 
 def test_strain_is_the_largest_bending_strain(table7):
-    from mechnum.rods import _regular as regular
+    from mechnum.rods import _profile as profile
     strain = analysis.strain(MECH, THETA, table7.x)
     np.testing.assert_array_equal(strain, table7.strain)
     # sampled along the rods (20001 nodes): the closed form is the supremum of the samples
     for z, e in zip(table7.x, strain):
-        rod = regular.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
+        rod = profile.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
         sampled = 0.5 * MECH.diameter * np.abs(rod.m).max(axis=-1) / MECH.EI
         assert (sampled <= e * (1 + 1e-12)).all() and (sampled > e * (1 - 1e-7)).all()
     # music wire bends 0.77 %: Table 7's solution 1 needs 0.79 %, so only the equilibrium

@@ -71,13 +71,13 @@ from mechnum.rods._loading import DeadLoad
 from mechnum.rods._meeting import MeetingRods
 from mechnum.rods._multiple import shoot_pinned_multiple
 from mechnum.rods._pinned import classify, pinned_equilibria
+from mechnum.rods._profile import shape
 from mechnum.rods._regular import (
     T_MAX,
     ClampedRods,
     clamped_pinned_regular,
     in_chart,
     k_rel_from_t,
-    shape,
     t_from_k_rel,
 )
 from mechnum.rods._rod import Rod, ShotRods, equations, integrate, tip_jacobian
