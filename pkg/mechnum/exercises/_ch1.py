@@ -15,17 +15,13 @@ def loop_equations(q, theta2, r1y, r2, r3):
     ----------
     q : ndarray, shape (3,)
         The unknowns ``(r1, theta1, theta3)`` (m, rad, rad).
-    theta2 : float
-        The crank angle (rad).
-    r1y, r2, r3 : float
-        The guide's height, the crank and the coupler (m).
+    theta2, r1y, r2, r3 : float
+        The crank angle (rad); the guide's height, crank, coupler (m).
 
     Returns
     -------
-    F : ndarray, shape (3,)
-        ``(F_c, F_x, F_y)``, in the chapter's order.
-    J : ndarray, shape (3, 3)
-        ``J[i, j] = dF_i / dq_j``.
+    F, J : ndarray, shapes (3,) and (3, 3)
+        ``(F_c, F_x, F_y)`` in the chapter's order; ``J[i, j] = dF_i/dq_j``.
     """
     r1, theta1, theta3 = q
     s1, c1 = np.sin(theta1), np.cos(theta1)

@@ -13,13 +13,10 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ----------
     EI, L : float
         Bending stiffness (N m^2) and length (m).
-    psi : float
-        Direction of the tip force from the clamped tangent,
-        ``0 < psi < 2 pi``.
-    k_rel : float
-        Relative modulus, ``0 < |k_rel| < 1``.
-    mode : int
-        Buckling mode, ``>= 1``.
+    psi, k_rel, mode : float, float, int
+        The tip force's direction from the clamped tangent,
+        ``0 < psi < 2 pi``; the relative modulus, ``0 < |k_rel| < 1``; the
+        buckling mode, ``>= 1``.
 
     Returns
     -------
