@@ -24,32 +24,33 @@ def cubic_jac(u):
 
 
 def test_the_s_curve_is_traced_through_both_folds():
-    branch = pseudo_arclength(cubic, cubic_jac, [-2.5, -8.125], direction=[1.0, 0.0],
+    branch = pseudo_arclength(cubic, [-2.5, -8.125], cubic_jac, direction=[1.0, 0.0],
                               step=0.05, steps=400, stop=lambda u: u[0] > 2.5)
-    assert branch.complete and branch.u[-1, 0] > 2.5
-    assert_allclose([cubic(u)[0] for u in branch.u], 0.0, atol=1e-9)
+    assert branch.complete and branch.x[-1, 0] > 2.5
+    assert_allclose([cubic(u)[0] for u in branch.x], 0.0, atol=1e-9)
     assert branch.folds.size == 2
     assert_allclose(branch.fold_points, [[-1.0, 2.0], [1.0, -2.0]], atol=1e-9, rtol=0)
     # the folds are where the parameter turns back, and x grows all the way
-    p = branch.u[:, 1]
+    p = branch.x[:, 1]
     for i, j in zip(branch.folds, np.append(branch.folds[1:], len(p) - 1)):
         assert np.all(np.sign(np.diff(p[i + 1:j + 1])) == np.sign(np.diff(p[i + 1:i + 3]))[0])
-    assert np.all(np.diff(branch.u[:, 0]) > 0)
+    assert np.all(np.diff(branch.x[:, 0]) > 0)
     assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)
 
 
 def test_the_arclength_step_is_the_distance_along_the_tangent():
     circle = (lambda u: np.array([u[0] ** 2 + u[1] ** 2 - 1.0]),
               lambda u: np.array([[2.0 * u[0], 2.0 * u[1]]]))
-    branch = pseudo_arclength(*circle, [1.0, 0.0], step=0.1, max_step=0.1, steps=10)
-    assert len(branch.u) == 11 and branch.folds.size == 0
-    angles = np.arctan2(branch.u[:, 1], branch.u[:, 0])
+    branch = pseudo_arclength(circle[0], [1.0, 0.0], circle[1], step=0.1, max_step=0.1,
+                              steps=10)
+    assert len(branch.x) == 11 and branch.folds.size == 0
+    angles = np.arctan2(branch.x[:, 1], branch.x[:, 0])
     assert_allclose(np.sin(np.diff(angles)), 0.1, rtol=1e-9)   # 0.1 along the tangent
 
 
 def test_a_start_off_the_curve_is_refused():
     with pytest.raises(ValueError, match="not on the curve"):
-        pseudo_arclength(cubic, cubic_jac, [0.0, 1.0])
+        pseudo_arclength(cubic, [0.0, 1.0], cubic_jac)
 
 
 def test_a_curve_that_ends_is_reported():
@@ -59,14 +60,14 @@ def test_a_curve_that_ends_is_reported():
     def jac(u):
         return np.array([[0.5 / np.sqrt(abs(u[0])), -1.0]])
 
-    branch = pseudo_arclength(fun, jac, [1.0, 1.0], direction=[-1.0, 0.0], step=0.1,
+    branch = pseudo_arclength(fun, [1.0, 1.0], jac, direction=[-1.0, 0.0], step=0.1,
                               steps=200, min_step=1e-6)
-    assert not branch.complete and branch.u[-1, 0] < 1e-3 and branch.status == "stagnated"
+    assert not branch.complete and branch.x[-1, 0] < 1e-3 and branch.status == "stagnated"
     # the same curve the other way does not end: traced to its 20 points, complete
-    onward = pseudo_arclength(fun, jac, [1.0, 1.0], direction=[1.0, 0.0], step=0.1, steps=20)
-    assert onward.complete and onward.status == "converged" and len(onward.u) == 21
+    onward = pseudo_arclength(fun, [1.0, 1.0], jac, direction=[1.0, 0.0], step=0.1, steps=20)
+    assert onward.complete and onward.status == "converged" and len(onward.x) == 21
     with pytest.raises(ConvergenceError):
-        pseudo_arclength(fun, jac, [1.0, 1.0], step=10.0, min_step=1.0, maxiter=1)
+        pseudo_arclength(fun, [1.0, 1.0], jac, step=10.0, min_step=1.0, maxiter=1)
 
 
 def test_a_bifurcation_point_has_no_tangent():
@@ -74,9 +75,9 @@ def test_a_bifurcation_point_has_no_tangent():
     cross = (lambda u: np.array([u[0] ** 2 - u[1] ** 2]),
              lambda u: np.array([[2 * u[0], -2 * u[1]]]))
     with pytest.raises(SingularJacobianError, match="bifurcation"):
-        pseudo_arclength(*cross, [0.0, 0.0])
-    branch = pseudo_arclength(*cross, [1.0, 1.0], steps=5)   # away from it, a line
-    assert_allclose(branch.u[:, 0], branch.u[:, 1], rtol=1e-12)
+        pseudo_arclength(cross[0], [0.0, 0.0], cross[1])
+    branch = pseudo_arclength(cross[0], [1.0, 1.0], cross[1], steps=5)   # away from it, a line
+    assert_allclose(branch.x[:, 0], branch.x[:, 1], rtol=1e-12)
 
 
 @pytest.mark.parametrize("kwargs, error, match", [
@@ -85,18 +86,18 @@ def test_a_bifurcation_point_has_no_tangent():
     ({"fun": lambda u: np.zeros(2)}, ValueError, r"fun must return a real array of shape \(1,\)"),
     ({"jac": lambda u: np.zeros((2, 2))}, ValueError, r"jac must return .* shape \(1, 2\)"),
     ({"steps": 10 ** 7}, ValueError, "bound on the work"),
-    ({"u0": [1.0]}, ValueError, "u0 must hold the unknowns and the parameter"),
+    ({"seed": [1.0]}, ValueError, "seed must hold the unknowns and the parameter"),
 ])
 def test_pseudo_arclength_refuses_bad_input(kwargs, error, match):
-    args = {"fun": cubic, "jac": cubic_jac, "u0": [-2.5, -8.125]} | kwargs
+    args = {"fun": cubic, "jac": cubic_jac, "seed": [-2.5, -8.125]} | kwargs
     with pytest.raises(error, match=match):
-        pseudo_arclength(args.pop("fun"), args.pop("jac"), args.pop("u0"), **args)
+        pseudo_arclength(args.pop("fun"), args.pop("seed"), args.pop("jac"), **args)
 
 
 def test_branch_follows_the_result_contract():
-    branch = pseudo_arclength(cubic, cubic_jac, [-2.5, -8.125], direction=[1.0, 0.0],
+    branch = pseudo_arclength(cubic, [-2.5, -8.125], cubic_jac, direction=[1.0, 0.0],
                               step=0.05, steps=30)
-    assert isinstance(branch, Result) and branch.x is branch.u and branch.converged
+    assert isinstance(branch, Result) and branch.converged
     assert branch.nfev > 30 and branch.njev > 30 and branch.iterations >= 30
 
 
@@ -113,19 +114,19 @@ def square_jac(x, c):
 def test_solve_path_follows_a_branch_and_reports_failures():
     # x**2 = p on p from 1 down to -1: the positive root exists until p = 0
     p = np.linspace(1.0, -1.0, 21)
-    path = solve_path(square, p, [1.0], square_jac)
+    path = solve_path(square, [1.0], p, square_jac)
     ok = p > 0
     assert np.array_equal(path.converged, ok)
     assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
     assert np.isnan(path.x[~ok]).all() and set(path.status[~ok]) <= set(STATUSES) - {"converged"}
     # two paths at once, with their own parameters; a failed path may be abandoned
-    both = solve_path(square, np.stack([p, p + 2], axis=1), [[1.0], [-np.sqrt(3.0)]],
+    both = solve_path(square, [[1.0], [-np.sqrt(3.0)]], np.stack([p, p + 2], axis=1),
                       square_jac, resume=False)
     assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
     assert (both.status[~ok, 0][1:] == "lost").all()      # abandoned after its first failure
     assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
     with pytest.raises(ValueError, match="params"):
-        solve_path(square, p, [[1.0], [2.0]], square_jac)
+        solve_path(square, [[1.0], [2.0]], p, square_jac)
 
 
 def arm(q, P):
@@ -154,7 +155,7 @@ def test_a_leap_across_the_fold_is_a_branch_jump(n):
     # secant prediction crosses q[1] = 0 and Newton converges with the elbow bent the other way
     # (det J = sin q[1] < 0): the other assembly, which no continuous motion of this path reaches
     points, q0 = reach(n)
-    path = solve_path(arm, points, q0, arm_jac)
+    path = solve_path(arm, q0, points, arm_jac)
     jump = np.flatnonzero(path.status == "branch-jump")
     assert jump.tolist() == [n // 2 + 1]
     assert np.isnan(path.x[jump]).all() and np.isnan(path.det[jump]).all()
@@ -176,27 +177,26 @@ def test_a_point_that_moves_too_fast_is_a_branch_jump():
         return x - 10 * np.tanh(100 * (c[:, None] - 0.5))
 
     p = np.linspace(0.0, 1.0, 11)
-    path = solve_path(fun, p, [-10.0], lambda x, c: np.ones((len(x), 1, 1)))
+    path = solve_path(fun, [-10.0], p, lambda x, c: np.ones((len(x), 1, 1)))
     assert path.status[5:].tolist().count("branch-jump") >= 1
     assert path.converged[:5].all()
-    free = solve_path(fun, p, [-10.0], lambda x, c: np.ones((len(x), 1, 1)), max_jump=None)
+    free = solve_path(fun, [-10.0], p, lambda x, c: np.ones((len(x), 1, 1)), max_jump=None)
     assert free.converged.all()
     assert_allclose(free.x[:, 0], 10 * np.tanh(100 * (p - 0.5)), rtol=1e-12, atol=1e-12)
 
 
 def test_solve_path_with_the_jacobian_from_fun():
     p = np.linspace(1.0, 4.0, 7)
-    path = solve_path(lambda x, c: (square(x, c), square_jac(x, c)), p, [1.0], jac=True)
+    path = solve_path(lambda x, c: (square(x, c), square_jac(x, c)), [1.0], p, jac=True)
     assert path.converged.all() and path.nfev == path.njev
     assert_allclose(path.x[:, 0], np.sqrt(p), rtol=1e-12)
     assert isinstance(path, PathResult) and isinstance(path, Result)
-    assert newton.solve_path is solve_path and newton.PathResult is PathResult
 
 
 def test_solve_path_of_no_steps_is_empty():
-    path = solve_path(square, [], [1.0], square_jac)
+    path = solve_path(square, [1.0], [], square_jac)
     assert path.x.shape == (0, 1) and path.status.shape == (0,)
-    batch = solve_path(square, np.empty((0, 2)), [[1.0], [2.0]], square_jac)
+    batch = solve_path(square, [[1.0], [2.0]], np.empty((0, 2)), square_jac)
     assert batch.x.shape == (0, 2, 1) and batch.converged.shape == (0, 2)
 
 
@@ -215,7 +215,7 @@ def test_solve_path_refuses_bad_input(kwargs, match):
     with warnings.catch_warnings():
         warnings.simplefilter("error")      # no ComplexWarning on the way
         with pytest.raises(ValueError, match=match):
-            solve_path(square, args.pop("params"), [1.0], square_jac, **args)
+            solve_path(square, [1.0], args.pop("params"), square_jac, **args)
 
 
 # --- property tests: the documented tolerance, or a reported failure -----------------------------
@@ -227,7 +227,7 @@ def test_solve_path_points_meet_the_residual_tolerance(a, b, steps, span):
     # the real root of x^3 + a x = p + b (monotone in x: one branch, no fold) along p
     p = np.linspace(0.0, span, steps)
     fun = lambda x, c: x ** 3 + a * x - (c[:, None] + b)  # noqa: E731
-    path = solve_path(fun, p, [0.0], lambda x, c: (3 * x ** 2 + a)[:, :, None], tol=1e-10)
+    path = solve_path(fun, [0.0], p, lambda x, c: (3 * x ** 2 + a)[:, :, None], tol=1e-10)
     ok = path.converged
     residual = np.abs(path.x[ok, 0] ** 3 + a * path.x[ok, 0] - p[ok] - b)
     assert np.all(residual <= 1e-10)
@@ -242,10 +242,10 @@ def test_pseudo_arclength_points_lie_on_the_curve(rx, ry, step):
     fun = lambda u: np.array([(u[0] / rx) ** 2 + (u[1] / ry) ** 2 - 1.0])  # noqa: E731
     jac = lambda u: np.array([[2 * u[0] / rx ** 2, 2 * u[1] / ry ** 2]])  # noqa: E731
     try:
-        branch = pseudo_arclength(fun, jac, [rx, 0.0], step=step * min(rx, ry), steps=60)
+        branch = pseudo_arclength(fun, [rx, 0.0], jac, step=step * min(rx, ry), steps=60)
     except ConvergenceError as error:     # a failure is named
         assert "no point" in str(error)
         return
-    gaps = np.abs([fun(u)[0] for u in branch.u])
+    gaps = np.abs([fun(u)[0] for u in branch.x])
     assert np.all(gaps <= 1e-8)
     assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)

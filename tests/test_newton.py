@@ -8,8 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechnum.errors import ConvergenceError, DivergenceError, NonFiniteError, SingularJacobianError
-from mechnum.newton import STATUSES, broyden, fd_jacobian, solve, solve_all, solve_batch
-from mechnum.results import Result
+from mechnum.newton import broyden, fd_jacobian, solve, solve_all, solve_batch
+from mechnum.results import STATUSES, Result
 
 
 def circle_line(x):
@@ -79,10 +79,10 @@ def test_fd_jacobian_of_a_batch():
     np.testing.assert_allclose(J[1], [[2.0, 0.0], [2.0, 1.0]], atol=1e-6, rtol=0)
 
 
-@pytest.mark.parametrize("x0", [[np.nan, 1.0], [np.inf, 0.0], [[1.0, 2.0]], [], 3.0])
-def test_bad_initial_guess_is_a_value_error(x0):
-    with pytest.raises(ValueError, match="x0 must"):
-        solve(circle_line, x0, circle_line_jac)
+@pytest.mark.parametrize("seed", [[np.nan, 1.0], [np.inf, 0.0], [[1.0, 2.0]], [], 3.0])
+def test_bad_initial_guess_is_a_value_error(seed):
+    with pytest.raises(ValueError, match="seed must"):
+        solve(circle_line, seed, circle_line_jac)
 
 
 @pytest.mark.parametrize("kwargs, match", [({"criterion": "size"}, "criterion"),
@@ -173,10 +173,10 @@ def test_batch_non_convergence_names_the_systems():
     assert info.value.result.converged.tolist() == [True, False]
 
 
-@pytest.mark.parametrize("x0", [np.ones(3), np.ones((2, 2, 2)), np.full((2, 1), np.nan)])
-def test_batch_bad_initial_guess(x0):
-    with pytest.raises(ValueError, match="x0 must"):
-        solve_batch(lambda x: x, x0)
+@pytest.mark.parametrize("seeds", [np.ones(3), np.ones((2, 2, 2)), np.full((2, 1), np.nan)])
+def test_batch_bad_initial_guess(seeds):
+    with pytest.raises(ValueError, match="seeds must"):
+        solve_batch(lambda x: x, seeds)
 
 
 def test_batch_wrong_jacobian_shape():
@@ -212,7 +212,7 @@ def test_complex_residual_or_jacobian_is_refused():
         solve(lambda x: x ** 2 - 2 + 1j, [1.0])
     with pytest.raises(ValueError, match="complex"):
         solve(lambda x: x ** 2 - 2, [1.0], lambda x: np.diag(2j * x))
-    with pytest.raises(ValueError, match="x0 must be real"):
+    with pytest.raises(ValueError, match="seed must be real"):
         solve(lambda x: x ** 2 - 2, [1.0 + 0j])
 
 
@@ -282,7 +282,7 @@ def test_solve_all_finds_every_root_of_a_polynomial_system():
     found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
                       n_starts=300, rng=1)
     expected = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 1)], dtype=float)
-    np.testing.assert_allclose(found.roots, expected, atol=1e-12, rtol=0)
+    np.testing.assert_allclose(found.x, expected, atol=1e-12, rtol=0)
     assert found.complete and found.new_in_check == 0 and found.n_check == 3000
     assert found.hits.sum() == found.status_counts["converged"] and found.hits.min() > 10
     assert np.all(found.residual_norms < 1e-12)
@@ -293,25 +293,25 @@ def test_completeness_check_counts_what_the_search_missed():
     sample = lambda rng, m: (rng.uniform(0.6, 2, (m, 2)) if m < 100  # noqa: E731
                              else rng.uniform(-2, 2, (m, 2)))
     found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=50, rng=2)
-    assert len(found.roots) == 6 and found.new_in_check == 5 and not found.complete
+    assert len(found.x) == 6 and found.new_in_check == 5 and not found.complete
 
 
-def test_solve_all_extra_starts_and_domain():
+def test_solve_all_seeds_and_domain():
     sample = lambda rng, m: rng.uniform(0.6, 2, (m, 2))  # noqa: E731
     found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
-                      starts=[[-1.1, -1.1]], domain=lambda z: z[:, 0] > -0.5)
-    assert found.roots.tolist() == [[1.0, 1.0]]  # the extra start leaves the domain
+                      seeds=[[-1.1, -1.1]], domain=lambda z: z[:, 0] > -0.5)
+    assert found.x.tolist() == [[1.0, 1.0]]  # the extra start leaves the domain
     assert found.status_counts["left-domain"] >= 1 and found.n_check == 0
     found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
-                      starts=[[-1.1, -1.1]])
-    np.testing.assert_allclose(found.roots, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12, rtol=0)
+                      seeds=[[-1.1, -1.1]])
+    np.testing.assert_allclose(found.x, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12, rtol=0)
     assert found.hits.tolist() == [1, 20]
 
 
 def test_solve_all_with_no_root_returns_an_empty_set():
     found = solve_all(lambda z: z ** 2 + 1.0, lambda rng, m: rng.uniform(-2, 2, (m, 1)),
                       lambda z: 2 * z[:, :, None], n_starts=10, check=1, rng=4)
-    assert found.roots.shape == (0, 1) and found.hits.shape == (0,) and found.complete
+    assert found.x.shape == (0, 1) and found.hits.shape == (0,) and found.complete
     assert found.status_counts["stagnated"] + found.status_counts["singular"] == 20
 
 
@@ -351,18 +351,18 @@ def test_batch_statuses_are_consistent_with_the_roots(c, damping):
 @pytest.mark.parametrize("kwargs, match", [
     ({"tol": -1.0}, "tol must be positive"), ({"tol": np.inf}, "tol must be finite"),
     ({"maxiter": np.inf}, "maxiter"), ({"criterion": "size"}, "criterion"),
-    ({"norm": 3}, "norm"), ({"x0": np.ones((2, 2, 1))}, "x0 must have 2"),
-    ({"x0": [[1.0], [np.nan]]}, "x0 must be finite"), ({"x0": np.ones((2, 0))}, "n >= 1"),
-    ({"x0": [[1j]]}, "x0 must be real")])
+    ({"norm": 3}, "norm"), ({"seeds": np.ones((2, 2, 1))}, "seeds must have 2"),
+    ({"seeds": [[1.0], [np.nan]]}, "seeds must be finite"), ({"seeds": np.ones((2, 0))}, "n >= 1"),
+    ({"seeds": [[1j]]}, "seeds must be real")])
 def test_batch_bad_inputs_name_the_argument(kwargs, match):
-    args = {"x0": np.ones((2, 1))} | kwargs
+    args = {"seeds": np.ones((2, 1))} | kwargs
     with pytest.raises(ValueError, match=match):
-        solve_batch(lambda x: x ** 2 - 2, args.pop("x0"), lambda x: 2 * x[:, :, None], **args)
+        solve_batch(lambda x: x ** 2 - 2, args.pop("seeds"), lambda x: 2 * x[:, :, None], **args)
 
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"n_starts": 0}, "n_starts"), ({"check": -1}, "check"), ({"same": 0.0}, "same"),
-    ({"starts": [[np.nan, 0.0]]}, "starts must be finite"), ({"starts": [1.0, 2.0]}, "starts")])
+    ({"seeds": [[np.nan, 0.0]]}, "seeds must be finite"), ({"seeds": [1.0, 2.0]}, "seeds")])
 def test_solve_all_bad_inputs_name_the_argument(kwargs, match):
     with pytest.raises(ValueError, match=match):
         solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac, **kwargs)
@@ -411,17 +411,17 @@ def test_broyden_without_a_jacobian_uses_differences():
     np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12, rtol=0)
 
 
-@pytest.mark.parametrize("x0, kwargs, error, match", [
-    ([np.nan, 1.0], {}, ValueError, "x0 must be finite"),
+@pytest.mark.parametrize("seed, kwargs, error, match", [
+    ([np.nan, 1.0], {}, ValueError, "seed must be finite"),
     ([1.0, 0.5], {"tol": -1.0}, ValueError, "tol must be positive"),
     ([1.0, 0.5], {"maxiter": 0}, ValueError, "maxiter"),
     ([1.0, 0.5], {"criterion": "size"}, ValueError, "criterion"),
     ([0.0, 0.0], {}, SingularJacobianError, "singular Broyden matrix at iteration 0"),
     ([1.0, 0.5], {"maxiter": 2}, ConvergenceError, "Broyden's method did not converge in 2"),
 ])
-def test_broyden_rejects_bad_input_with_named_errors(x0, kwargs, error, match):
+def test_broyden_rejects_bad_input_with_named_errors(seed, kwargs, error, match):
     with pytest.raises(error, match=match):
-        broyden(circle_line, x0, circle_line_jac, **kwargs)
+        broyden(circle_line, seed, circle_line_jac, **kwargs)
 
 
 def test_broyden_refuses_a_complex_residual():
@@ -538,7 +538,7 @@ def test_jac_true_takes_the_jacobian_from_fun():
     np.testing.assert_allclose(batch.x, [[1.0, 1.0], [-1.0, -1.0]], rtol=1e-14)
     found = solve_all(lambda z: (cubic_pair(z), cubic_pair_jac(z)),
                       lambda rng, m: rng.uniform(-2, 2, (m, 2)), True, n_starts=100, rng=1)
-    assert len(found.roots) == 6
+    assert len(found.x) == 6
     with pytest.raises(ValueError, match="pair"):
         solve(circle_line, [1.0, 0.5], jac=True)
     with pytest.raises(ValueError, match="jac must be"):
@@ -620,7 +620,7 @@ def test_results_follow_the_contract():
     found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
                       n_starts=50, check=1, rng=0)
     assert isinstance(found, Result) and found.status.shape == found.iterations.shape == (100,)
-    assert found.x is found.roots and sum(found.status_counts.values()) == 100
+    assert sum(found.status_counts.values()) == 100
     with pytest.raises(ConvergenceError) as info:
         solve(atan_system, [2.0], atan_jac, maxiter=4)
     assert info.value.result.status == "maxiter" and not info.value.result.converged
@@ -727,6 +727,6 @@ def test_solve_all_roots_meet_the_tolerance(r, seed):
                       rng=seed)
     known = np.array([[a, b] for a in r[:2] for b in r[2:]])
     assert set(found.status) <= set(STATUSES)
-    for root in found.roots:
+    for root in found.x:
         assert np.abs(known - root).max(axis=1).min() <= 1e-10 * (1 + np.abs(root).max())
     assert np.all(found.residual_norms <= 1e-12 * (1 + np.abs(known).max()) ** 2)

@@ -633,14 +633,14 @@ def test_imperfect_column_folds_at_the_closed_form_least_load():
     # the side of large deflection and unstable on the nearly straight side
     psi = np.pi - 0.1
     load = rods.DeadLoad(1.0, 1.0, psi, segments=80)
-    branch = pseudo_arclength(load.fun, load.jac, load.start(-0.5), direction=[0.0, -1.0],
+    branch = pseudo_arclength(load.fun, load.start(-0.5), load.jac, direction=[0.0, -1.0],
                               step=0.2, max_step=0.5, steps=60, stop=lambda u: u[1] > 6)
     least = minimize_scalar(lambda k: rods.clamped_pinned(1.0, 1.0, psi, k).R,
                             bounds=(-0.99, -0.01), method="bounded",
                             options={"xatol": 1e-10}).fun
     assert branch.folds.size == 1
     assert_allclose(branch.fold_points[0, 1], least, rtol=1e-7)
-    index = np.array([load.index(u) for u in branch.u])
+    index = np.array([load.index(u) for u in branch.x])
     fold = branch.folds[0]
     assert np.all(index[:fold + 1] == 0) and np.all(index[fold + 1:] == 1)
 

@@ -12,7 +12,8 @@ shooting and the interval search all answer in one shape, as scipy's ``OptimizeR
 
 A method adds its own fields to these (a history, the residual norms, a path), and a function that
 must give one answer and cannot raises a named subclass of :class:`mechnum.errors.MechnumError`
-instead of returning an unconverged result.
+instead of returning an unconverged result. When an iteration stops is one
+:class:`StoppingRule` for every iterative method (Newton's, the stationary and Krylov methods).
 
 Examples
 --------
@@ -33,6 +34,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from mechnum import _validate
+
+__all__ = ["STATUSES", "Result", "StoppingRule", "status_counts"]
+
 STATUSES = (
     "converged",
     "maxiter",
@@ -47,7 +52,7 @@ STATUSES = (
 )
 """The one vocabulary of ``status``, shared by every method:
 
-* ``converged``: the method's stopping test was met;
+* ``converged``: the method's stopping test was met (a direct method: it solved the problem);
 * ``maxiter``: it ran out of iterations (or steps) first;
 * ``singular``: a Jacobian (or a linear system) it had to solve was singular;
 * ``non-finite``: a residual, a Jacobian or an iterate stopped being finite;
@@ -115,3 +120,72 @@ class Result:
         """bool, or ndarray of bool for a batch: whether the status is ``"converged"``."""
         converged = np.asarray(self.status) == "converged"
         return bool(converged) if converged.ndim == 0 else converged
+
+
+CRITERIA = ("step", "residual")
+"""The stopping criteria: on the step, or on the residual."""
+NORMS = (1, 2, np.inf)
+"""The vector norms of a criterion (the ``ord`` of :func:`numpy.linalg.norm`)."""
+
+
+@dataclass(frozen=True)
+class StoppingRule:
+    """When an iteration stops: the options every iterative method of :mod:`mechnum` takes.
+
+    Each method says what its step and its residual are (Newton's full step, the step of SOR
+    divided by ``omega``; ``f(x_k)`` or ``b - A x_k``), and what a relative test is relative to
+    (``||x_{k+1}||`` for the step; ``||f(x_0)||`` or ``||b||`` for the residual).
+
+    Attributes
+    ----------
+    tol : float
+        The tolerance, positive.
+    maxiter : int
+        Most iterations (steps, sweeps), at least 1.
+    criterion : {"step", "residual"}
+        Stop on the size of a step, or on the size of the residual.
+    norm : {2, 1, inf}
+        The ``ord`` of :func:`numpy.linalg.norm` for the criterion.
+    relative : bool
+        Whether the test is relative (``||dx|| <= tol ||x||``) or absolute (``<= tol``).
+
+    Examples
+    --------
+    >>> rule = StoppingRule.checked(1e-8, 20, "residual", 2, None, maxiter_limit=1000)
+    >>> rule.relative, rule.norm
+    (False, 2)
+    >>> StoppingRule.checked(-1.0, 20, maxiter_limit=1000)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol must be positive, got -1.0
+    """
+
+    tol: float
+    maxiter: int
+    criterion: str = "step"
+    norm: float = 2
+    relative: bool = True
+
+    @classmethod
+    def checked(cls, tol: object, maxiter: object, criterion: object = "step",
+                norm: object = 2, relative: object = None, *,
+                maxiter_limit: int) -> "StoppingRule":
+        """The rule of a solver's arguments, checked at its door.
+
+        ``relative=None`` makes the step test relative (the iterates carry their scale) and the
+        residual test absolute (the caller scales the equations); ``maxiter_limit`` is the
+        solver's bound on ``maxiter``.
+
+        Raises
+        ------
+        ValueError
+            If ``tol`` is not positive, ``maxiter`` not an integer in
+            ``[1, maxiter_limit]``, or ``criterion``, ``norm`` or ``relative`` not one of
+            their options.
+        """
+        criterion = _validate.choice(criterion, CRITERIA, "criterion")
+        relative = (criterion == "step" if relative is None
+                    else _validate.flag(relative, "relative"))
+        return cls(_validate.tolerance(tol),
+                   _validate.maxiter(maxiter, maximum=maxiter_limit), criterion,
+                   _validate.choice(norm, NORMS, "norm"), relative)

@@ -25,24 +25,15 @@ that component. Reference: H. B. Keller, *Numerical solution of bifurcation and 
 eigenvalue problems* (1977); E. L. Allgower and K. Georg, *Introduction to Numerical
 Continuation Methods* (2003), chapter 2.
 
-The two live in :mod:`mechnum.continuation.natural` and :mod:`mechnum.continuation.arclength`.
-
 Examples
 --------
 >>> import numpy as np
->>> path = solve_path(lambda x, p: x ** 2 - p[:, None], [1.0, 4.0, 9.0], [1.0])
+>>> path = solve_path(lambda x, p: x ** 2 - p[:, None], [1.0], [1.0, 4.0, 9.0])
 >>> path.x[:, 0].round(12).tolist(), path.status.tolist()
 ([1.0, 2.0, 3.0], ['converged', 'converged', 'converged'])
 """
 
-from mechnum.continuation.arclength import CORRECTOR_TOL, STEPS_LIMIT, Branch, pseudo_arclength
-from mechnum.continuation.natural import (
-                                          MAX_JUMP,
-                                          PATH_POINTS_LIMIT,
-                                          PATH_TOL,
-                                          PathResult,
-                                          solve_path,
-)
+from mechnum.continuation._arclength import Branch, pseudo_arclength
+from mechnum.continuation._natural import PathResult, solve_path
 
-__all__ = ["solve_path", "PathResult", "pseudo_arclength", "Branch", "PATH_TOL", "MAX_JUMP",
-           "PATH_POINTS_LIMIT", "CORRECTOR_TOL", "STEPS_LIMIT"]
+__all__ = ["Branch", "PathResult", "pseudo_arclength", "solve_path"]

@@ -1,20 +1,19 @@
 """Newton-Raphson for systems of nonlinear equations, one, many, and all solutions.
 
-Five forms share one step rule (:mod:`mechnum.newton.core`):
+Four solvers share one step rule:
 
 * :func:`solve` solves one system ``f(x) = 0`` of ``n`` equations in ``n`` unknowns and keeps
-  its whole history (:mod:`mechnum.newton.single`);
+  its whole history;
 * :func:`solve_batch` solves ``batch`` independent systems of the same size at once, with
   arrays of shape ``(batch, n)``; each system stops when it converges, the others go on, and
-  each reports a ``status`` (:mod:`mechnum.newton.batch`);
+  each reports a ``status``;
 * :func:`solve_all` looks for every root of one system: :func:`solve_batch` from many starts,
   the roots deduplicated and counted, and a completeness check (ten times more starts that find
-  no new root) (:mod:`mechnum.newton.search`);
+  no new root);
 * :func:`broyden` replaces the Jacobian of :func:`solve` after the first by rank-one updates
-  (Broyden's method): no Jacobian evaluations, superlinear instead of quadratic convergence;
-* :func:`solve_path` follows a root while a parameter changes (natural-parameter
-  continuation), one path or a batch of paths; it lives in :mod:`mechnum.continuation`, beside
-  pseudo-arclength continuation, and is also importable from here.
+  (Broyden's method): no Jacobian evaluations, superlinear instead of quadratic convergence.
+
+Following a root while a parameter changes is :mod:`mechnum.continuation`, built on these.
 
 Every one returns a result of the contract of :mod:`mechnum.results` (``x``, ``status``,
 ``converged``, ``message``, ``iterations``, ``nfev``, ``njev``) with its own fields added.
@@ -40,8 +39,11 @@ The stopping criterion is explicit because iteration counts depend on it:
 * ``criterion="residual"`` stops as soon as ``||f(x_k)|| <= tol`` (absolute by default: the
   caller scales the equations).
 
-``norm`` is the ``ord`` of :func:`numpy.linalg.norm` (default 2, the Euclidean norm). The
-default tolerances are the named constants of :mod:`mechnum.newton.core`, each with its reason.
+``norm`` is the ``ord`` of :func:`numpy.linalg.norm` (default 2, the Euclidean norm); the
+options make one :class:`mechnum.results.StoppingRule`. The default tolerances are named
+constants, each with its reason: ``1e-10`` for one root (:func:`solve`), ``1e-12`` for a search
+(:func:`solve_all`, two digits beyond, so that the ends of two starts at one root agree far
+better than the ``1e-8`` that groups them).
 
 Without an analytic Jacobian, a forward-difference one is used (:func:`fd_jacobian`); with
 ``jac=True``, ``fun`` returns the residual and the Jacobian together (as scipy's
@@ -57,40 +59,10 @@ Examples
 array([2.])
 """
 
-from mechnum.newton.batch import BatchNewtonResult, solve_batch
-from mechnum.newton.core import (
-    ARMIJO,
-    HALVINGS_LIMIT,
-    MAX_HALVINGS,
-    MAXITER_LIMIT,
-    ROOT_TOL,
-    SEARCH_HALVINGS,
-    TOL,
-    fd_jacobian,
-)
-from mechnum.newton.search import SAME, STARTS_LIMIT, RootSet, solve_all
-from mechnum.newton.single import NewtonResult, broyden, solve
-from mechnum.results import STATUSES
+from mechnum.newton._batch import BatchNewtonResult, solve_batch
+from mechnum.newton._core import MAXITER_LIMIT, fd_jacobian
+from mechnum.newton._search import RootSet, solve_all
+from mechnum.newton._single import NewtonResult, broyden, solve
 
-_CONTINUATION = ("solve_path", "PathResult")  # defined in mechnum.continuation, built on these
-
-__all__ = [
-    "solve", "broyden", "NewtonResult", "solve_batch", "BatchNewtonResult", "solve_all",
-    "RootSet", "solve_path", "PathResult", "fd_jacobian", "STATUSES", "TOL", "ROOT_TOL",
-    "MAXITER_LIMIT", "HALVINGS_LIMIT", "MAX_HALVINGS", "SEARCH_HALVINGS", "ARMIJO",
-    "STARTS_LIMIT", "SAME",
-]
-
-
-def __getattr__(name):
-    """``solve_path`` and ``PathResult`` from :mod:`mechnum.continuation`, where they live
-    (imported on first use: continuation imports this package)."""
-    if name in _CONTINUATION:
-        from mechnum import continuation
-
-        return getattr(continuation, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_CONTINUATION))
+__all__ = ["BatchNewtonResult", "MAXITER_LIMIT", "NewtonResult", "RootSet", "broyden",
+           "fd_jacobian", "solve", "solve_all", "solve_batch"]

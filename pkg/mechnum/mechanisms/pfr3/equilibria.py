@@ -140,7 +140,7 @@ def inverse_sampler(mech: model.Mechanism, pose: ArrayLike):
 def _classify(mech, modes, found, nfev, njev, lambdas, inputs, pose):
     """The :class:`Equilibria` of a search's roots, at sliders ``lambdas`` (n, 3), showing
     ``inputs`` and ``pose`` (the given one unbatched)."""
-    z = found.roots[:, :6]
+    z = found.x[:, :6]
     n = len(z)
     _, force, moment, _ = model.rods(mech, lambdas, z, modes, jacobian=False)
     index = np.array([stability(mech, lambdas[i], z[i], modes) for i in range(n)],
@@ -149,7 +149,7 @@ def _classify(mech, modes, found, nfev, njev, lambdas, inputs, pose):
     if n:
         cross = [np.concatenate(c) for c in zip(*(crossings(mech, lambdas[i], z[i], modes)
                                                   for i in range(n)))]
-    return Equilibria(x=found.roots, status=np.full(n, "converged"), iterations=njev,
+    return Equilibria(x=found.x, status=np.full(n, "converged"), iterations=njev,
                       nfev=nfev, njev=njev, message=assembly.equilibria_message(n, found),
                       inputs=inputs, pose=pose, modes=tuple(int(m) for m in modes),
                       solutions=model.thesis_from_chart(z), chart=z, forces=force,
@@ -213,7 +213,7 @@ def forward_elliptic(mech: model.Mechanism, lambdas: ArrayLike, modes: ArrayLike
     found, nfev, njev = assembly.search(fun, jac, sampler(mech, lambdas), domain=model.in_chart,
                                         n_starts=n_starts, check=check, rng=rng,
                                         tol=SEARCH_TOL, maxiter=SEARCH_MAXITER, same=SAME)
-    tip = model.rods(mech, lambdas, found.roots, modes, jacobian=False)[0]
+    tip = model.rods(mech, lambdas, found.x, modes, jacobian=False)[0]
     every = np.broadcast_to(lambdas, (len(tip), 3))
     return _classify(mech, modes, found, nfev, njev, every, lambdas,
                      model.pose_of_tips(mech, tip))
@@ -269,7 +269,7 @@ def inverse(mech: model.Mechanism, pose: ArrayLike, modes: ArrayLike = (1, 1, 1)
         inverse_sampler(mech, pose), domain=lambda u: model.in_chart(u[:, :6]),
         n_starts=n_starts, check=check, rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER,
         same=SAME)
-    return _classify(mech, modes, found, nfev, njev, found.roots[:, 6:], found.roots[:, 6:],
+    return _classify(mech, modes, found, nfev, njev, found.x[:, 6:], found.x[:, 6:],
                      pose)
 
 

@@ -213,7 +213,7 @@ def sample(rng: np.random.Generator | int | None, m: int) -> np.ndarray:
 
 def _equilibria(mech, theta, P, modes, found, nfev, njev, inputs, pose):
     """Classify the roots (chart) of a search at motor angles ``theta`` (n, 2)."""
-    z = found.roots
+    z = found.x
     n = len(z)
     _, force, moment, _, _ = rods(mech, theta, z, modes, jacobian=False)
     index, cross, own = np.zeros((0, 2), int), np.zeros(0, int), np.zeros((0, 2), int)
@@ -282,7 +282,7 @@ def forward_elliptic(mech: Mechanism, theta: ArrayLike, modes: ArrayLike = (1, 1
     found, nfev, njev = assembly.search(fun, jac, sample, domain=in_chart, n_starts=n_starts,
                                         check=check, rng=rng, tol=SEARCH_TOL,
                                         maxiter=SEARCH_MAXITER)
-    P = rods(mech, theta, found.roots, modes, jacobian=False)[0][:, 0]
+    P = rods(mech, theta, found.x, modes, jacobian=False)[0][:, 0]
     return _equilibria(mech, np.broadcast_to(theta, (len(P), 2)), P, modes, found, nfev,
                        njev, theta, P)
 
@@ -323,7 +323,7 @@ def inverse(mech: Mechanism, P: ArrayLike, modes: ArrayLike = (1, 1), *, n_start
     found, nfev, njev = assembly.search(fun, jac, sample, domain=in_chart, n_starts=n_starts,
                                         check=check, rng=rng, tol=SEARCH_TOL,
                                         maxiter=SEARCH_MAXITER)
-    z = found.roots
+    z = found.x
     tip = regular._closed_form(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes, False).tip
     theta = motor_angles(mech, P, tip)
     return _equilibria(mech, theta, P, modes, found, nfev, njev, theta, P)

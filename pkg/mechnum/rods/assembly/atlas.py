@@ -67,8 +67,8 @@ REFINE = 8
 between two points (a fold, the chart's edge) fails again, a numerical failure (a large step
 near a fold) does not."""
 STEP_TOL = 1e-10
-"""Newton's tolerance per continuation step of the atlas, on the step and relative
-(``mechnum.newton.TOL``): the residual of a rod in strong tension cannot fall below a
+"""Newton's tolerance per continuation step of the atlas, on the step and relative (the
+default of ``mechnum.newton.solve``): the residual of a rod in strong tension cannot fall below a
 round-off floor that grows with its force (``1e-11`` of ``EI / L**2`` at ``t = 0.99``), where a
 fixed residual tolerance would end sound branches."""
 PAIRED = 2.0

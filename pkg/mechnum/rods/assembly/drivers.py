@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechnum import _validate, newton
+from mechnum import _validate, continuation, newton
 from mechnum.rods.assembly.checks import (
     MAX_CHECK,
     MAX_DIRECTIONS,
@@ -134,8 +134,8 @@ def shoot(fun, jac, guess, known, *, width: int, tol: float, maxiter: int):
 
 def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, chart=0,
            criterion="residual"):
-    """Follow a solution of ``fun(u, p) = 0`` along ``params`` (:func:`mechnum.newton.solve_path`),
-    and keep it on its branch.
+    """Follow a solution of ``fun(u, p) = 0`` along ``params``
+    (:func:`mechnum.continuation.solve_path`), and keep it on its branch.
 
     A point is "converged" only if it lies on the branch the path started from. Two tests
     catch a step that converged on another branch: the sign of the determinant of ``jac`` (on
@@ -144,7 +144,7 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     ``chart`` unknowns, the signs of the rods' ``t`` (the regular chart is discontinuous at
     ``t = 0``). The first point that fails either, and every point after it (they descend from
     it), get the status "branch-jump". A point where Newton failed keeps the status of its
-    failure ("lost" when :func:`mechnum.newton.solve_path` gives none).
+    failure ("lost" when :func:`mechnum.continuation.solve_path` gives none).
 
     Parameters
     ----------
@@ -155,7 +155,7 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     u0 : ndarray, shape (n,) or (batch, n)
         A solution at (or near) ``params[0]``.
     tol, maxiter, domain, resume, criterion
-        As in :func:`mechnum.newton.solve_path` (the residual criterion by default; the step
+        As in :func:`mechnum.continuation.solve_path` (the residual criterion by default; the step
         criterion, relative, where the residual's round-off floor varies from point to point,
         as with rods in strong tension).
     chart : int, optional
@@ -187,7 +187,7 @@ def follow(fun, jac, params, u0, *, tol, maxiter=10, domain=None, resume=True, c
     # the branch tests are the signs below (and solve_path's own of det J); solve_path's speed
     # test is off: near a fold of the mechanism (the workspace's edge) the speed grows without
     # bound along the branch itself, and a false jump would cut the rest of the path
-    res = newton.solve_path(f, params, u0, j, tol=tol, maxiter=maxiter, domain=domain,
+    res = continuation.solve_path(f, u0, params, j, tol=tol, maxiter=maxiter, domain=domain,
                             resume=resume, max_jump=None, criterion=criterion)
     ok = np.asarray(res.converged, dtype=bool)
     status = np.asarray(getattr(res, "status", np.where(ok, "converged", "lost")), STATUS_DTYPE)

@@ -6,7 +6,7 @@
 * :func:`newton_step` solves ``J dx = -f`` for one system or a stack, and flags a Jacobian that
   is singular to working precision;
 * :func:`line_search` backtracks along a step until Armijo's rule holds (damped Newton);
-* :class:`StoppingRule` holds the criterion, the tolerance and whether the test is relative.
+* :func:`describe` puts a :class:`~mechnum.results.StoppingRule` in words.
 
 Examples
 --------
@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import NonFiniteError
+from mechnum.results import StoppingRule
 
 TOL = 1e-10
 """Default tolerance of the step criterion, relative: stop after the first full Newton step with
@@ -51,63 +52,22 @@ roots (other starts reach them), while its 20 halvings per step would dominate t
 ARMIJO = 1e-4
 """Armijo's sufficient decrease: accept ``alpha`` when ``||f||`` falls by at least ``ARMIJO alpha``
 of itself (the customary constant: any decrease counts, but not a vanishing one)."""
-CRITERIA = ("step", "residual")
-NORMS = (1, 2, np.inf)
 _SQRT_EPS = np.sqrt(np.finfo(float).eps)  # the forward-difference step that balances errors
 _MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 _TINY = np.finfo(float).tiny
 
 
-@dataclass(frozen=True)
-class StoppingRule:
-    """When a Newton iteration stops.
+def describe(rule: StoppingRule) -> str:
+    """A Newton iteration's stopping test in words, for messages.
 
-    Attributes
-    ----------
-    tol : float
-        The tolerance.
-    maxiter : int
-        Most iterations, at most :data:`MAXITER_LIMIT`.
-    criterion : {"step", "residual"}
-        ``"step"``: stop after the first full Newton step ``dx`` (before ``max_step`` or damping
-        shortens it) with ``||dx|| <= tol ||x_{k+1}||`` (``<= tol`` if not relative); the
-        accepted ``x`` is the one after that step. ``"residual"``: stop as soon as
-        ``||f(x_k)|| <= tol`` (``<= tol ||f(x_0)||`` if relative).
-    norm : {2, 1, inf}
-        The ``ord`` of :func:`numpy.linalg.norm`.
-    relative : bool
-        Whether the test is relative (see ``criterion``).
+    Examples
+    --------
+    >>> describe(StoppingRule(1e-10, 50, "step", 2, True))
+    'full step <= 1e-10 ||x||'
     """
-
-    tol: float
-    maxiter: int
-    criterion: str
-    norm: float
-    relative: bool
-
-    @classmethod
-    def checked(cls, tol: float, maxiter: int, criterion: str, norm: float,
-                relative: bool | None) -> "StoppingRule":
-        """The rule from a solver's arguments, checked; ``relative=None`` is relative for the
-        step (the iterates carry their scale) and absolute for the residual (the caller scales
-        the equations; a reduction relative to ``f(x_0)`` is out of reach from a good start).
-
-        Examples
-        --------
-        >>> StoppingRule.checked(1e-8, 20, "residual", 2, None).relative
-        False
-        """
-        criterion = _validate.choice(criterion, CRITERIA, "criterion")
-        relative = criterion == "step" if relative is None else _validate.flag(relative,
-                                                                                "relative")
-        return cls(_validate.tolerance(tol), _validate.maxiter(maxiter, maximum=MAXITER_LIMIT),
-                   criterion, _validate.choice(norm, NORMS, "norm"), relative)
-
-    def describe(self) -> str:
-        """The test in words, for messages."""
-        if self.criterion == "step":
-            return f"full step <= {self.tol:g}" + (" ||x||" if self.relative else "")
-        return f"residual <= {self.tol:g}" + (" ||f(x0)||" if self.relative else "")
+    if rule.criterion == "step":
+        return f"full step <= {rule.tol:g}" + (" ||x||" if rule.relative else "")
+    return f"residual <= {rule.tol:g}" + (" ||f(x0)||" if rule.relative else "")
 
 
 def norms(v: np.ndarray, norm: float) -> np.ndarray:

@@ -1,8 +1,8 @@
 """One system: Newton-Raphson (:func:`solve`) and Broyden's method (:func:`broyden`).
 
-Both take the step of :func:`~mechnum.newton.core.newton_step`, ``J dx = -f``, with the
+Both take Newton's step, ``J dx = -f`` (with the test of a singular ``J``), with the
 Jacobian itself (Newton) or a rank-one update of it (Broyden), and stop by the
-:class:`~mechnum.newton.core.StoppingRule`. Newton may be damped (a backtracking line search)
+:class:`~mechnum.results.StoppingRule`. Newton may be damped (a backtracking line search)
 and its steps bounded (``max_step``); every iterate is kept in the result's ``history``.
 
 Examples
@@ -20,18 +20,19 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError, SingularJacobianError
-from mechnum.newton.core import (
+from mechnum.newton._core import (
     HALVINGS_LIMIT,
     MAX_HALVINGS,
+    MAXITER_LIMIT,
     TOL,
     Equations,
-    StoppingRule,
     bounded,
+    describe,
     line_search,
     newton_step,
     norms,
 )
-from mechnum.results import Result
+from mechnum.results import Result, StoppingRule
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -63,7 +64,7 @@ class NewtonResult(Result):
     full_step_norms: np.ndarray
 
 
-def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
+def solve(fun: Callable, seed: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
           maxiter: int = 50, criterion: str = "step", norm: float = 2,
           damping: bool = False, max_step: float | None = None, relative: bool | None = None,
           halvings: int = MAX_HALVINGS) -> NewtonResult:
@@ -74,18 +75,19 @@ def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, t
     fun : callable
         ``fun(x) -> ndarray (n,)``, the residual (real); with ``jac=True``,
         ``fun(x) -> (f, J)``.
-    x0 : array_like, shape (n,)
-        Initial guess; must be finite and real.
+    seed : array_like, shape (n,)
+        The initial guess; must be finite and real.
     jac : callable, True or None, optional
         ``jac(x) -> ndarray (n, n)``, the Jacobian; ``True`` if ``fun`` returns it with the
         residual (as scipy's ``root(jac=True)``: work the two share is done once, and the
         Jacobian of a point the line search accepts is not computed again). Default:
         forward differences (:func:`~mechnum.newton.fd_jacobian`).
     tol : float, optional
-        Tolerance of the stopping criterion (positive); default
-        :data:`~mechnum.newton.core.TOL`.
+        Tolerance of the stopping criterion (positive); default ``1e-10`` (relative: the
+        accepted iterate is at round-off if Newton's constant is below ``1e5``, while a
+        Jacobian of condition ``1e6`` can still meet it).
     maxiter : int, optional
-        Most Newton steps, at most :data:`~mechnum.newton.core.MAXITER_LIMIT`.
+        Most Newton steps, at most :data:`~mechnum.newton.MAXITER_LIMIT`.
     criterion : {"step", "residual"}, optional
         Stop after the first full Newton step ``dx`` with ``||dx|| <= tol ||x_{k+1}||`` (the
         step before ``max_step`` or damping shortens it; the accepted ``x`` is the one after
@@ -109,8 +111,8 @@ def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, t
         use it for a root at the origin, which a relative test reaches only once the iterates
         underflow.
     halvings : int, optional
-        With damping, the most halvings of a step (at most
-        :data:`~mechnum.newton.core.HALVINGS_LIMIT`).
+        With damping, the most halvings of a step (at most 52: ``2**-52`` of a step moves
+        ``x`` by round-off).
 
     Returns
     -------
@@ -119,7 +121,7 @@ def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, t
     Raises
     ------
     ValueError
-        If ``x0`` is not a finite real vector, an option is invalid, or ``fun``/``jac`` return
+        If ``seed`` is not a finite real vector, an option is invalid, or ``fun``/``jac`` return
         the wrong shape or complex values.
     SingularJacobianError
         If the Jacobian is singular at an iterate; ``result`` holds the partial result.
@@ -142,7 +144,7 @@ def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, t
     >>> res.nfev, res.njev, res.status
     (6, 6, 'converged')
 
-    Plain Newton on ``arctan(x) = 0`` from ``x0 = 1.5`` overshoots further at every step and
+    Plain Newton on ``arctan(x) = 0`` from the seed ``1.5`` overshoots further at every step and
     diverges; damped, it converges:
 
     >>> res = solve(lambda x: np.arctan(x), [1.5], lambda x: np.diag(1 / (1 + x**2)), damping=True)
@@ -155,17 +157,18 @@ def solve(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, t
     def matrix(eqs, x, fx, J, previous):
         return eqs.jacobian(x, fx, J)
 
-    return _iterate(Equations(fun, jac), x0, matrix,
-                    StoppingRule.checked(tol, maxiter, criterion, norm, relative),
+    return _iterate(Equations(fun, jac), seed, matrix,
+                    StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                         maxiter_limit=MAXITER_LIMIT),
                     damping, max_step, halvings, "Newton", "Jacobian")
 
 
-def broyden(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
+def broyden(fun: Callable, seed: ArrayLike, jac: Callable | bool | None = None, *, tol: float = TOL,
             maxiter: int = 100, criterion: str = "step", norm: float = 2,
             relative: bool | None = None) -> NewtonResult:
     """Solve ``fun(x) = 0`` by Broyden's method: Newton's step with an updated Jacobian.
 
-    The Jacobian is evaluated once, at ``x0`` (``B_0 = J(x0)``); after every step
+    The Jacobian is evaluated once, at the seed (``B_0 = J(seed)``); after every step
     ``s = x_{k+1} - x_k``, with ``y = f(x_{k+1}) - f(x_k)``, it is replaced by the closest
     matrix (in the Frobenius norm) that maps ``s`` to ``y`` (the secant condition
     ``B_{k+1} s = y``), a rank-one update::
@@ -182,10 +185,10 @@ def broyden(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *,
     fun : callable
         ``fun(x) -> ndarray (n,)``, the residual (real); with ``jac=True``,
         ``fun(x) -> (f, J)`` (only the first ``J`` is used).
-    x0 : array_like, shape (n,)
-        Initial guess; must be finite and real.
+    seed : array_like, shape (n,)
+        The initial guess; must be finite and real.
     jac : callable, True or None, optional
-        ``jac(x) -> ndarray (n, n)``, evaluated at ``x0`` only. Default: forward differences.
+        ``jac(x) -> ndarray (n, n)``, evaluated at the seed only. Default: forward differences.
     tol, maxiter, criterion, norm, relative
         As in :func:`solve`.
 
@@ -217,19 +220,20 @@ def broyden(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *,
         s, y = x - x_old, fx - f_old
         return B + np.outer(y - B @ s, s) / (s @ s) if s @ s > 0 else B
 
-    return _iterate(Equations(fun, jac), x0, matrix,
-                    StoppingRule.checked(tol, maxiter, criterion, norm, relative),
+    return _iterate(Equations(fun, jac), seed, matrix,
+                    StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                         maxiter_limit=MAXITER_LIMIT),
                     False, None, MAX_HALVINGS, "Broyden's method", "Broyden matrix")
 
 
-def _iterate(eqs, x0, matrix, rule, damping, max_step, halvings, method, what):
+def _iterate(eqs, seed, matrix, rule, damping, max_step, halvings, method, what):
     """The iteration of :func:`solve` and :func:`broyden`: step ``dx`` solves
     ``B dx = -f`` with ``B = matrix(eqs, x, f, J, previous)``, the Jacobian (Newton) or its
     update from ``previous = (B, x, f)`` of the last step (Broyden), the ``what`` of the
     messages."""
-    x = _validate.array(x0, "x0", ndim=1)
+    x = _validate.array(seed, "seed", ndim=1)
     if x.size == 0:
-        raise ValueError("x0 must have shape (n,) with n >= 1, got shape (0,)")
+        raise ValueError("seed must have shape (n,) with n >= 1, got shape (0,)")
     if max_step is not None:
         max_step = _validate.tolerance(max_step, "max_step")
     history, residuals, steps, full = [x], [], [], []
@@ -282,7 +286,7 @@ def _iterate(eqs, x0, matrix, rule, damping, max_step, halvings, method, what):
         history.append(x)
     k = len(steps)
     messages = {
-        "converged": f"{method} converged in {k} iterations ({rule.describe()})",
+        "converged": f"{method} converged in {k} iterations ({describe(rule)})",
         "non-finite": f"{method} stopped at iteration {k}: {detail}",
         "singular": f"singular {what} at iteration {k}: condition number >= "
                     f"{cond if status == 'singular' else 0:.3g}, residual norm "
@@ -292,7 +296,7 @@ def _iterate(eqs, x0, matrix, rule, damping, max_step, halvings, method, what):
                      f"{residuals[-1]:.3g} (a local minimum of ||f|| that is no root?)",
         "maxiter": f"{method} did not converge in {k} iterations: last full step norm "
                    f"{full[-1] if full else float('nan'):.3g}, residual norm "
-                   f"{residuals[-1]:.3g} ({rule.describe()})",
+                   f"{residuals[-1]:.3g} ({describe(rule)})",
     }
     result = NewtonResult(x=x, status=status, message=messages[status], iterations=k,
                           nfev=eqs.nfev, njev=eqs.njev, history=np.array(history),

@@ -5,7 +5,7 @@ Examples
 >>> import numpy as np
 >>> found = solve_all(lambda z: z ** 2 - 1.0, lambda rng, m: rng.uniform(-2, 2, (m, 1)),
 ...                   lambda z: 2 * z[:, :, None], n_starts=20, rng=0)
->>> found.roots.tolist(), found.complete
+>>> found.x.tolist(), found.complete
 ([[-1.0], [1.0]], True)
 """
 
@@ -16,16 +16,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.newton.batch import solve_batch
-from mechnum.newton.core import HALVINGS_LIMIT, ROOT_TOL, SEARCH_HALVINGS, Equations
+from mechnum.newton._batch import solve_batch
+from mechnum.newton._core import HALVINGS_LIMIT, ROOT_TOL, SEARCH_HALVINGS, Equations
 from mechnum.results import Result, status_counts
 
 STARTS_LIMIT = 10_000_000
-"""The most starts of one search, check included (``n_starts (1 + check)`` plus ``starts``):
+"""The most starts of one search, check included (``n_starts (1 + check)`` plus the ``seeds``):
 a batch of that many Newton iterations holds a few gigabytes of Jacobians for ``n = 6``."""
 SAME = 1e-8
 """Default distance (largest component) below which two converged starts are one root: far above
-the round-off of a converged root (:data:`~mechnum.newton.core.ROOT_TOL`), far below the
+the round-off of a converged root (the tolerance, ``1e-12``), far below the
 distance between two roots that a mechanism can tell apart."""
 
 
@@ -36,10 +36,9 @@ class RootSet(Result):
     Attributes
     ----------
     x : ndarray, shape (r, n)
-        The distinct roots, ``r >= 0``, in the order of their first component (also
-        :attr:`roots`).
+        The distinct roots, ``r >= 0``, in the order of their first component.
     status, iterations : ndarray, shape (starts,)
-        What became of every start (the given ``starts``, then the search's, then the
+        What became of every start (the given ``seeds``, then the search's, then the
         check's), and its Newton steps.
     message : str
         The count of roots and of the starts' outcomes.
@@ -65,11 +64,6 @@ class RootSet(Result):
     n_starts: int
     n_check: int
     new_in_check: int
-
-    @property
-    def roots(self) -> np.ndarray:
-        """ndarray, shape (r, n): the distinct roots (the same array as ``x``)."""
-        return self.x
 
     @property
     def status_counts(self) -> dict:
@@ -100,13 +94,13 @@ def _distinct(points, same):
 
 def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = None, *,
               n_starts: int = 1000, check: int = 10,
-              rng: np.random.Generator | int | None = None, starts: ArrayLike | None = None,
+              rng: np.random.Generator | int | None = None, seeds: ArrayLike | None = None,
               tol: float = ROOT_TOL, maxiter: int = 50, domain: Callable | None = None,
               same: float = SAME, halvings: int = SEARCH_HALVINGS) -> RootSet:
     """Every root that damped Newton finds from many starts, deduplicated, with evidence.
 
     The search runs :func:`~mechnum.newton.solve_batch` (damped, with the status of each
-    start) from ``n_starts`` starts drawn by ``sample`` (plus any given ``starts``); starts that
+    start) from ``n_starts`` starts drawn by ``sample`` (after any given ``seeds``); starts that
     stagnate, leave the ``domain`` or hit a singular Jacobian are dropped. The converged ends
     are grouped into distinct roots (those within ``same`` of each other) and counted. Then a
     completeness check runs ``check * n_starts`` new starts: the number of roots that only it
@@ -128,8 +122,9 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
         both runs are at most :data:`STARTS_LIMIT`.
     rng : numpy.random.Generator or int, optional
         The random generator (or its seed): no hidden randomness.
-    starts : array_like, shape (m, n), optional
-        Starts added to the search (continuation seeds, starts aimed at small basins).
+    seeds : array_like, shape (m, n), optional
+        Initial guesses tried before the random starts (a continuation's points, starts aimed
+        at small basins).
     tol, maxiter, domain
         As in :func:`~mechnum.newton.solve_batch` (``criterion="step"``, relative); ``fun``,
         ``jac`` and ``domain`` must not depend on the position in the batch
@@ -137,8 +132,9 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     same : float, optional
         Two converged points closer than this (largest component) are one root.
     halvings : int, optional
-        Most halvings of a Newton step (:data:`~mechnum.newton.core.SEARCH_HALVINGS`); a start
-        that needs more is dropped, as "stagnated" or "left-domain".
+        Most halvings of a Newton step (default 4: a start whose step must be cut below 1/16
+        lies where Newton's linear model is poor, and dropping it costs hits, not roots); a
+        start that needs more is dropped, as "stagnated" or "left-domain".
 
     Returns
     -------
@@ -159,7 +155,7 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     >>> jac = lambda z: np.stack([np.stack([2 * z[:, 0], 2 * z[:, 1]], -1),
     ...                           np.stack([z[:, 1], z[:, 0]], -1)], axis=1)
     >>> found = solve_all(fun, lambda rng, m: rng.uniform(-3, 3, (m, 2)), jac, n_starts=200, rng=0)
-    >>> found.roots.round(6).tolist()
+    >>> found.x.round(6).tolist()
     [[-1.931852, -0.517638], [-0.517638, -1.931852], [0.517638, 1.931852], [1.931852, 0.517638]]
     >>> found.complete, bool(found.hits.sum() == found.status_counts["converged"])
     (True, True)
@@ -172,15 +168,15 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     if not callable(sample):
         raise ValueError(f"sample must be callable, got {_validate.shown(sample)}")
     Equations(fun, jac)  # fun and jac checked before any work
-    extra = None if starts is None else _validate.array(starts, "starts", ndim=2)
+    extra = None if seeds is None else _validate.array(seeds, "seeds", ndim=2)
     width = None if extra is None else extra.shape[1]
     runs = []
     for m, given in ((n_starts, extra), (check * n_starts, None)):
-        x0 = _sample(sample, rng, m, width) if m else np.empty((0, width or 0))
-        width = x0.shape[1] if m else width
+        starts = _sample(sample, rng, m, width) if m else np.empty((0, width or 0))
+        width = starts.shape[1] if m else width
         if given is not None:
-            x0 = np.concatenate([given, x0])
-        runs.append(solve_batch(fun, x0.reshape(-1, width), jac, tol=tol, maxiter=maxiter,
+            starts = np.concatenate([given, starts])
+        runs.append(solve_batch(fun, starts.reshape(-1, width), jac, tol=tol, maxiter=maxiter,
                                 damping=True, domain=domain, raise_on_failure=False,
                                 independent=True, halvings=halvings))
     ends = [r.x[r.converged] for r in runs]
@@ -205,9 +201,9 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
 def _sample(sample, rng, m, width):
     """``m`` starts from ``sample``, checked: finite, shape ``(m, n)`` (``n = width`` if
     known)."""
-    x0 = _validate.array(sample(rng, m), "the starts that sample returned", ndim=2)
-    if len(x0) != m or x0.shape[1] == 0 or width not in (None, x0.shape[1]):
+    starts = _validate.array(sample(rng, m), "the starts that sample returned", ndim=2)
+    if len(starts) != m or starts.shape[1] == 0 or width not in (None, starts.shape[1]):
         want = f"({m}, {width if width is not None else 'n'})"
         raise ValueError(f"sample(rng, {m}) must return {m} starts, shape {want}, got shape "
-                         f"{x0.shape}")
-    return x0
+                         f"{starts.shape}")
+    return starts

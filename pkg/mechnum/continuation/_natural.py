@@ -13,7 +13,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
-from mechnum.newton.core import SEARCH_HALVINGS, fd_jacobian, inside
 from mechnum.results import Result, status_counts
 
 PATH_TOL = 1e-12
@@ -73,16 +72,16 @@ def _pair(fun, jac):
         if jac is True:
             return np.asarray(fun(z, p)[1], dtype=float), 1, 1
         if jac is None:
-            return fd_jacobian(lambda w: fun(w, p), z), z.shape[-1] + 1, 0
+            return newton.fd_jacobian(lambda w: fun(w, p), z), z.shape[-1] + 1, 0
         return np.asarray(jac(z, p), dtype=float), 0, 1
 
     return residual, jacobian, at
 
 
-def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
+def solve_path(fun: Callable, seed: ArrayLike, params: ArrayLike,
                jac: Callable | bool | None = None, *, tol: float = PATH_TOL,
                maxiter: int = 10, domain: Callable | None = None,
-               halvings: int = SEARCH_HALVINGS, criterion: str = "residual",
+               halvings: int = 4, criterion: str = "residual",
                resume: bool = True, max_jump: float | None = MAX_JUMP) -> PathResult:
     """Follow solutions of ``fun(x, p) = 0`` along a sequence of parameters, by continuation.
 
@@ -113,12 +112,12 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     fun : callable
         ``fun(x, p) -> (m, n)`` for ``x`` of shape ``(m, n)`` and ``p`` of shape ``(m, ...)``:
         the rows of ``x`` and their parameters; with ``jac=True``, ``fun(x, p) -> (f, J)``.
+    seed : array_like, shape (n,) or (batch, n)
+        A solution at (or a start close to) ``params[0]``, of one path or of each of ``batch``.
     params : array_like, shape (steps, ...) or (steps, batch, ...)
-        The parameters of every step (finite, real): for one path (``x0`` of shape ``(n,)``),
+        The parameters of every step (finite, real): for one path (``seed`` of shape ``(n,)``),
         or for each of ``batch`` paths; ``steps * batch`` at most :data:`PATH_POINTS_LIMIT`.
         No steps is a valid, empty path.
-    x0 : array_like, shape (n,) or (batch, n)
-        A solution at (or a start close to) ``params[0]``.
     jac : callable, True or None, optional
         ``jac(x, p) -> (m, n, n)``, or ``True`` if ``fun`` returns it; default forward
         differences.
@@ -129,7 +128,9 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     domain : callable, optional
         ``domain(x) -> (m,) bool``, as in :func:`~mechnum.newton.solve_batch`.
     halvings : int, optional
-        Most halvings of a Newton step, as in :func:`~mechnum.newton.solve_all`.
+        Most halvings of a Newton step, as in :func:`~mechnum.newton.solve_all` (whose default
+        it shares: a start whose step must be cut below 1/16 lies where Newton's linear model
+        is poor).
     resume : bool, optional
         After a step that fails, go on from the last converged solution (the study's
         trajectories do so), or abandon the path (``False``: the rest of it is ``"lost"``).
@@ -144,7 +145,7 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     Raises
     ------
     ValueError
-        Ill-shaped, complex or non-finite ``params`` or ``x0``, an invalid option, or ``fun``,
+        Ill-shaped, complex or non-finite ``seed`` or ``params``, an invalid option, or ``fun``,
         ``jac``, ``domain`` returning the wrong shapes.
 
     Examples
@@ -152,7 +153,7 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     The positive root of ``x**2 = p`` as ``p`` goes from 1 to 4:
 
     >>> p = np.linspace(1.0, 4.0, 7)
-    >>> path = solve_path(lambda x, c: x ** 2 - c[:, None], p, [1.0],
+    >>> path = solve_path(lambda x, c: x ** 2 - c[:, None], [1.0], p,
     ...                   lambda x, c: 2 * x[:, :, None])
     >>> bool(np.allclose(path.x[:, 0], np.sqrt(p))), bool(path.converged.all())
     (True, True)
@@ -169,8 +170,8 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     >>> phi = np.linspace(0.0, 1.0, 5)
     >>> r = 1.999 - 0.6 * np.abs(phi - 0.5)
     >>> elbow = np.arccos(r[0] ** 2 / 2 - 1)
-    >>> path = solve_path(arm, np.column_stack([r * np.cos(phi), r * np.sin(phi)]),
-    ...                   [-elbow / 2, elbow])
+    >>> path = solve_path(arm, [-elbow / 2, elbow],
+    ...                   np.column_stack([r * np.cos(phi), r * np.sin(phi)]))
     >>> path.status.tolist()
     ['converged', 'converged', 'converged', 'branch-jump', 'converged']
     >>> path.x[:, 1].round(3).tolist()
@@ -179,13 +180,13 @@ def solve_path(fun: Callable, params: ArrayLike, x0: ArrayLike,
     _validate.function(fun, "fun")
     if jac is not True:
         _validate.function(jac, "jac", optional=True)
-    x = _validate.array(x0, "x0", ndim=(1, 2))
+    x = _validate.array(seed, "seed", ndim=(1, 2))
     params = _validate.array(params, "params")
     if params.ndim == 0:
         raise ValueError(f"params must hold one parameter set per step, got the scalar "
                          f"{params!r}")
     if x.shape[-1] == 0:
-        raise ValueError(f"x0 must have at least one unknown, got shape {x.shape}")
+        raise ValueError(f"seed must have at least one unknown, got shape {x.shape}")
     resume = _validate.flag(resume, "resume")
     if max_jump is not None:
         max_jump = _validate.scalar(max_jump, "max_jump", positive=True)
@@ -261,7 +262,11 @@ class _Path:
                           where=(self.streak >= 2) & (length > 0))
         start = (self.last + scale[:, None] * (self.last - self.before))[rows]
         if domain is not None:    # a prediction out of the domain falls back on the last point
-            start = np.where(inside(domain, start)[:, None], start, self.last[rows])
+            within = np.asarray(domain(start))
+            if within.shape != (len(start),):
+                raise ValueError(f"domain returned shape {within.shape}, expected "
+                                 f"({len(start)},): one bool per path")
+            start = np.where(within.astype(bool)[:, None], start, self.last[rows])
         return start
 
     def accept(self, i, p, rows, res, det):

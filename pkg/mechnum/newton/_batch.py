@@ -18,19 +18,20 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton.core import (
+from mechnum.newton._core import (
     HALVINGS_LIMIT,
     MAX_HALVINGS,
+    MAXITER_LIMIT,
     TOL,
     Equations,
-    StoppingRule,
     bounded,
+    describe,
     inside,
     line_search,
     newton_step,
     norms,
 )
-from mechnum.results import Result, status_counts
+from mechnum.results import Result, StoppingRule, status_counts
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -68,7 +69,7 @@ class BatchNewtonResult(Result):
         return self.status == "singular"
 
 
-def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None, *,
+def solve_batch(fun: Callable, seeds: ArrayLike, jac: Callable | bool | None = None, *,
                 tol: float = TOL, maxiter: int = 50, criterion: str = "step", norm: float = 2,
                 damping: bool = False, domain: Callable | None = None,
                 raise_on_failure: bool = True, max_step: float | None = None,
@@ -87,8 +88,8 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
     fun : callable
         ``fun(x) -> ndarray (batch, n)`` for ``x`` of shape ``(batch, n)``; with ``jac=True``,
         ``fun(x) -> (f, J)``, ``J`` of shape ``(batch, n, n)``.
-    x0 : array_like, shape (batch, n)
-        Initial guesses; must be finite and real. An empty batch is valid.
+    seeds : array_like, shape (batch, n)
+        The initial guesses, one per system; must be finite and real. An empty batch is valid.
     jac : callable, True or None, optional
         ``jac(x) -> ndarray (batch, n, n)``; ``True`` if ``fun`` returns it. Default: forward
         differences.
@@ -99,7 +100,7 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
         ``domain(x) -> ndarray of bool (batch,)``, whether each iterate lies where the equations
         are meant to be solved. A step that leaves it is shortened (with damping) or ends its
         system with the status "left-domain"; ``fun`` is never called on a point outside it
-        (only the starts ``x0`` are the caller's to choose inside).
+        (only the ``seeds`` are the caller's to choose inside).
     raise_on_failure : bool, optional
         Raise (as below) if some system does not converge; with False, return the result and
         let the caller read ``status``.
@@ -127,7 +128,15 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
 
     Examples
     --------
+    One equation from two seeds, one per root:
+
     >>> import numpy as np
+    >>> res = solve_batch(lambda x: x ** 2 - 2.0, [[1.0], [-1.0]], lambda x: 2 * x[:, :, None])
+    >>> res.x[:, 0].round(8).tolist()
+    [1.41421356, -1.41421356]
+
+    Three equations, with a parameter per system (by its position in the batch):
+
     >>> c = np.array([2.0, 3.0, 4.0])
     >>> res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((3, 1)),
     ...                   lambda x: 2 * x[:, :, None])
@@ -138,10 +147,11 @@ def solve_batch(fun: Callable, x0: ArrayLike, jac: Callable | bool | None = None
     >>> res.status.tolist()    # x**2 + 1 has no real root: a minimum of |f| at 0, no root
     ['stagnated', 'stagnated']
     """
-    x = _validate.array(x0, "x0", ndim=2)
+    x = _validate.array(seeds, "seeds", ndim=2)
     if x.shape[1] == 0:
-        raise ValueError(f"x0 must have shape (batch, n) with n >= 1, got shape {x.shape}")
-    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative)
+        raise ValueError(f"seeds must have shape (batch, n) with n >= 1, got shape {x.shape}")
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                         maxiter_limit=MAXITER_LIMIT)
     damping = _validate.flag(damping, "damping")
     raise_on_failure = _validate.flag(raise_on_failure, "raise_on_failure")
     independent = _validate.flag(independent, "independent")
@@ -282,7 +292,7 @@ def _message(status, rnorm, rule):
     """The batch's outcome in a sentence: the count of converged systems and of each failure,
     the first failing systems, and the largest finite residual norm among them."""
     failed = np.flatnonzero(status != "converged")
-    text = f"{len(status) - failed.size} of {len(status)} systems converged ({rule.describe()})"
+    text = f"{len(status) - failed.size} of {len(status)} systems converged ({describe(rule)})"
     if not failed.size:
         return text
     kinds = {s: c for s, c in status_counts(status).items() if c and s != "converged"}

@@ -6,9 +6,9 @@ arclength 0.1, 0.25 and 0.475 from the start.
 Examples
 --------
 >>> import numpy as np
->>> branch = pseudo_arclength(lambda u: u[:1] - u[1:], lambda u: np.array([[1.0, -1.0]]),
-...                           [0.0, 0.0], steps=3)
->>> np.linalg.norm(branch.u, axis=1).round(12).tolist(), branch.complete
+>>> branch = pseudo_arclength(lambda u: u[:1] - u[1:], [0.0, 0.0],
+...                           lambda u: np.array([[1.0, -1.0]]), steps=3)
+>>> np.linalg.norm(branch.x, axis=1).round(12).tolist(), branch.complete
 ([0.0, 0.1, 0.25, 0.475], True)
 """
 
@@ -20,12 +20,11 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.newton.core import newton_step
 from mechnum.results import Result
 
 CORRECTOR_TOL = 1e-10
 """Default tolerance of :func:`pseudo_arclength`'s corrector: Newton's relative step test
-(:data:`mechnum.newton.core.TOL`)."""
+(the default of :func:`mechnum.newton.solve`)."""
 STEPS_LIMIT = 1_000_000
 """The most points :func:`pseudo_arclength` traces in one call."""
 # The step grows by this factor after a step whose corrector needed at most _EASY iterations.
@@ -33,6 +32,7 @@ _GROWTH, _EASY = 1.5, 3
 # Secant steps that locate a fold on its interval (each one a corrector), and the tolerance on
 # the parameter's tangent component (relative to the tangent's unit length).
 _FOLD_STEPS, _FOLD_TOL = 30, 1e-12
+_MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 @dataclass(frozen=True, kw_only=True)
 class Branch(Result):
     """A curve traced by :func:`pseudo_arclength`.
@@ -40,7 +40,7 @@ class Branch(Result):
     Attributes
     ----------
     x : ndarray, shape (m, n + 1)
-        The points (the parameter last), in the order traced (also :attr:`u`).
+        The points (the parameter last), in the order traced.
     status : str
         ``"converged"`` if the curve was traced to ``steps`` points or to ``stop``;
         ``"stagnated"`` if the step fell below ``min_step`` first.
@@ -51,7 +51,7 @@ class Branch(Result):
     tangent : ndarray, shape (m, n + 1)
         The unit tangents at the points.
     folds : ndarray of int, shape (f,)
-        ``i`` where a fold lies between ``u[i]`` and ``u[i + 1]``.
+        ``i`` where a fold lies between ``x[i]`` and ``x[i + 1]``.
     fold_points : ndarray, shape (f, n + 1)
         The folds themselves (where the tangent's last component vanishes).
     rejected : int
@@ -62,11 +62,6 @@ class Branch(Result):
     folds: np.ndarray
     fold_points: np.ndarray
     rejected: int
-
-    @property
-    def u(self) -> np.ndarray:
-        """ndarray, shape (m, n + 1): the points (the same array as ``x``)."""
-        return self.x
 
     @property
     def complete(self) -> bool:
@@ -120,8 +115,15 @@ def _tangent(J, previous):
     border = np.vstack((J, previous))
     rhs = np.zeros(len(border))
     rhs[-1] = 1.0
-    t, singular, _ = newton_step(border, -rhs)
-    return None if singular else t / np.linalg.norm(t)
+    try:
+        t = np.linalg.solve(border, rhs)
+    except np.linalg.LinAlgError:
+        return None
+    # singular to working precision: max|B_ij| ||t||_1 / ||rhs||_1, a lower bound of the
+    # condition number ||B||_1 ||B^-1||_1, beyond 1/eps (the test of Newton's step)
+    if not np.abs(border).max() * np.abs(t).sum() <= _MAX_COND:
+        return None
+    return t / np.linalg.norm(t)
 
 
 def _fold(curve, u, t, h, v, t_h):
@@ -148,21 +150,21 @@ def _fold(curve, u, t, h, v, t_h):
     return v
 
 
-def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
+def pseudo_arclength(fun: Callable, seed: ArrayLike, jac: Callable, *,
                      direction: ArrayLike | None = None, step: float = 0.1,
                      max_step: float | None = None, min_step: float = 1e-8,
                      steps: int = 200, tol: float = CORRECTOR_TOL, maxiter: int = 8,
                      stop: Callable | None = None) -> Branch:
-    """Trace the curve ``F(u) = 0`` through ``u0`` by pseudo-arclength continuation.
+    """Trace the curve ``F(u) = 0`` through the ``seed`` by pseudo-arclength continuation.
 
     Parameters
     ----------
     fun : callable
         ``fun(u) -> (n,)``, for ``u`` of shape ``(n + 1,)`` (the parameter last).
+    seed : array_like, shape (n + 1,)
+        A point on the curve (to ``tol``), where ``F'`` has full rank ``n``.
     jac : callable
         ``jac(u) -> (n, n + 1)``, the Jacobian of ``fun``.
-    u0 : array_like, shape (n + 1,)
-        A point on the curve (to ``tol``), where ``F'`` has full rank ``n``.
     direction : array_like, shape (n + 1,), optional
         The way to go, non-zero: the first tangent is taken on its side. Default: increasing
         parameter.
@@ -170,7 +172,7 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
         First arclength step, largest step (default ``10 step``), and the step below which
         the curve is declared lost.
     steps : int, optional
-        Most points traced after ``u0``, at most :data:`STEPS_LIMIT`.
+        Most points traced after the seed, at most :data:`STEPS_LIMIT`.
     tol, maxiter : optional
         Newton's corrector (:func:`mechnum.newton.solve`) stops when its step is below
         ``tol |v|`` (:data:`CORRECTOR_TOL`), and fails after ``maxiter`` iterations.
@@ -184,13 +186,13 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
     Raises
     ------
     ValueError
-        If ``u0`` is not on the curve (``|F(u0)| > 1e3 tol (1 + |u0|)``), ``fun`` or ``jac``
+        If the seed is not on the curve (``|F(seed)| > 1e3 tol (1 + |seed|)``), ``fun`` or ``jac``
         return the wrong shape, or an input is out of range.
     SingularJacobianError
-        If ``F'(u0)`` has rank below ``n`` (a bifurcation point, where no single tangent
+        If ``F'(seed)`` has rank below ``n`` (a bifurcation point, where no single tangent
         exists), or is orthogonal to ``direction``.
     ConvergenceError
-        If no point after ``u0`` could be computed.
+        If no point after the seed could be computed.
 
     Examples
     --------
@@ -198,14 +200,14 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
 
     >>> fun = lambda u: np.array([u[0] ** 2 + u[1] ** 2 - 1.0])
     >>> jac = lambda u: np.array([[2.0 * u[0], 2.0 * u[1]]])
-    >>> branch = pseudo_arclength(fun, jac, [1.0, 0.0], step=0.1, steps=40)
+    >>> branch = pseudo_arclength(fun, [1.0, 0.0], jac, step=0.1, steps=40)
     >>> len(branch.folds), (np.round(branch.fold_points, 10) + 0.0).tolist()
     (2, [[0.0, 1.0], [0.0, -1.0]])
     """
     _validate.function(fun, "fun"), _validate.function(jac, "jac")
-    u = _validate.array(u0, "u0", ndim=1)
+    u = _validate.array(seed, "seed", ndim=1)
     if u.size < 2:
-        raise ValueError(f"u0 must hold the unknowns and the parameter, got shape {u.shape}")
+        raise ValueError(f"seed must hold the unknowns and the parameter, got shape {u.shape}")
     tol = _validate.tolerance(tol)
     maxiter = _validate.maxiter(maxiter, maximum=newton.MAXITER_LIMIT)
     steps = _validate.maxiter(steps, "steps", maximum=STEPS_LIMIT)
@@ -216,7 +218,7 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
     curve = _Curve(fun, jac, u.size, tol, maxiter)
     gap = np.linalg.norm(curve.value(u))
     if gap > 1e3 * tol * (1.0 + np.linalg.norm(u)):
-        raise ValueError(f"u0 = {u!r} is not on the curve: |F(u0)| = {gap:.3g}")
+        raise ValueError(f"seed = {u!r} is not on the curve: |F(seed)| = {gap:.3g}")
     if direction is None:
         direction = np.zeros(u.size)
         direction[-1] = 1.0
@@ -226,7 +228,7 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
     t = _tangent(curve.jacobian(u), direction)
     if t is None:
         raise SingularJacobianError(
-            f"no tangent at u0 = {u!r}: F'(u0) has rank below {u.size - 1} (a bifurcation "
+            f"no tangent at the seed {u!r}: F'(seed) has rank below {u.size - 1} (a bifurcation "
             f"point, where branches cross), or its null space is orthogonal to direction")
     points, tangents, folds, fold_points, rejected = [u], [t], [], [], 0
     status = "converged"
@@ -251,7 +253,7 @@ def pseudo_arclength(fun: Callable, jac: Callable, u0: ArrayLike, *,
         if stop is not None and stop(u):
             break
     if len(points) == 1:
-        raise ConvergenceError(f"no point of the curve beyond u0 (the step fell below "
+        raise ConvergenceError(f"no point of the curve beyond the seed (the step fell below "
                                f"{min_step:g})")
     message = (f"{len(points)} points, {len(folds)} folds, {rejected} steps halved" +
                ("" if status == "converged" else f"; the step fell below {min_step:g}"))
