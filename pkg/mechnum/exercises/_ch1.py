@@ -1,5 +1,6 @@
-"""Chapter 1, Newton on the power hacksaw: the loop equations with their Jacobian (1.1), and
-Newton's method with the study's stopping test (1.2)."""
+"""Chapter 1, Newton on the power hacksaw: the loop equations with their Jacobian (1.1),
+Newton's method with Armijo's backtracking and the study's stopping test (1.2), and Broyden's
+update of the inverse matrix (1.3)."""
 
 import numpy as np
 
@@ -35,40 +36,37 @@ def loop_equations(q, theta2, r1y, r2, r3):
     return F, J
 
 
-def newton_study(F, J, x0, tol=1e-6, maxiter=50):
-    """Newton's method, stopped by the study's rule.
+ARMIJO, HALVINGS = 1e-4, 20  # the statement's rule: lambda = 1, 1/2, ..., 2**-20
 
-    Parameters
-    ----------
-    F, J : callable
-        The residual ``F(x)``, shape (n,), and its Jacobian ``J(x)``,
-        shape (n, n).
-    x0 : ndarray, shape (n,)
-        The seed.
-    tol : float
-        Stop after the first step whose 2-norm is below ``tol``.
-    maxiter : int
-        At most this many steps.
 
-    Returns
-    -------
-    x : ndarray, shape (n,)
-        The iterate after the step that passed the test.
-    iterations : int
-        The number of steps taken, that step included.
+def newton_damped(F, J, x0, tol=1e-6, maxiter=50):
+    """Newton's method with Armijo's backtracking and the study's stop.
 
-    Raises
-    ------
-    RuntimeError
-        If no step passes the test within ``maxiter`` steps.
+    Returns ``(x, iterations)``: the iterate after the first Newton step
+    shorter than ``tol``, and the steps taken. Raises ``RuntimeError``
+    after ``maxiter`` steps, or when no step length passes Armijo's test.
     """
     x = np.array(x0, dtype=float)
+    size = np.linalg.norm(F(x))
     for k in range(1, maxiter + 1):
         dx = np.linalg.solve(J(x), -F(x))
-        x = x + dx
-        if np.linalg.norm(dx) < tol:
+        for lam in 0.5 ** np.arange(21):  # 1, 1/2, ..., 2**-20
+            trial = np.linalg.norm(F(x + lam * dx))
+            if trial <= (1 - 1e-4 * lam) * size:  # Armijo's test
+                break
+        else:
+            raise RuntimeError(f"no step length passes at step {k}")
+        x, size = x + lam * dx, trial
+        if np.linalg.norm(dx) < tol:  # the study's test, on Newton's step
             return x, k
-    raise RuntimeError(f"no step below {tol} in {maxiter} steps")
+    raise RuntimeError(f"no Newton step below {tol} in {maxiter} steps")
+
+
+def broyden_inverse_update(H, s, y):
+    """The inverse of ``B + (y - B s) s^T / (s^T s)``, given ``H = B^-1``,
+    the step ``s`` and the change ``y`` of ``F`` along it."""
+    Hy = H @ y
+    return H + np.outer(s - Hy, s @ H) / (s @ Hy)  # Sherman-Morrison
 
 
 # Typical mistakes of 1.1
@@ -128,22 +126,38 @@ LOOP = Exercise(
 
 
 # Typical mistakes of 1.2
-def _residual_test(F, J, x0, tol=1e-6, maxiter=50):
+def _plain(F, J, x0, tol=1e-6, maxiter=50):  # the chapter's ten lines, without damping
     x = np.array(x0, dtype=float)
-    for k in range(maxiter):
-        if np.linalg.norm(F(x)) < tol:
+    for k in range(1, maxiter + 1):
+        dx = np.linalg.solve(J(x), -F(x))
+        x = x + dx
+        if np.linalg.norm(dx) < tol:
             return x, k
-        x = x + np.linalg.solve(J(x), -F(x))
-    raise RuntimeError("no convergence")
+    raise RuntimeError("maxiter")
+
+
+def _damped_variant(test="full", armijo=ARMIJO):
+    def variant(F, J, x0, tol=1e-6, maxiter=50):
+        x = np.array(x0, dtype=float)
+        size = np.linalg.norm(F(x))
+        for k in range(1, maxiter + 1):
+            dx = np.linalg.solve(J(x), -F(x))
+            for lam in 0.5 ** np.arange(HALVINGS + 1):
+                trial = np.linalg.norm(F(x + lam * dx))
+                if trial <= (1 - armijo * lam) * size:
+                    break
+            else:
+                raise RuntimeError("stagnated")
+            x, size = x + lam * dx, trial
+            if (np.linalg.norm(lam * dx) if test == "damped" else size) < tol:
+                return x, k
+        raise RuntimeError("maxiter")
+    return variant
 
 
 def _uncounted(F, J, x0, tol=1e-6, maxiter=50):
-    x, k = newton_study(F, J, x0, tol, maxiter)
+    x, k = newton_damped(F, J, x0, tol, maxiter)
     return x, k - 1
-
-
-def _transposed_solve(F, J, x0, tol=1e-6, maxiter=50):
-    return newton_study(F, lambda x: J(x).T, x0, tol, maxiter)
 
 
 def _newton_cases():
@@ -152,46 +166,127 @@ def _newton_cases():
                 lambda q: loop_equations(q, theta2, *geometry)[1])
     two = (lambda x: np.array([x[0] ** 2 + x[0] * x[1] - 3.0, np.exp(x[0] - 1) + x[1] ** 3 - 9.0]),
            lambda x: np.array([[2 * x[0] + x[1], x[0]], [np.exp(x[0] - 1), 3 * x[1] ** 2]]))
+    no_root = (lambda x: np.array([x[0] ** 2 + 1.0, x[1]]),
+               lambda x: np.array([[2 * x[0], 0.0], [0.0, 1.0]]))
     seed = np.array([-0.1, -0.5, 3.0])
     return [Case("the hacksaw at rest from the study's seed, tol = 1e-6",
                  (*hacksaw(0.0), seed, 1e-6, 50)),
+            Case("the hacksaw at rest from (-0.1, -0.45, 1.82), where undamped Newton leaps to "
+                 "the other assembly mode, tol = 1e-6",
+                 (*hacksaw(0.0), np.array([-0.1, -0.45, 1.82]), 1e-6, 50)),
+            Case("the same start with a loose tol = 1, where the first step is damped to a "
+                 "quarter of Newton's",
+                 (*hacksaw(0.0), np.array([-0.1, -0.45, 1.82]), 1.0, 50)),
             Case("the hacksaw at theta2 = 2 rad from the study's seed, tol = 1e-10",
                  (*hacksaw(2.0), seed, 1e-10, 50)),
-            Case("a saw with r3 = 0.13 m at theta2 = -1 rad, tol = 1e-8",
-                 (*hacksaw(-1.0, (0.045, 0.075, 0.13)), seed, 1e-8, 50)),
             Case("a 2 x 2 system with a non-symmetric Jacobian from (1.5, 1.5), tol = 1e-9",
-                 (*two, np.array([1.5, 1.5]), 1e-9, 50))]
+                 (*two, np.array([1.5, 1.5]), 1e-9, 50)),
+            Case("the hacksaw at rest from the study's seed with maxiter = 2 (it needs 4 steps)",
+                 (*hacksaw(0.0), seed, 1e-6, 2)),
+            Case("F(x) = (x_0^2 + 1, x_1), which has no root, from (0.75, 1)",
+                 (*no_root, np.array([0.75, 1.0]), 1e-6, 50))]
 
 
 def _newton_probes():  # one step only, on the 2 x 2 system: where each mistake shows
-    return [Case("one step", (*_newton_cases()[-1].args[:3], np.inf, 1))]
+    return [Case("one step", (*_newton_cases()[4].args[:3], np.inf, 1))]
 
 
 def _newton_compare(expected, got):
     x, k = got
-    if int(k) != expected[1]:
-        return f"{int(k)} iterations, expected {expected[1]}"
+    if k != expected[1]:
+        return f"{k} iterations, expected {expected[1]}"
     return close(expected[0], x, rtol=1e-9, atol=1e-12, what="x")
 
 
 NEWTON = Exercise(
-    number="1.2", label="ch1-ex-newton-study",
-    title="Newton's method with the study's stopping test",
+    number="1.2", label="ch1-ex-newton-damped",
+    title="damped Newton with the study's stopping test",
     statement=(
-        "**Implement it yourself.** Write `newton_study(F, J, x0, tol, maxiter)`: Newton's "
-        "method that solves $J(x_k)\\,\\Delta x_k = -F(x_k)$ with `np.linalg.solve`, stops after "
-        "the first step with $\\|\\Delta x_k\\|_2 <$ `tol` (the study's rule, that step counted) "
-        "and returns the iterate after that step and the number of steps; it raises "
-        "`RuntimeError` after `maxiter` steps. Run it on your `loop_equations` at rest from the "
-        "study's seed: the chapter's table says how many steps to expect."),
-    reference=newton_study, cases=_newton_cases, compare=_newton_compare,
+        "**Implement it yourself.** Write `newton_damped(F, J, x0, tol, maxiter)`, the rescue "
+        "of the chapter's basins: Newton's step $\\Delta x_k$ solves "
+        "$J(x_k)\\,\\Delta x_k = -F(x_k)$, and $x_{k+1} = x_k + \\lambda\\Delta x_k$ takes the "
+        "first $\\lambda = 1, \\frac12, \\frac14, \\dots, 2^{-20}$ that passes Armijo's test "
+        "$\\|F(x_k + \\lambda\\Delta x_k)\\|_2 \\le (1 - 10^{-4}\\lambda)\\,\\|F(x_k)\\|_2$. Stop "
+        "by the study's rule, after the first Newton step with $\\|\\Delta x_k\\|_2 <$ `tol` "
+        "(that step counted), and return the iterate after it and the number of steps. Raise "
+        "`RuntimeError` when no $\\lambda$ passes, and after `maxiter` steps. From the start of "
+        "the chapter's figure where plain Newton leaves the study's mode, yours must reach the "
+        "study's pose, as `newton.solve(..., damping=True)` does."),
+    reference=newton_damped, cases=_newton_cases, compare=_newton_compare,
     probes=_newton_probes,
-    mistakes=(Mistake("a stopping test on the residual", "the study stops on the step "
-                      "||dx|| < tol, tested after the step is taken, not on ||F(x)||.",
-                      _residual_test),
+    mistakes=(Mistake("no damping", "this is the chapter's undamped loop: halve the step until "
+                      "Armijo's test holds before you take it.", _plain),
+              Mistake("the test on the damped step", "test Newton's full step dx, not the "
+                      "shortened lambda dx: a short damped step does not mean convergence.",
+                      _damped_variant(test="damped")),
+              Mistake("a stopping test on the residual", "the study stops on Newton's full "
+                      "step, ||dx|| < tol, not on ||F(x)||.", _damped_variant(test="residual")),
+              Mistake("plain decrease for Armijo's test", "Armijo asks for a decrease of at "
+                      "least 1e-4 lambda ||F||, not any decrease.", _damped_variant(armijo=0.0)),
               Mistake("an uncounted last step", "the step that passes the test is taken and "
-                      "counted.", _uncounted),
-              Mistake("a transposed Jacobian", "solve J(x) dx = -F(x) with J itself, not J.T.",
-                      _transposed_solve)),
-    hint="print ||dx|| at each step and compare with the chapter's table at rest; check the "
-         "sign of the step (x + dx with J dx = -F).")
+                      "counted.", _uncounted)),
+    hint="print lambda, ||F|| and ||dx|| at each step and compare with newton.solve(F, x0, J, "
+         "tol=tol, relative=False, damping=True).")
+
+
+# Typical mistakes of 1.3
+def _bad_broyden(H, s, y):  # Broyden's other ("bad") update: not the inverse of the chapter's
+    return H + np.outer(s - H @ y, y) / (y @ y)
+
+
+def _without_h(H, s, y):
+    return H + np.outer(s - H @ y, s) / (s @ H @ y)
+
+
+def _direct(H, s, y):  # the chapter's update of B, applied to H
+    return H + np.outer(y - H @ s, s) / (s @ s)
+
+
+def _update_cases():
+    from mechnum.mechanisms import hacksaw
+
+    rng = np.random.default_rng(13)
+    mech = hacksaw.Geometry(*STUDY)
+    x0 = np.array([-0.1, -0.5, 3.0])
+    B = hacksaw.position_jacobian(mech, x0)
+    s = -np.linalg.solve(B, hacksaw.position_residual(mech, x0, 0.0))
+    y = (hacksaw.position_residual(mech, x0 + s, 0.0)
+         - hacksaw.position_residual(mech, x0, 0.0))
+    cases = [Case("the hacksaw's first Broyden step at rest, from the study's seed",
+                  (np.linalg.inv(B), s, y))]
+    for n in (2, 4):
+        B = rng.normal(size=(n, n)) + n * np.eye(n)
+        cases.append(Case(f"a random {n} x {n} matrix, step and change",
+                          (np.linalg.inv(B), rng.normal(size=n), rng.normal(size=n))))
+    return cases
+
+
+def _update_compare(expected, got):
+    return close(expected, got, rtol=1e-9, atol=1e-12, what="the updated inverse")
+
+
+UPDATE = Exercise(
+    number="1.3", label="ch1-ex-broyden-inverse", title="Broyden's update of the inverse",
+    statement=(
+        "**Implement it yourself.** Broyden's method solves $B_k\\,\\Delta x = -F(x_k)$ at "
+        "every step. With $H_k = B_k^{-1}$ at hand, a step is a product, "
+        "$\\Delta x = -H_k F(x_k)$, and needs no solve. Write "
+        "`broyden_inverse_update(H, s, y)`, which returns the inverse of the chapter's "
+        "$B + (y - Bs)\\,s^{\\mathsf T}/(s^{\\mathsf T}s)$ given $H = B^{-1}$, in $O(n^2)$ "
+        "operations and without inverting or solving anything: derive it by the "
+        "Sherman-Morrison formula, $(A + uv^{\\mathsf T})^{-1} = A^{-1} - A^{-1}u\\,v^{\\mathsf T}"
+        "A^{-1}/(1 + v^{\\mathsf T}A^{-1}u)$. Then check the secant condition "
+        "$H_{k+1}\\,y = s$ on your answer."),
+    reference=broyden_inverse_update, cases=_update_cases, compare=_update_compare,
+    forbidden=("numpy.linalg.inv", "numpy.linalg.solve", "numpy.linalg.pinv",
+               "numpy.linalg.lstsq", "scipy.linalg.inv", "scipy.linalg.solve",
+               "scipy.linalg.pinv", "scipy.linalg.lstsq"),
+    mistakes=(Mistake("Broyden's other update", "H + (s - H y) y^T / (y^T y) is the 'bad' "
+                      "Broyden update, a different method: yours must be the inverse of the "
+                      "chapter's B update, whose row vector is s^T H.", _bad_broyden),
+              Mistake("s^T for s^T H", "Sherman-Morrison puts A^{-1} on both sides: the row "
+                      "vector is s^T H, and the denominator s^T H y.", _without_h),
+              Mistake("the update of B applied to H", "(y - B s) s^T / (s^T s) updates B; "
+                      "its inverse updates H by (s - H y) s^T H / (s^T H y).", _direct)),
+    hint="check that H_new @ y equals s, and that H_new @ B_new is the identity for a small "
+         "example with B_new = inv(H) updated by the chapter's formula.")
