@@ -1,15 +1,20 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: the inputs, the searched boxes, the
-leaves with the test each passed, the root enclosures and the work done. Re-check one with
-:func:`~mechnum.certify.certificate.verify` and the residual of the same ``system`` (see each entry below).
+Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: its scope, the search
+that made it, the inputs, the searched boxes, the leaves with the test each passed, the root
+enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify.verify`, the
+residual of the same ``system`` and the chart as the domain
+(:func:`~mechnum.rods.certified.branch_boxes`; see each entry below).
 
 * ``ch3_pinned_mode{1,2,3}.json``: Chapter 3's pinned rod (``EI = L = 1``, tip ``(0.8, 0.1)``),
-  the chart of each mode searched whole (:func:`~mechnum.rods.certified.certify_pinned`): complete.
+  the chart of each mode searched whole (:func:`~mechnum.rods.certified.certify_pinned`):
+  scope ``"all"``, complete.
 * ``ch5_table7_modes11.json``: Table 7's mode ``(1, 1)`` equilibria, each proven in a box around
-  the sampled one (:func:`~mechnum.mechanisms.rfr2.certify_forward` with ``around``).
+  the sampled one (:func:`~mechnum.mechanisms.rfr2.certify_forward` with ``around``): scope
+  ``"existence"``.
 * ``ch6_table8_modes111.json``: Table 8's mode ``(1, 1, 1)`` equilibria, likewise
-  (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` with ``around``); Chapter 6 verifies it.
+  (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` with ``around``): scope
+  ``"existence"``; Chapter 6 verifies it.
 """
 
 import pathlib
@@ -25,7 +30,7 @@ HERE = pathlib.Path(__file__).parent
 def store(name, part, inputs):
     cert = part.certificate(inputs)
     cert.save(HERE / name)
-    print(f"{name}: {part.message} ({part.seconds:.1f} s)")
+    print(f"{name}: scope {cert.scope}, {part.message} ({part.seconds:.1f} s)")
 
 
 def main():
@@ -41,13 +46,14 @@ def main():
           {"function": "mechnum.mechanisms.rfr2.certified.system", "mechanism": "TABLE7",
            "theta": rfr2.TABLE7_THETA.tolist(), "modes": [1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
-           "unknowns": ["psi1", "t1", "psi2", "t2"]})
+           "around": sampled.chart.tolist(), "unknowns": ["psi1", "t1", "psi2", "t2"]})
     sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
     table8 = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
     store("ch6_table8_modes111.json", table8.parts[0],
           {"function": "mechnum.mechanisms.pfr3.certified.system", "mechanism": "TABLE8",
            "lambdas": pfr3.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
+           "around": sampled.chart.tolist(),
            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]})
     print(f"all certificates in {time.perf_counter() - start:.0f} s")
     return 0

@@ -11,7 +11,7 @@ from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
-Without ``around``, the search covers the chart's whole domain (64 boxes, one per sign pattern
+Without ``around``, the search covers the chart's whole domain (8 boxes, one per sign pattern
 of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
 ``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
 sampled ``forward_elliptic(...).chart``), it covers a small box around each point: each
@@ -137,6 +137,60 @@ def _reduced(rs):
     return H
 
 
+def chart() -> np.ndarray:
+    """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
+    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
+    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
+    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
+    ``"existence"``: boxes inside them).
+
+    Examples
+    --------
+    >>> chart().shape
+    (8, 6, 2)
+    """
+    return certified.branch_boxes(3)
+
+
+def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
+                       scope=None) -> certify.Verified:
+    """Re-check a certificate of this mechanism against the caller's own inputs: the system
+    of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
+
+    Parameters
+    ----------
+    certificate : mechnum.certify.Certificate
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,)
+        The slider inputs (m).
+    modes : tuple of int, optional
+        The rods' buckling modes.
+    scope : {"all", "existence"}, optional
+        The scope required (None: the certificate's own).
+
+    Returns
+    -------
+    mechnum.certify.Verified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says for these inputs
+        (:func:`mechnum.certify.verify`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:1]
+    >>> cert = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled).certificate()
+    >>> v = verify_certificate(cert, TABLE8, TABLE8_LAMBDAS)
+    >>> v.count, v.scope, v.complete
+    (1, 'existence', None)
+    """
+    f, J, _, exclude = system(mech, lambdas, modes)
+    return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
+
+
 def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
@@ -159,10 +213,10 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
         ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
-        ``stable``: False or None (see the module); ``complete``: the count is a theorem over
-        the chart's domain (never with ``around``, whose count is a lower bound: each root is
-        proven, alone in its box, but others may lie elsewhere; each part's ``certificate()``
-        covers its boxes).
+        ``stable``: False or None (see the module); ``scope``: ``"all"`` (the chart's whole
+        domain searched; ``complete``: the count is a theorem over it) or, with ``around``,
+        ``"existence"`` (each root proven, alone in its box, but others may lie elsewhere:
+        the count is a lower bound and ``complete`` is False; ``certificate()`` says so).
 
     Examples
     --------
@@ -171,14 +225,14 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
     >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
     >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
-    >>> r.count, r.complete, r.parts[0].complete, np.round(r.solutions[0], 4).tolist()
-    (1, False, True, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
+    >>> r.count, r.scope, r.complete, np.round(r.solutions[0], 4).tolist()
+    (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, lambdas, modes)
-    boxes = certified.branch_boxes(3) if around is None else certified.around_boxes(around, 3)
+    boxes = chart() if around is None else certified.around_boxes(around, 3)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split)
+                         split=exclude.split, scope="all" if around is None else "existence")
     z = part.x
     solutions = z.copy()
     if len(z):

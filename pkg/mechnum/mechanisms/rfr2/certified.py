@@ -115,6 +115,60 @@ def tail_excluded(mech, modes=(1, 1)):
     return bool(gap < mech.L * (2.0 - 2.0 * F / R - eps) * (1 - 1e-9))
 
 
+def chart() -> np.ndarray:
+    """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
+    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
+    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
+    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
+    ``"existence"``: boxes inside them).
+
+    Examples
+    --------
+    >>> chart().shape
+    (4, 4, 2)
+    """
+    return certified.branch_boxes(2)
+
+
+def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
+                       scope=None) -> certify.Verified:
+    """Re-check a certificate of this mechanism against the caller's own inputs: the system
+    of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
+
+    Parameters
+    ----------
+    certificate : mechnum.certify.Certificate
+    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    theta : array_like, shape (2,)
+        The motor angles (rad).
+    modes : tuple of int, optional
+        The rods' buckling modes.
+    scope : {"all", "existence"}, optional
+        The scope required (None: the certificate's own).
+
+    Returns
+    -------
+    mechnum.certify.Verified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says for these inputs
+        (:func:`mechnum.certify.verify`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart[:1]
+    >>> cert = certify_forward(TABLE7, TABLE7_THETA, around=sampled).certificate()
+    >>> v = verify_certificate(cert, TABLE7, TABLE7_THETA)
+    >>> v.count, v.scope, v.complete
+    (1, 'existence', None)
+    """
+    f, J, _, exclude = system(mech, theta, modes)
+    return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
+
+
 def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
@@ -153,9 +207,9 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     """
     modes = _modes(modes)
     f, J, rods, exclude = system(mech, theta, modes)
-    boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
+    boxes = chart() if around is None else certified.around_boxes(around, 2)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split)
+                         split=exclude.split, scope="all" if around is None else "existence")
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
