@@ -243,15 +243,11 @@ def _direct(H, s, y):  # the chapter's update of B, applied to H
 
 
 def _update_cases():
-    from mechnum.mechanisms import hacksaw
-
     rng = np.random.default_rng(13)
-    mech = hacksaw.Geometry(*STUDY)
     x0 = np.array([-0.1, -0.5, 3.0])
-    B = hacksaw.position_jacobian(mech, x0)
-    s = -np.linalg.solve(B, hacksaw.position_residual(mech, x0, 0.0))
-    y = (hacksaw.position_residual(mech, x0 + s, 0.0)
-         - hacksaw.position_residual(mech, x0, 0.0))
+    F, B = loop_equations(x0, 0.0, *STUDY)
+    s = -np.linalg.solve(B, F)
+    y = loop_equations(x0 + s, 0.0, *STUDY)[0] - F
     cases = [Case("the hacksaw's first Broyden step at rest, from the study's seed",
                   (np.linalg.inv(B), s, y))]
     for n in (2, 4):
