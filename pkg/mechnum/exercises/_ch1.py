@@ -4,11 +4,13 @@ update of the inverse matrix (1.3)."""
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, Integer, Tuple, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
+from mechnum.mechanisms import hacksaw
 
 STUDY = (0.045, 0.075, 0.17)  # the study's r1y, r2, r3 (m)
 
-
+LOOP_STARTER = '''\
 def loop_equations(q, theta2, r1y, r2, r3):
     """The hacksaw's three position equations and their Jacobian.
 
@@ -24,21 +26,10 @@ def loop_equations(q, theta2, r1y, r2, r3):
     F, J : ndarray, shapes (3,) and (3, 3)
         ``(F_c, F_x, F_y)`` in the chapter's order; ``J[i, j] = dF_i/dq_j``.
     """
-    r1, theta1, theta3 = q
-    s1, c1 = np.sin(theta1), np.cos(theta1)
-    s3, c3 = np.sin(theta3), np.cos(theta3)
-    F = np.array([r1 * s1 - r1y,
-                  -r1 * c1 + r2 * np.cos(theta2) + r3 * c3,
-                  r1 * s1 - r2 * np.sin(theta2) - r3 * s3])
-    J = np.array([[s1, r1 * c1, 0.0],
-                  [-c1, r1 * s1, -r3 * s3],
-                  [s1, r1 * c1, -r3 * c3]])
-    return F, J
+    ...
+'''
 
-
-ARMIJO, HALVINGS = 1e-4, 20  # the statement's rule: lambda = 1, 1/2, ..., 2**-20
-
-
+NEWTON_STARTER = '''\
 def newton_damped(F, J, x0, tol=1e-6, maxiter=50):
     """Newton's method with Armijo's backtracking and the study's stop.
 
@@ -46,46 +37,15 @@ def newton_damped(F, J, x0, tol=1e-6, maxiter=50):
     shorter than ``tol``, and the steps taken. Raises ``RuntimeError``
     after ``maxiter`` steps, or when no step length passes Armijo's test.
     """
-    x = np.array(x0, dtype=float)
-    size = np.linalg.norm(F(x))
-    for k in range(1, maxiter + 1):
-        dx = np.linalg.solve(J(x), -F(x))
-        for lam in 0.5 ** np.arange(21):  # 1, 1/2, ..., 2**-20
-            trial = np.linalg.norm(F(x + lam * dx))
-            if trial <= (1 - 1e-4 * lam) * size:  # Armijo's test
-                break
-        else:
-            raise RuntimeError(f"no step length passes at step {k}")
-        x, size = x + lam * dx, trial
-        if np.linalg.norm(dx) < tol:  # the study's test, on Newton's step
-            return x, k
-    raise RuntimeError(f"no Newton step below {tol} in {maxiter} steps")
+    ...
+'''
 
-
+UPDATE_STARTER = '''\
 def broyden_inverse_update(H, s, y):
     """The inverse of ``B + (y - B s) s^T / (s^T s)``, given ``H = B^-1``,
     the step ``s`` and the change ``y`` of ``F`` along it."""
-    Hy = H @ y
-    return H + np.outer(s - Hy, s @ H) / (s @ Hy)  # Sherman-Morrison
-
-
-# Typical mistakes of 1.1
-def _typo(q, theta2, r1y, r2, r3):
-    F, J = loop_equations(q, theta2, r1y, r2, r3)
-    F[1] += r3 * (np.cos(theta2) - np.cos(q[2]))
-    F[2] -= r3 * (np.sin(theta2) - np.sin(q[2]))
-    return F, J
-
-
-def _transposed(q, theta2, r1y, r2, r3):
-    F, J = loop_equations(q, theta2, r1y, r2, r3)
-    return F, J.T
-
-
-def _cosine_sign(q, theta2, r1y, r2, r3):
-    F, J = loop_equations(q, theta2, r1y, r2, r3)
-    J[1, 1] = -J[1, 1]
-    return F, J
+    ...
+'''
 
 
 def _loop_cases():
@@ -115,74 +75,38 @@ LOOP = Exercise(
         "report's $r_3\\cos\\theta_2$), and their Jacobian $J_{ij} = \\partial F_i/\\partial q_j$ "
         "by hand. Check your $J$ against forward differences of your $F$ before you run the "
         "check."),
-    reference=loop_equations, cases=_loop_cases, compare=_loop_compare,
+    starter=LOOP_STARTER, cases=_loop_cases, compare=_loop_compare,
+    returns=Tuple(Array(), Array(), names=("F", "J")),
     mistakes=(Mistake("the report's typo", "F_x and F_y need r3 cos(theta3) and r3 sin(theta3); "
-                      "the report prints theta2 there.", _typo),
+                      "the report prints theta2 there."),
               Mistake("a transposed Jacobian", "row i of J holds the derivatives of F_i, column j "
-                      "those with respect to q_j; yours is J transposed.", _transposed),
-              Mistake("a sign", "d/dtheta1 of -r1 cos(theta1) is +r1 sin(theta1).",
-                      _cosine_sign)),
+                      "those with respect to q_j; yours is J transposed."),
+              Mistake("a sign", "d/dtheta1 of -r1 cos(theta1) is +r1 sin(theta1).")),
     hint="compare your J with forward differences of your F, column by column.")
 
 
-# Typical mistakes of 1.2
-def _plain(F, J, x0, tol=1e-6, maxiter=50):  # the chapter's ten lines, without damping
-    x = np.array(x0, dtype=float)
-    for k in range(1, maxiter + 1):
-        dx = np.linalg.solve(J(x), -F(x))
-        x = x + dx
-        if np.linalg.norm(dx) < tol:
-            return x, k
-    raise RuntimeError("maxiter")
-
-
-def _damped_variant(test="full", armijo=ARMIJO):
-    def variant(F, J, x0, tol=1e-6, maxiter=50):
-        x = np.array(x0, dtype=float)
-        size = np.linalg.norm(F(x))
-        for k in range(1, maxiter + 1):
-            dx = np.linalg.solve(J(x), -F(x))
-            for lam in 0.5 ** np.arange(HALVINGS + 1):
-                trial = np.linalg.norm(F(x + lam * dx))
-                if trial <= (1 - armijo * lam) * size:
-                    break
-            else:
-                raise RuntimeError("stagnated")
-            x, size = x + lam * dx, trial
-            if (np.linalg.norm(lam * dx) if test == "damped" else size) < tol:
-                return x, k
-        raise RuntimeError("maxiter")
-    return variant
-
-
-def _uncounted(F, J, x0, tol=1e-6, maxiter=50):
-    x, k = newton_damped(F, J, x0, tol, maxiter)
-    return x, k - 1
-
-
 def _newton_cases():
-    def hacksaw(theta2, geometry=STUDY):
-        return (lambda q: loop_equations(q, theta2, *geometry)[0],
-                lambda q: loop_equations(q, theta2, *geometry)[1])
+    def saw(theta2, geometry=STUDY):  # the package's loop equations, not the exercise's
+        mech = hacksaw.Geometry(*geometry)
+        return (lambda q: hacksaw.position_residual(mech, q, theta2),
+                lambda q: hacksaw.position_jacobian(mech, q))
     two = (lambda x: np.array([x[0] ** 2 + x[0] * x[1] - 3.0, np.exp(x[0] - 1) + x[1] ** 3 - 9.0]),
            lambda x: np.array([[2 * x[0] + x[1], x[0]], [np.exp(x[0] - 1), 3 * x[1] ** 2]]))
     no_root = (lambda x: np.array([x[0] ** 2 + 1.0, x[1]]),
                lambda x: np.array([[2 * x[0], 0.0], [0.0, 1.0]]))
-    seed = np.array([-0.1, -0.5, 3.0])
+    seed, leap = np.array([-0.1, -0.5, 3.0]), np.array([-0.1, -0.45, 1.82])
     return [Case("the hacksaw at rest from the study's seed, tol = 1e-6",
-                 (*hacksaw(0.0), seed, 1e-6, 50)),
+                 (*saw(0.0), seed, 1e-6, 50)),
             Case("the hacksaw at rest from (-0.1, -0.45, 1.82), where undamped Newton leaps to "
-                 "the other assembly mode, tol = 1e-6",
-                 (*hacksaw(0.0), np.array([-0.1, -0.45, 1.82]), 1e-6, 50)),
+                 "the other assembly mode, tol = 1e-6", (*saw(0.0), leap, 1e-6, 50)),
             Case("the same start with a loose tol = 1, where the first step is damped to a "
-                 "quarter of Newton's",
-                 (*hacksaw(0.0), np.array([-0.1, -0.45, 1.82]), 1.0, 50)),
+                 "quarter of Newton's", (*saw(0.0), leap, 1.0, 50)),
             Case("the hacksaw at theta2 = 2 rad from the study's seed, tol = 1e-10",
-                 (*hacksaw(2.0), seed, 1e-10, 50)),
+                 (*saw(2.0), seed, 1e-10, 50)),
             Case("a 2 x 2 system with a non-symmetric Jacobian from (1.5, 1.5), tol = 1e-9",
                  (*two, np.array([1.5, 1.5]), 1e-9, 50)),
             Case("the hacksaw at rest from the study's seed with maxiter = 2 (it needs 4 steps)",
-                 (*hacksaw(0.0), seed, 1e-6, 2)),
+                 (*saw(0.0), seed, 1e-6, 2)),
             Case("F(x) = (x_0^2 + 1, x_1), which has no root, from (0.75, 1)",
                  (*no_root, np.array([0.75, 1.0]), 1e-6, 50))]
 
@@ -212,42 +136,29 @@ NEWTON = Exercise(
         "`RuntimeError` when no $\\lambda$ passes, and after `maxiter` steps. From the start of "
         "the chapter's figure where plain Newton leaves the study's mode, yours must reach the "
         "study's pose, as `newton.solve(..., damping=True)` does."),
-    reference=newton_damped, cases=_newton_cases, compare=_newton_compare,
+    starter=NEWTON_STARTER, cases=_newton_cases, compare=_newton_compare,
+    returns=Tuple(Array(), Integer(), names=("x", "the number of steps")),
     probes=_newton_probes,
     mistakes=(Mistake("no damping", "this is the chapter's undamped loop: halve the step until "
-                      "Armijo's test holds before you take it.", _plain),
+                      "Armijo's test holds before you take it."),
               Mistake("the test on the damped step", "test Newton's full step dx, not the "
-                      "shortened lambda dx: a short damped step does not mean convergence.",
-                      _damped_variant(test="damped")),
+                      "shortened lambda dx: a short damped step does not mean convergence."),
               Mistake("a stopping test on the residual", "the study stops on Newton's full "
-                      "step, ||dx|| < tol, not on ||F(x)||.", _damped_variant(test="residual")),
+                      "step, ||dx|| < tol, not on ||F(x)||."),
               Mistake("plain decrease for Armijo's test", "Armijo asks for a decrease of at "
-                      "least 1e-4 lambda ||F||, not any decrease.", _damped_variant(armijo=0.0)),
+                      "least 1e-4 lambda ||F||, not any decrease."),
               Mistake("an uncounted last step", "the step that passes the test is taken and "
-                      "counted.", _uncounted)),
+                      "counted.")),
     hint="print lambda, ||F|| and ||dx|| at each step and compare with newton.solve(F, x0, J, "
          "tol=tol, relative=False, damping=True).")
 
 
-# Typical mistakes of 1.3
-def _bad_broyden(H, s, y):  # Broyden's other ("bad") update: not the inverse of the chapter's
-    return H + np.outer(s - H @ y, y) / (y @ y)
-
-
-def _without_h(H, s, y):
-    return H + np.outer(s - H @ y, s) / (s @ H @ y)
-
-
-def _direct(H, s, y):  # the chapter's update of B, applied to H
-    return H + np.outer(y - H @ s, s) / (s @ s)
-
-
 def _update_cases():
     rng = np.random.default_rng(13)
-    x0 = np.array([-0.1, -0.5, 3.0])
-    F, B = loop_equations(x0, 0.0, *STUDY)
+    mech, x0 = hacksaw.Geometry(*STUDY), np.array([-0.1, -0.5, 3.0])
+    F, B = hacksaw.position_residual(mech, x0, 0.0), hacksaw.position_jacobian(mech, x0)
     s = -np.linalg.solve(B, F)
-    y = loop_equations(x0 + s, 0.0, *STUDY)[0] - F
+    y = hacksaw.position_residual(mech, x0 + s, 0.0) - F
     cases = [Case("the hacksaw's first Broyden step at rest, from the study's seed",
                   (np.linalg.inv(B), s, y))]
     for n in (2, 4):
@@ -255,10 +166,6 @@ def _update_cases():
         cases.append(Case(f"a random {n} x {n} matrix, step and change",
                           (np.linalg.inv(B), rng.normal(size=n), rng.normal(size=n))))
     return cases
-
-
-def _update_compare(expected, got):
-    return close(expected, got, rtol=1e-9, atol=1e-12, what="the updated inverse")
 
 
 UPDATE = Exercise(
@@ -269,20 +176,23 @@ UPDATE = Exercise(
         "$\\Delta x = -H_k F(x_k)$, and needs no solve. Write "
         "`broyden_inverse_update(H, s, y)`, which returns the inverse of the chapter's "
         "$B + (y - Bs)\\,s^{\\mathsf T}/(s^{\\mathsf T}s)$ given $H = B^{-1}$, in $O(n^2)$ "
-        "operations and without inverting or solving anything: derive it by the "
-        "Sherman-Morrison formula, $(A + uv^{\\mathsf T})^{-1} = A^{-1} - A^{-1}u\\,v^{\\mathsf T}"
+        "operations and without inverting or solving anything (the check runs your function "
+        "without `inv`, `solve`, `pinv` and `lstsq`): derive it by the Sherman-Morrison "
+        "formula, $(A + uv^{\\mathsf T})^{-1} = A^{-1} - A^{-1}u\\,v^{\\mathsf T}"
         "A^{-1}/(1 + v^{\\mathsf T}A^{-1}u)$. Then check the secant condition "
         "$H_{k+1}\\,y = s$ on your answer."),
-    reference=broyden_inverse_update, cases=_update_cases, compare=_update_compare,
-    forbidden=("numpy.linalg.inv", "numpy.linalg.solve", "numpy.linalg.pinv",
-               "numpy.linalg.lstsq", "scipy.linalg.inv", "scipy.linalg.solve",
-               "scipy.linalg.pinv", "scipy.linalg.lstsq"),
+    starter=UPDATE_STARTER, cases=_update_cases,
+    compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12,
+                                        what="the updated inverse"),
+    returns=Array(),
+    forbidden=tuple(f"{module}.{name}" for module in ("numpy.linalg", "scipy.linalg")
+                    for name in ("inv", "solve", "pinv", "lstsq")),
     mistakes=(Mistake("Broyden's other update", "H + (s - H y) y^T / (y^T y) is the 'bad' "
                       "Broyden update, a different method: yours must be the inverse of the "
-                      "chapter's B update, whose row vector is s^T H.", _bad_broyden),
+                      "chapter's B update, whose row vector is s^T H."),
               Mistake("s^T for s^T H", "Sherman-Morrison puts A^{-1} on both sides: the row "
-                      "vector is s^T H, and the denominator s^T H y.", _without_h),
+                      "vector is s^T H, and the denominator s^T H y."),
               Mistake("the update of B applied to H", "(y - B s) s^T / (s^T s) updates B; "
-                      "its inverse updates H by (s - H y) s^T H / (s^T H y).", _direct)),
+                      "its inverse updates H by (s - H y) s^T H / (s^T H y).")),
     hint="check that H_new @ y equals s, and that H_new @ B_new is the identity for a small "
          "example with B_new = inv(H) updated by the chapter's formula.")

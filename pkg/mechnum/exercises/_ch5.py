@@ -3,9 +3,10 @@
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, Choice, Tuple, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+TIP_STARTER = '''\
 def elliptic_tip(EI, L, psi, k_rel, mode):
     """The tip of a clamped-pinned rod from the thesis's closed form.
 
@@ -23,22 +24,10 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ndarray, shape (2,)
         The tip ``(x, y)`` in the clamp's frame (m).
     """
-    from scipy.special import ellipeinc, ellipkinc
+    ...
+'''
 
-    k_min = abs(np.cos(psi / 2))
-    k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel  # the study's (91)
-    phi1 = np.arcsin(np.cos(psi / 2) / k)  # the clamp, (41)
-    phi2 = (mode - 0.5) * np.pi  # the pinned tip, (43)
-    m = k ** 2  # scipy takes the parameter m = k^2
-    dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
-    dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
-    lam = dF / L  # (40): lambda L = F(phi2, k) - F(phi1, k)
-    dC = np.cos(phi2) - np.cos(phi1)  # then x by (45), y by (46)
-    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam
-    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam
-    return np.array([x, y])
-
-
+PIN_STARTER = '''\
 def pin_residual(tips, forces, origins, theta, load):
     """The 2RFR's pin: the tips at one point, the forces balancing the load.
 
@@ -59,13 +48,10 @@ def pin_residual(tips, forces, origins, theta, load):
     ndarray, shape (4,)
         ``(p_1 - p_2, n_1 + n_2 - F)``, in the fixed frame.
     """
-    c, s = np.cos(theta), np.sin(theta)
-    rotations = np.array([[[ci, -si], [si, ci]] for ci, si in zip(c, s)])
-    p = origins + np.einsum("ijk,ik->ij", rotations, tips)  # (103)
-    n = np.einsum("ijk,ik->ij", rotations, forces)
-    return np.concatenate((p[0] - p[1], n[0] + n[1] - load))
+    ...
+'''
 
-
+KRAWCZYK_STARTER = '''\
 def krawczyk_1d(f, df, lo, hi):
     """Krawczyk's test for a root of ``f`` in the interval ``[lo, hi]``.
 
@@ -90,46 +76,8 @@ def krawczyk_1d(f, df, lo, hi):
         ``K(X) = m - y f(m) + (1 - y f'(X)) (X - m)``, ``m`` the midpoint
         of ``X``, ``y = 2 / (d_lo + d_hi)``, rounded outwards.
     """
-    def down(v):  # below v, so below the exact value v was rounded from
-        return np.nextafter(v, -np.inf)
-
-    def up(v):
-        return np.nextafter(v, np.inf)
-
-    def times(a, b):
-        products = [a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]]
-        return down(min(products)), up(max(products))
-
-    m = lo + (hi - lo) / 2
-    d_lo, d_hi = df(lo, hi)
-    y = 2 / (d_lo + d_hi)  # near 1 / f'(m); any y != 0 is valid
-    yf = times((y, y), f(m))
-    newton = down(m - yf[1]), up(m - yf[0])
-    yd = times((y, y), (d_lo, d_hi))
-    slope = down(1 - yd[1]), up(1 - yd[0])
-    spread = times(slope, (down(lo - m), up(hi - m)))
-    K = down(newton[0] + spread[0]), up(newton[1] + spread[1])
-    if lo < K[0] and K[1] < hi:
-        return "unique", K
-    if K[1] < lo or K[0] > hi:
-        return "none", K
-    return "undecided", K
-
-
-# Typical mistakes of 5.1: the closed form with one thing changed
-def _tip_variant(parameter=lambda k: k ** 2, phi2_turns=0.5, y_sign=-1):
-    def tip(EI, L, psi, k_rel, mode):
-        from scipy.special import ellipeinc, ellipkinc
-
-        k_min = abs(np.cos(psi / 2))
-        k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel
-        phi1, phi2, m = np.arcsin(np.cos(psi / 2) / k), (mode - phi2_turns) * np.pi, parameter(k)
-        dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
-        dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
-        dC, lam = np.cos(phi2) - np.cos(phi1), dF / L
-        return -np.array([np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC,
-                          np.sin(psi) * (2 * dE - dF) + y_sign * 2 * k * np.cos(psi) * dC]) / lam
-    return tip
+    ...
+'''
 
 
 def _tip_cases():
@@ -150,29 +98,15 @@ ELLIPTIC = Exercise(
         "$\\lambda L = F(\\phi_2, k) - F(\\phi_1, k)$, and the tip by (45) and (46). "
         "`scipy.special.ellipkinc(phi, m)` and `ellipeinc(phi, m)` take the parameter "
         "$m = k^2$. Compare with `rods.clamped_pinned(EI, L, psi, k_rel, mode).tip`."),
-    reference=elliptic_tip, cases=_tip_cases,
+    starter=TIP_STARTER, cases=_tip_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12, what="the tip"),
     mistakes=(Mistake("the modulus for the parameter", "scipy's ellipkinc(phi, m) and "
-                      "ellipeinc(phi, m) take m = k^2, not k.", _tip_variant(lambda k: k)),
+                      "ellipeinc(phi, m) take m = k^2, not k."),
               Mistake("phi2 = mode pi", "a pinned tip carries no moment: cos(phi2) = 0, "
-                      "phi2 = (mode - 1/2) pi.", _tip_variant(phi2_turns=0.0)),
-              Mistake("a sign in y", "y = -(sin psi (2 dE - dF) - 2 k cos psi dC) / lambda.",
-                      _tip_variant(y_sign=1))),
+                      "phi2 = (mode - 1/2) pi."),
+              Mistake("a sign in y", "y = -(sin psi (2 dE - dF) - 2 k cos psi dC) / lambda.")),
     hint="a nearly straight rod in pure compression (psi = pi, k_rel = 1e-6, mode 1) carries "
          "Euler's load pi^2 EI / (4 L^2), with its tip near (L, 0).")
-
-
-# Typical mistakes of 5.2
-def _plus_load(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, origins, theta, -np.asarray(load))
-
-
-def _inverse_rotation(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, origins, -np.asarray(theta), load)
-
-
-def _no_origins(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, np.zeros((2, 2)), theta, load)
 
 
 def _pin_cases():
@@ -199,27 +133,25 @@ PIN = Exercise(
         "\\mathrm{loc}}$, and return the four equations of the pin, "
         "$(\\mathbf p_1 - \\mathbf p_2,\\ \\mathbf n_1 + \\mathbf n_2 - F)$. Evaluate it at your "
         "`elliptic_tip` rods of Table 7's solutions."),
-    reference=pin_residual, cases=_pin_cases,
+    starter=PIN_STARTER, cases=_pin_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-12, atol=1e-14,
                                         what="the residual"),
     mistakes=(Mistake("the study's sign of F", "n is the force on each rod, so the pin "
-                      "balances n1 + n2 - F = 0; the study's (104) prints + F, an erratum.",
-                      _plus_load),
+                      "balances n1 + n2 - F = 0; the study's (104) prints + F, an erratum."),
               Mistake("the inverse rotation", "Rot(theta) = [[cos, -sin], [sin, cos]] turns the "
-                      "clamp's frame into the fixed one; you used its transpose.",
-                      _inverse_rotation),
+                      "clamp's frame into the fixed one; you used its transpose."),
               Mistake("the motors left out", "p_i = O_i + Rot(theta_i) p_i,loc: add the "
-                      "motor's position.", _no_origins)),
+                      "motor's position.")),
     hint="with theta = 0 and both motors at the origin the residual is (tip1 - tip2, "
          "n1 + n2 - F).")
 
 
-def _out(values):
+def outwards(values):
     """The floats around the exact results of correctly rounded operations."""
     return np.nextafter(min(values), -np.inf), np.nextafter(max(values), np.inf)
 
 
-class _Polynomial:
+class Polynomial:
     """A polynomial with its enclosures on floats (Horner, each operation rounded outwards)."""
 
     def __init__(self, coefficients):
@@ -229,20 +161,22 @@ class _Polynomial:
     def _horner(c, lo, hi):
         value = (c[-1], c[-1])
         for a in reversed(c[:-1]):
-            product = _out([v * x for v in value for x in (lo, hi)])
-            value = _out([product[0] + a])[0], _out([product[1] + a])[1]
+            product = outwards([v * x for v in value for x in (lo, hi)])
+            value = outwards([product[0] + a])[0], outwards([product[1] + a])[1]
         return value
 
     def at(self, x):
+        """An enclosure of the polynomial at the float ``x``."""
         return self._horner(self.c, x, x)
 
     def slope(self, lo, hi):
+        """An enclosure of the derivative over ``[lo, hi]``."""
         return self._horner([k * a for k, a in enumerate(self.c)][1:], lo, hi)
 
 
 def _krawczyk_cases():
     def case(label, coefficients, lo, hi):
-        p = _Polynomial(coefficients)
+        p = Polynomial(coefficients)
         return Case(label, (p.at, p.slope, lo, hi))
 
     def line(x):  # f(x) = x - 1.75 at a float of [1, 2]: exact
@@ -262,37 +196,14 @@ def _krawczyk_cases():
                  "exactly, touching the edge of X", (line, loose, 1.0, 2.0))]
 
 
-def _exact_krawczyk(f, df, lo, hi):
-    """The verdict and the tightest floating-point enclosure of the exact ``K(X)`` of the
-    statement (``m`` and ``y`` the statement's floats), by rational arithmetic: the answer
-    that any correct outward rounding encloses."""
-    from fractions import Fraction
-
-    def times(a, b):
-        products = [u * v for u in a for v in b]
-        return min(products), max(products)
-    m = lo + (hi - lo) / 2
-    d_lo, d_hi = df(lo, hi)
-    y = 2 / (d_lo + d_hi)
-    F, Y, M = [Fraction(v) for v in f(m)], Fraction(y), Fraction(m)
-    yf = times((Y, Y), F)
-    yd = times((Y, Y), (Fraction(d_lo), Fraction(d_hi)))
-    spread = times((1 - yd[1], 1 - yd[0]), (Fraction(lo) - M, Fraction(hi) - M))
-    K = (M - yf[1] + spread[0], M - yf[0] + spread[1])
-    out = [float(K[0]), float(K[1])]  # rounded to nearest, then outwards if need be
-    out[0] = float(np.nextafter(out[0], -np.inf)) if Fraction(out[0]) > K[0] else out[0]
-    out[1] = float(np.nextafter(out[1], np.inf)) if Fraction(out[1]) < K[1] else out[1]
-    if lo < K[0] and K[1] < hi:
-        return "unique", tuple(out)
-    return ("none" if K[1] < lo or K[0] > hi else "undecided"), tuple(out)
-
-
 SLACK = 64
 """Units in the last place by which an answer's K(X) may be wider than the tightest enclosure
 of the exact set at each end (outward rounding at every operation widens it by a few)."""
 
 
 def _krawczyk_compare(expected, got):
+    """The expected K(X) is the tightest floating-point enclosure of the exact one: an answer's
+    must contain it, and be wider by at most SLACK units in the last place at each end."""
     verdict, K = got
     if verdict != expected[0]:
         return f"the verdict is {verdict!r}, expected {expected[0]!r}"
@@ -302,7 +213,7 @@ def _krawczyk_compare(expected, got):
     if lo > low or hi < high:
         end = (f"its lower end {lo!r} lies above {low!r}" if lo > low
                else f"its upper end {hi!r} lies below {high!r}")
-        point = ", a single point" if lo == hi else ""
+        point = ", a single point," if lo == hi else ""
         return (f"K(X) = [{lo!r}, {hi!r}]{point} does not enclose the exact K(X): {end}. "
                 "Round every lower end down and every upper end up")
     if lo < low - SLACK * abs(np.spacing(low)) or hi > high + SLACK * abs(np.spacing(high)):
@@ -314,30 +225,9 @@ def _krawczyk_compare(expected, got):
 def _krawczyk_agree(mistaken, got):
     """Whether an answer is a mistake's: the same verdict, and K(X) within SLACK units in the
     last place at each end (the two may round differently)."""
-    if got[0] != mistaken[0]:
-        return False
-    return all(abs(float(a) - float(b)) <= SLACK * abs(np.spacing(float(b)))
-               for a, b in zip(got[1], mistaken[1]))
-
-
-def _krawczyk_variant(sign=-1, centred=True, enclosed=True, overlap="undecided",
-                      outward=True, closed=False):
-    out = _out if outward else (lambda values: (min(values), max(values)))
-
-    def test(f, df, lo, hi):
-        m = lo + (hi - lo) / 2
-        d_lo, d_hi = df(lo, hi)
-        y = 2 / (d_lo + d_hi)
-        yf = out([y * v for v in f(m)])
-        newton = out([m + sign * v for v in yf])
-        slope = out([1 - y * d for d in (d_lo, d_hi)])
-        X = out([lo - m, hi - m]) if centred else (lo, hi)
-        spread = out([a * b for a in slope for b in X]) if enclosed else (0.0, 0.0)
-        K = out([newton[0] + spread[0]])[0], out([newton[1] + spread[1]])[1]
-        if (lo <= K[0] and K[1] <= hi) if closed else (lo < K[0] and K[1] < hi):
-            return "unique", K
-        return ("none" if K[1] < lo or K[0] > hi else overlap), K
-    return test
+    return got[0] == mistaken[0] and all(
+        abs(float(a) - float(b)) <= SLACK * abs(np.spacing(float(b)))
+        for a, b in zip(got[1], mistaken[1]))
 
 
 KRAWCZYK = Exercise(
@@ -355,21 +245,20 @@ KRAWCZYK = Exercise(
         "Rounding outwards by one unit in the last place encloses the exact result because "
         "$+, -, \\times, /$ are correctly rounded in IEEE arithmetic. Why can a double root "
         "never be proved unique?"),
-    reference=krawczyk_1d, cases=_krawczyk_cases, compare=_krawczyk_compare,
-    expected=_exact_krawczyk, agree=_krawczyk_agree,
+    starter=KRAWCZYK_STARTER, cases=_krawczyk_cases, compare=_krawczyk_compare,
+    agree=_krawczyk_agree,
+    returns=Tuple(Choice("unique", "none", "undecided"), Array(), names=("the verdict", "K")),
     mistakes=(Mistake("the Newton point without its enclosure", "K(X) adds (1 - y f'(X))(X - "
                       "m) to the Newton point: without it nothing is proved, and two roots look "
-                      "like one.", _krawczyk_variant(enclosed=False)),
+                      "like one."),
               Mistake("no outward rounding", "round every lower end down and every upper end "
                       "up (np.nextafter): rounded to nearest, K(X) can miss part of the exact "
-                      "set, and then nothing is proved.", _krawczyk_variant(outward=False)),
+                      "set, and then nothing is proved."),
               Mistake("'unique' on the closed X", "uniqueness needs K(X) in the interior of X: "
                       "lo < K_lo and K_hi < hi, strictly; a K(X) that touches an end proves "
-                      "nothing.", _krawczyk_variant(outward=False, closed=True)),
-              Mistake("a sign", "K(X) = m - y f(m) + ..., with the minus of Newton's step.",
-                      _krawczyk_variant(sign=1)),
-              Mistake("X instead of X - m", "the last factor is X - m, centred on m.",
-                      _krawczyk_variant(centred=False)),
+                      "nothing."),
+              Mistake("a sign", "K(X) = m - y f(m) + ..., with the minus of Newton's step."),
+              Mistake("X instead of X - m", "the last factor is X - m, centred on m."),
               Mistake("'none' for an undecided box", "no root is proved only when K(X) misses "
-                      "X; an overlap proves nothing.", _krawczyk_variant(overlap="none"))),
+                      "X; an overlap proves nothing.")),
     hint="every root of f in X lies in K(X): check that K(X) contains sqrt(2) on [1.3, 1.5].")

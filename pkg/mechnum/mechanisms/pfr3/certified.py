@@ -159,7 +159,7 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Parameters
     ----------
-    certificate : mechnum.certify.Certificate
+    certificate : ~mechnum.certify.certificate.Certificate
     mech : ~mechnum.mechanisms.pfr3.model.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
@@ -170,11 +170,11 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Returns
     -------
-    mechnum.certify.Verified
+    ~mechnum.certify.verify.Verified
 
     Raises
     ------
-    mechnum.certify.CertificateError
+    ~mechnum.certify.certificate.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 

@@ -137,7 +137,7 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
 
     Parameters
     ----------
-    certificate : mechnum.certify.Certificate
+    certificate : ~mechnum.certify.certificate.Certificate
     mech : ~mechnum.mechanisms.rfr2.model.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
@@ -148,11 +148,11 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
 
     Returns
     -------
-    mechnum.certify.Verified
+    ~mechnum.certify.verify.Verified
 
     Raises
     ------
-    mechnum.certify.CertificateError
+    ~mechnum.certify.certificate.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 
