@@ -55,6 +55,7 @@ of itself (the customary constant: any decrease counts, but not a vanishing one)
 _SQRT_EPS = np.sqrt(np.finfo(float).eps)  # the forward-difference step that balances errors
 _MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 _TINY = np.finfo(float).tiny
+_SQRT_TINY = np.sqrt(_TINY)  # a 2-norm below it was summed from squares that lost digits
 
 
 def describe(rule: StoppingRule) -> str:
@@ -73,12 +74,15 @@ def describe(rule: StoppingRule) -> str:
 def norms(v: np.ndarray, norm: float) -> np.ndarray:
     """``np.linalg.norm(v, norm, axis=-1)``, several times faster for a stack of short vectors
     (the sums over the short last axis are products with a vector of ones), and without
-    overflow: a 2-norm whose squares overflow is computed again from ``v`` scaled by its
-    largest entry.
+    overflow or underflow: a 2-norm whose squares overflow, or underflow (entries below
+    ``sqrt(tiny)``, about ``1.5e-154``, square to subnormals or zero), is computed again from
+    ``v`` scaled by its largest entry.
 
     Examples
     --------
     >>> round(float(norms(np.array([3e200, 4e200]), 2)) / 1e200, 12)
+    5.0
+    >>> round(float(norms(np.array([3e-200, 4e-200]), 2)) / 1e-200, 12)
     5.0
     """
     if v.ndim == 1 and norm != 2:
@@ -91,11 +95,11 @@ def norms(v: np.ndarray, norm: float) -> np.ndarray:
         return a @ ones
     with np.errstate(over="ignore"):
         out = np.linalg.norm(v) if v.ndim == 1 else np.sqrt((a * a) @ ones)
-    overflow = np.isinf(out) & np.isfinite(a).all(axis=-1)
-    if np.any(overflow):
+    lost = ((out < _SQRT_TINY) | np.isinf(out)) & np.isfinite(a).all(axis=-1)
+    if np.any(lost):
         top = largest(a)
-        scaled = np.sqrt((a / np.maximum(top, _TINY)[..., None]) ** 2 @ ones) * top
-        out = np.where(overflow, scaled, out)
+        scaled = np.sqrt((a / np.where(top > 0, top, 1.0)[..., None]) ** 2 @ ones) * top
+        out = np.where(lost, scaled, out)
     return out
 
 
