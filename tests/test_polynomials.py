@@ -282,11 +282,14 @@ def test_roots_of_a_polynomial_with_zero_coefficients_and_tiny_roots():
     # What it protects: the scaled route with zero coefficients (they have no exponent: they
     # must not decide the scale). 2^30 t^3 - 2^-1000: the companion's entry 2^-1030 is
     # subnormal, the roots are 2^(-1030/3) times the cube roots of unity.
-    found = poly.roots([-(2.0 ** -1000), 0.0, 0.0, 2.0 ** 30])
+    # 2^-40 t^3 - 2^-1070 has the same roots; there a zero coefficient's exponent (0) taken as
+    # if it were a coefficient would ask for a scale of 2^39 and push 2^-1070 below the floats.
     expected = 2.0 ** (-1030 / 3) * np.exp(2j * np.pi * np.arange(3) / 3)
-    # the scaled polynomial is u^3 - 1/2 (times a power of two): the eigenvalues of its 3 x 3
-    # companion matrix, to some dozens of ulps (LAPACK's QR on a non-normal matrix)
-    assert_allclose(np.sort_complex(found), np.sort_complex(expected), rtol=1e-13)
+    for c in ([-(2.0 ** -1000), 0.0, 0.0, 2.0 ** 30], [-(2.0 ** -1070), 0.0, 0.0, 2.0 ** -40]):
+        found = poly.roots(c)
+        # the scaled polynomial is u^3 - 1/2 (times a power of two): the eigenvalues of its 3 x 3
+        # companion matrix, to some dozens of ulps (LAPACK's QR on a non-normal matrix)
+        assert_allclose(np.sort_complex(found), np.sort_complex(expected), rtol=1e-13)
 
 
 def test_a_batch_is_scaled_row_by_row():
@@ -309,20 +312,24 @@ def test_roots_under_numpy_floating_point_errors_as_exceptions():
     with np.errstate(all="raise"):
         assert_allclose(np.sort(poly.roots([1e300, 1.0, 1e-10]).imag), [-1e155, 1e155],
                         rtol=1e-12)  # as in test_roots_of_badly_scaled_polynomials
-        assert np.abs(poly.roots([-(2.0 ** -1000), 0.0, 0.0, 2.0 ** 30])).min() > 0
+        # the companion's entry 2^-1030 / 3 is subnormal and rounded: an underflow
+        assert np.abs(poly.roots([-(2.0 ** -1000) / 3, 0.0, 0.0, 2.0 ** 30])).min() > 0
         with pytest.raises(NonFiniteError):
             poly.roots([1e300, 1e-300])
+        with pytest.raises(NonFiniteError):   # 1j times the infinite imaginary part: NaN
+            poly.roots([1e300j, 1e-300])
 
 
 def test_system_evaluation_is_in_complex_floating_point():
     # What it protects: integer points are not evaluated in integer arithmetic, where x^2 with
-    # x = 2^33 would wrap around silently; the exponents are stored as integers (the documented
-    # type), so a power is a product, not exp(e log x).
-    system = PolynomialSystem.from_dicts([{(2, 0): 1, (0, 1): -1}, {(1, 1): 1}])
+    # x = 2^33 would wrap around silently, and so would the derivative 3 x^2 of x^3; the
+    # exponents are stored as integers (the documented type), so a power is a product, not
+    # exp(e log x). Every value here is a float exactly (2^99 - 3 rounds to 2^99).
+    system = PolynomialSystem.from_dicts([{(3, 0): 1, (0, 1): -1}, {(1, 1): 1}])
     assert all(e.dtype.kind == "i" for e, _ in system.terms)
     x = np.array([2 ** 33, 3])
-    assert system(x).tolist() == [2.0 ** 66 - 3, 3.0 * 2 ** 33]
-    assert system.jacobian(x).tolist() == [[2.0 ** 34, -1.0], [3.0, 2.0 ** 33]]
+    assert system(x).tolist() == [2.0 ** 99 - 3, 3.0 * 2 ** 33]
+    assert system.jacobian(x).tolist() == [[3.0 * 2 ** 66, -1.0], [3.0, 2.0 ** 33]]
 
 
 @MANY
