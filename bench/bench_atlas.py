@@ -2,7 +2,7 @@
 angles, on one worker and on two.
 
 Target on the book's 2-core machine: the atlas in 20 s or less on two workers. Beside it, in the
-same run, its peer: the full search (:func:`~mechnum.mechanisms.rfr2.forward_elliptic`, the
+same run, its peer: the full search (:func:`~mechnum.mechanisms.rfr2.forward`, the
 ten-times check included) at every grid point, which the atlas replaces by continuation wherever
 continuation vouches for the count; it is timed at one grid point in 41 (one per row, on the
 diagonal) and its time for the whole grid estimated from theirs. The speed-up from one worker
@@ -18,7 +18,7 @@ import numpy as np
 
 from mechnum.mechanisms import rfr2
 
-MECH = rfr2.TABLE7
+MECH = rfr2.study.TABLE7
 # 1 degree apart, over the folds of Chapter 5's window (2, 3 and 4 equilibria)
 THETA1, THETA2 = np.radians(np.linspace(30.0, 70.0, 41)), np.radians(np.linspace(40.0, 80.0, 41))
 TARGET = 20.0  # seconds for the 41 x 41 atlas on two workers
@@ -39,13 +39,13 @@ def test_atlas_41x41_one_worker(benchmark):
 
 
 def _full_search_on_the_diagonal():
-    return [rfr2.forward_elliptic(MECH, (a, b), rng=0) for a, b in zip(THETA1, THETA2)]
+    return [rfr2.forward(MECH, (a, b), rng=0) for a, b in zip(THETA1, THETA2)]
 
 
 def test_full_search_at_every_point_peer(benchmark):
     found = benchmark.pedantic(_full_search_on_the_diagonal, rounds=1, iterations=1)
     at = RUNS.get(1) or _atlas(1)
-    assert [len(eq.chart) for eq in found] == np.diag(at.counts).tolist()
+    assert [len(eq.x) for eq in found] == np.diag(at.counts).tolist()
     RUNS["peer", "seconds"] = benchmark.stats.stats.median * THETA1.size
 
 

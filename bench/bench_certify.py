@@ -76,36 +76,40 @@ def test_pinned_sampled(benchmark):
 
 @pytest.fixture(scope="module")
 def table7():
-    return rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
+    return rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
 
 
 @pytest.fixture(scope="module")
 def table8():
-    return pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
+    return pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
 
 
 def test_table7_sampled(benchmark):
-    benchmark.pedantic(rfr2.forward_elliptic, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    benchmark.pedantic(rfr2.forward, args=(rfr2.study.TABLE7,
+                                                                 rfr2.study.TABLE7_THETA),
                        kwargs={"rng": 0}, rounds=1, iterations=1)
     record(benchmark, "Table 7 (1, 1), each sampled one proven", "peer")
 
 
 def test_table7_around(benchmark, table7):
-    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
-                                kwargs={"around": table7.chart}, rounds=1, iterations=1)
+    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.study.TABLE7,
+                                                                 rfr2.study.TABLE7_THETA),
+                                kwargs={"around": table7.x}, rounds=1, iterations=1)
     assert result.count == 3
     record(benchmark, "Table 7 (1, 1), each sampled one proven", "mechnum", _proven(result))
 
 
 def test_table8_sampled(benchmark):
-    benchmark.pedantic(pfr3.forward_elliptic, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
+    benchmark.pedantic(pfr3.forward, args=(pfr3.study.TABLE8,
+                                                                 pfr3.study.TABLE8_LAMBDAS),
                        kwargs={"rng": 0}, rounds=1, iterations=1)
     record(benchmark, "Table 8 (1, 1, 1), each sampled one proven", "peer")
 
 
 def test_table8_around(benchmark, table8):
-    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
-                                kwargs={"around": table8.chart}, rounds=1, iterations=1)
+    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.study.TABLE8,
+                                                                 pfr3.study.TABLE8_LAMBDAS),
+                                kwargs={"around": table8.x}, rounds=1, iterations=1)
     assert result.count == 9
     record(benchmark, "Table 8 (1, 1, 1), each sampled one proven", "mechnum",
            _proven(result))
@@ -113,13 +117,13 @@ def test_table8_around(benchmark, table8):
 
 def test_table8_verify_stored(benchmark):
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    f, J, _, exclude = pfr3_certified.system(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS)
     checked = benchmark.pedantic(certify.verify, args=(cert, f, J, exclude),
                                  kwargs={"domain": rods.certified.branch_boxes(3)}, rounds=3,
                                  iterations=1)
     assert checked.count == 9
     record(benchmark, "Table 8 stored certificate, verify (<= 20 s)", "mechnum",
-           f"{checked.leaves} leaves, {checked.nfev} + {checked.njev} evaluations")
+           f"{checked.iterations} leaves, {checked.nfev} + {checked.njev} evaluations")
 
 
 FULL_REASON = "whole-chart searches take many minutes: MECHNUM_BENCH_FULL=1 runs them"
@@ -128,7 +132,8 @@ FULL_REASON = "whole-chart searches take many minutes: MECHNUM_BENCH_FULL=1 runs
 @pytest.mark.skipif(not FULL, reason=FULL_REASON)
 @pytest.mark.parametrize("modes", [(m1, m2) for m1 in (1, 2, 3) for m2 in (1, 2, 3)])
 def test_table7_whole_chart(benchmark, modes):
-    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.study.TABLE7,
+                                                                 rfr2.study.TABLE7_THETA),
                                 kwargs={"modes": modes, "max_boxes": 150_000}, rounds=1,
                                 iterations=1)
     record(benchmark, f"Table 7 {modes}, whole chart", "mechnum", _proven(result))
@@ -136,6 +141,7 @@ def test_table7_whole_chart(benchmark, modes):
 
 @pytest.mark.skipif(not FULL, reason=FULL_REASON)
 def test_table8_whole_chart(benchmark):
-    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
+    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.study.TABLE8,
+                                                                 pfr3.study.TABLE8_LAMBDAS),
                                 kwargs={"max_boxes": 100_000}, rounds=1, iterations=1)
     record(benchmark, "Table 8 (1, 1, 1), whole chart", "mechnum", _proven(result))

@@ -72,7 +72,7 @@ def test_the_certificate_verifies_and_round_trips(plane, tmp_path):
                for a, b in zip(pa, pb))                      # bit for bit
     checked = certify.verify(loaded, f, J, domain=BOX)
     assert (checked.count, checked.scope, checked.complete) == (4, "all", True)
-    assert checked.leaves == sum(len(part) for part in cert.leaves)
+    assert checked.iterations == sum(len(part) for part in cert.leaves)
 
 
 def test_two_searched_boxes_verify(line):

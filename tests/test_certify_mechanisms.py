@@ -8,11 +8,13 @@ import numpy as np
 import pytest
 
 from mechnum import certify, rods
-from mechnum.certify import ball, bounds
+from mechnum.certify.balls import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
-from mechnum.rods import balls, certified, regular
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
+from mechnum.rods import certified
 from mechnum.rods.certified import TWO_PI
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
@@ -94,8 +96,8 @@ def _same_set(certified, sampled, tol):
 
 
 def test_table7_sampled_equilibria_are_proven():
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     assert result.count == 3 and not result.complete and "lower bound" in result.message
     assert result.scope == "existence" and result.certificate().scope == "existence"
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -105,8 +107,8 @@ def test_table7_sampled_equilibria_are_proven():
 
 
 def test_table8_sampled_equilibria_are_proven():
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    result = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     assert result.count == 9 and result.scope == "existence" and not result.complete
     assert result.status == "converged" and len(result.parts[0].undecided) == 0
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -115,34 +117,35 @@ def test_table8_sampled_equilibria_are_proven():
 
 
 def test_a_box_without_an_equilibrium_is_excluded():
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA,
                                   around=[[1.0, 0.5, 1.0, 0.5]])
     assert result.count == 0 and result.status == "converged"
 
 
 def test_the_stored_table7_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch5_table7_modes11.json")
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA, (1, 1))
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, (1, 1))
     chart = certified.branch_boxes(2)
     checked = certify.verify(cert, f, J, exclude, domain=chart)
     assert (checked.count, checked.scope, checked.complete) == (3, "existence", None)
     with pytest.raises(certify.CertificateError, match="the caller asks for 'all'"):
         certify.verify(cert, f, J, exclude, domain=chart, scope="all")
-    again = rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA)
+    again = rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
     assert (again.count, again.scope) == (3, "existence")
     with pytest.raises(certify.CertificateError, match="leaf"):          # other motor angles
-        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA + 0.01)
+        rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA + 0.01)
 
 
 def test_the_stored_table8_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, (1, 1, 1))
+    table8, lambdas = pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS
+    f, J, _, exclude = pfr3_certified.system(table8, lambdas, (1, 1, 1))
     checked = certify.verify(cert, f, J, exclude, domain=certified.branch_boxes(3))
     assert (checked.count, checked.scope, checked.complete) == (9, "existence", None)
-    other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
+    other = pfr3_certified.system(pfr3.study.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
         certify.verify(cert, other[0], other[1], other[3], domain=certified.branch_boxes(3))
-    assert pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS).count == 9
+    assert pfr3_certified.verify_certificate(cert, table8, lambdas).count == 9
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])

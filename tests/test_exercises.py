@@ -19,6 +19,7 @@ import mechnum_course
 from mechnum import exercises, linear, ode, rods
 from mechnum.mechanisms import actuator, prr3
 from mechnum.mechanisms import hacksaw as hs
+from mechnum.mechanisms.actuator.study import ANNEX, G_MATHCAD
 
 NUMBERS = sorted(exercises.CHECKS)
 ROOT = Path(__file__).resolve().parents[1]
@@ -604,13 +605,13 @@ def test_a_wrong_implementation_fails_with_its_mistake_named(number, mistake, wr
 def test_references_of_chapter_1_agree_with_the_hacksaw():
     rng = np.random.default_rng(0)
     for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
-        F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
-        assert_allclose(F, hs.position_residual(hs.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
-        assert_allclose(J, hs.position_jacobian(hs.STUDY, q), rtol=1e-13, atol=1e-15)
-    geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
+        F, J = ref("1.1")(q, theta2, hs.study.STUDY.r1y, hs.study.STUDY.r2, hs.study.STUDY.r3)
+        assert_allclose(F, hs.position_residual(hs.study.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(hs.study.STUDY, q), rtol=1e-13, atol=1e-15)
+    geometry = (hs.study.STUDY.r1y, hs.study.STUDY.r2, hs.study.STUDY.r3)
     x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
-                      lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
-    solved = hs.solve_consecutive(hs.STUDY, (0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+                      lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.study.STUDY_SEED[:3])
+    solved = hs.solve_consecutive(hs.study.STUDY, (0.0, 0.0, 0.0), hs.study.STUDY_SEED).stages[0]
     assert k == solved.iterations == 4
     assert_allclose(x, solved.x, rtol=1e-13)
 
@@ -640,11 +641,11 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 
 def test_references_of_chapter_4_agree_with_the_package():
-    geometry, lam = prr3.EXAMPLES["Table 6"]
+    geometry, lam = prr3.study.EXAMPLES["Table 6"]
     C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.forward(geometry, lam).poses
+    poses = prr3.forward(geometry, lam).x
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):
@@ -690,14 +691,14 @@ def test_references_of_chapter_6():
 
 def test_references_of_chapter_7_agree_with_the_package():
     for t in (0.1, 0.6):
-        kin = actuator.kinematics(actuator.ANNEX, t)
+        kin = actuator.kinematics(ANNEX, t)
         k2, k4 = ref("7.1")(float(kin.theta2), float(kin.theta4), float(kin.a),
-                            actuator.ANNEX.l, actuator.ANNEX.b)
+                            ANNEX.l, ANNEX.b)
         assert_allclose([k2, k4], [float(kin.k2), float(kin.k4)], rtol=1e-12)
         state = SimpleNamespace(**{name: float(getattr(kin, name)) for name in (
             "theta2", "theta4", "k2", "k4", "omega2", "omega4", "eps2", "eps4", "a", "a_dot",
             "a_ddot")})
-        assert_allclose(ref("7.2")(state, actuator.ANNEX, actuator.G_MATHCAD),
+        assert_allclose(ref("7.2")(state, ANNEX, G_MATHCAD),
                         float(actuator.virtual_power_force(kin)), rtol=1e-12)
 
 

@@ -13,10 +13,14 @@ from scipy.integrate import solve_ivp
 
 from mechnum import rods
 from mechnum.errors import DivergenceError, MechnumError, SingularJacobianError
-from mechnum.mechanisms import elastica
-from mechnum.rods import crossing, profile, regular, shooting, stability
-from mechnum.rods.bodies import constrained_index_with_body
-from mechnum.rods.pinned import RESOLVED
+from mechnum.mechanisms.elastica import study as elastica
+from mechnum.rods import _crossing as crossing
+from mechnum.rods import _regular as profile
+from mechnum.rods import _regular as regular
+from mechnum.rods import _shooting as shooting
+from mechnum.rods import _stability as stability
+from mechnum.rods._bodies import constrained_index_with_body
+from mechnum.rods._pinned import RESOLVED
 
 PI = np.pi
 

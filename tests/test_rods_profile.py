@@ -5,7 +5,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import ellipj
 
-from mechnum.rods import profile, regular
+from mechnum.rods import _regular as profile
+from mechnum.rods import _regular as regular
 
 
 def test_amplitude_matches_scipy_away_from_k_1():

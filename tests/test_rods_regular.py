@@ -5,7 +5,9 @@ import numpy as np
 import pytest
 
 from mechnum import rods
-from mechnum.rods import crossing, regular, stability
+from mechnum.rods import _crossing as crossing
+from mechnum.rods import _regular as regular
+from mechnum.rods import _stability as stability
 
 EI, L = 0.0522, 1.0
 

@@ -1,8 +1,8 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: its scope, the search
+Each file is a :class:`~mechnum.certify.Certificate` as JSON: its scope, the search
 that made it, the inputs, the searched boxes, the leaves with the test each passed, the root
-enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify.verify`, the
+enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify`, the
 residual of the same ``system`` and the chart as the domain
 (:func:`~mechnum.rods.certified.branch_boxes`; see each entry below).
 
@@ -40,18 +40,18 @@ def main():
         store(f"ch3_pinned_mode{mode}.json", part,
               {"function": "mechnum.rods.certified.pinned_system", "EI": 1.0, "L": 1.0,
                "target": [0.8, 0.1], "mode": mode, "unknowns": ["psi", "t"]})
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    table7 = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    table7 = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     store("ch5_table7_modes11.json", table7.parts[0],
           {"function": "mechnum.mechanisms.rfr2.certified.system", "mechanism": "TABLE7",
-           "theta": rfr2.TABLE7_THETA.tolist(), "modes": [1, 1],
+           "theta": rfr2.study.TABLE7_THETA.tolist(), "modes": [1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
            "around": sampled.chart.tolist(), "unknowns": ["psi1", "t1", "psi2", "t2"]})
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    table8 = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    table8 = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     store("ch6_table8_modes111.json", table8.parts[0],
           {"function": "mechnum.mechanisms.pfr3.certified.system", "mechanism": "TABLE8",
-           "lambdas": pfr3.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
+           "lambdas": pfr3.study.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
            "around": sampled.chart.tolist(),
            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]})

@@ -22,7 +22,8 @@ from mechnum.exercises._ch5 import Polynomial
 from mechnum.exercises._ch6 import column, platform
 from mechnum.exercises._ch7 import OTHER, state
 from mechnum.exercises._harness import Case
-from mechnum.mechanisms import actuator, hacksaw
+from mechnum.mechanisms import hacksaw
+from mechnum.mechanisms.actuator.study import ANNEX
 
 
 def _loop():
@@ -147,8 +148,8 @@ def _rigid():
 def _coefficients():
     third = dataclasses.replace(OTHER, o2=0.2, b=0.3, l=0.45)
     cases = []
-    for mech, t, label in ((actuator.ANNEX, 0.35, "the chapter's mechanism at t = 0.35 s"),
-                           (actuator.ANNEX, 0.85, "the chapter's mechanism at t = 0.85 s"),
+    for mech, t, label in ((ANNEX, 0.35, "the chapter's mechanism at t = 0.35 s"),
+                           (ANNEX, 0.85, "the chapter's mechanism at t = 0.85 s"),
                            (third, 0.55, "a mechanism with b = 0.3 m, l = 0.45 m at t = 0.55 s")):
         s = state(mech, t)
         cases.append(Case(label, (s.theta2, s.theta4, s.a, mech.l, mech.b)))
@@ -156,9 +157,9 @@ def _coefficients():
 
 
 def _force():
-    heavy = dataclasses.replace(actuator.ANNEX, m2=4.0, g3=0.25)
+    heavy = dataclasses.replace(ANNEX, m2=4.0, g3=0.25)
     return [Case("the chapter's mechanism at t = 0.45 s, g = 9.81 m/s^2",
-                 (state(actuator.ANNEX, 0.45), actuator.ANNEX, 9.81)),
+                 (state(ANNEX, 0.45), ANNEX, 9.81)),
             Case("a mechanism with m2 = 4 kg, g3 = 0.25 m at t = 0.9 s, g = 1.62 m/s^2",
                  (state(heavy, 0.9), heavy, 1.62))]
 

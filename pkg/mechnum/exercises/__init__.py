@@ -62,7 +62,7 @@ def _exercise(number):
     return EXERCISES[number]
 
 
-def check(number, answer):
+def check(number: str, answer: object) -> Result:
     """Run the check of exercise ``number`` on the student's ``answer`` (a function).
 
     Parameters
@@ -103,7 +103,7 @@ def check(number, answer):
                           probe_mistakes)
 
 
-def check_cases(number, answer, cases, expected):
+def check_cases(number: str, answer: object, cases: list, expected: list) -> Result:
     """Run the student's ``answer`` on the given ``cases`` of exercise ``number`` and compare it
     with their ``expected`` answers (as :func:`check` does with the public ones): an nbgrader
     test cell holds an exercise's hidden cases and their answers, and calls this.
@@ -131,7 +131,7 @@ def check_cases(number, answer, cases, expected):
     return _harness.judge(exercise, outcomes, list(expected), lambda k: {})
 
 
-def starter(number):
+def starter(number: str) -> str:
     """The starter cell of exercise ``number``: signature, docstring, and ``...`` for the body.
 
     Examples
@@ -145,7 +145,7 @@ def starter(number):
     return _exercise(number).starter
 
 
-def statement(number):
+def statement(number: str) -> str:
     """The statement of exercise ``number`` (Markdown, for the ``{exercise}`` directive).
 
     Examples
@@ -157,7 +157,7 @@ def statement(number):
     return _exercise(number).statement
 
 
-def check_code(number):
+def check_code(number: str) -> str:
     """The check cell of exercise ``number``.
 
     Examples
@@ -169,20 +169,20 @@ def check_code(number):
     return f'exercises.check("{number}", {_exercise(number).name})'
 
 
-def markdown_cell(number, source, part):
+def markdown_cell(number: str, source: str, part: str) -> dict:
     """A Markdown cell of exercise ``number`` (a dictionary in the notebook format)."""
     return {"cell_type": "markdown", "id": f"ex{number.replace('.', '-')}-{part}",
             "metadata": {}, "source": source}
 
 
-def code_cell(number, source, role):
+def code_cell(number: str, source: str, role: str) -> dict:
     """A code cell of exercise ``number`` with its role in the metadata."""
     return {"cell_type": "code", "id": f"ex{number.replace('.', '-')}-{role}",
             "execution_count": None, "metadata": {"mechnum": {"exercise": number, "role": role}},
             "source": source.rstrip("\n"), "outputs": []}
 
 
-def cells(number):
+def cells(number: str) -> list[dict]:
     """The cells of exercise ``number`` that a student sees, in order, as dictionaries in the
     notebook format (``nbformat.from_dict`` accepts them): the exercise, the starter, the
     check. (The book's chapters also hold the gated solution between the starter and the

@@ -105,7 +105,7 @@ PRR3_NEWTON = Exercise(
         "the three loop equations $F_i(x, y, \\psi) = |P_i - C_i|^2 - L^2$ of the chapter, with "
         "the Jacobian by hand: row $i$ is $2\\,(u_i,\\ u_i\\cdot n_i)$ with $u_i = P_i - C_i$ "
         "and $n_i = \\partial P_i/\\partial\\psi$. Iterate it from a pose near one of Table 6's "
-        "and watch the residual square at each step; compare the limit with `prr3.direct`."),
+        "and watch the residual square at each step; compare the limit with `prr3.forward`."),
     starter=NEWTON_STEP_STARTER, cases=_newton_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-10, atol=1e-12,
                                         what="the next pose"),

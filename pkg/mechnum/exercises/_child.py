@@ -128,7 +128,7 @@ def call(function, args, seconds, names=(), changed_test=lambda before, after: F
         return _call_here(function, args, seconds, names, changed_test)
     read, write = os.pipe()
     with warnings.catch_warnings():  # Python 3.12 warns about forking a threaded process
-        warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.filterwarnings("ignore", message=r".*multi-threaded, use of fork\(\)")
         pid = os.fork()
     if pid == 0:
         os.close(read)

@@ -1,9 +1,9 @@
 """Every clamped-pinned equilibrium that reaches a point, proven (Chapter 3's pinned rod).
 
-:func:`certify_pinned` searches the regular chart ``(psi, t)`` of :mod:`mechnum.rods.regular`
-of each mode with :func:`~mechnum.certify.search.roots`, the closed form enclosed by
-:mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
-branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
+:func:`~mechnum.rods.certify_pinned` searches the regular chart ``(psi, t)`` of ``rods``'s
+regular module of each mode with :func:`~mechnum.certify.roots`, the closed form enclosed over boxes
+(``rods._balls``). The searched boxes are the chart's whole closed domain, one per branch:
+``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
 
 **Beyond the chart** (``|t| > T_MAX``, ``q > Q_MAX = 600``) the rods are excluded analytically.
 On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >= I``), and
@@ -17,15 +17,26 @@ farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is
 rod of the tail.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
-from mechnum.certify import guard
-from mechnum.certify.search import Roots
-from mechnum.rods import balls, regular
+from mechnum.certify.balls import interval
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
+
+# The pinned rod's system, and what the rod mechanisms' certified modules build theirs from
+# (certify_pinned is rods'; Certified, the result, is documented with the functions that return
+# it).
+__all__ = ["TAIL_LAMBDA", "around_boxes", "around_note", "branch_boxes", "combine", "enclosed",
+           "forces_exclude", "forces_split", "memoised", "pinned_system", "placed", "stiffness",
+           "tail_reach", "verdict"]
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -35,7 +46,7 @@ TAIL_LAMBDA = 0.5 * regular.Q_MAX * float(np.sqrt(-np.expm1(-regular.Q_MAX))) * 
 margin for rounding: ``v q / 2`` at ``q = Q_MAX`` (see the module)."""
 
 
-def tail_reach(mode, lam=TAIL_LAMBDA):
+def tail_reach(mode: int, lam: float = TAIL_LAMBDA) -> float:
     """``(2 pi mode + 2) / Lambda``: how far (over ``L``) the tip of a rod of that ``mode`` with
     ``lambda L >= Lambda`` may lie from ``L (cos psi, sin psi)``."""
     return (2.0 * np.pi * mode + 2.0) / lam
@@ -45,18 +56,18 @@ MAX_BOXES = 200_000
 
 
 @dataclass(frozen=True, kw_only=True)
-class Certified(Roots):
+class Certified(certify.Roots):
     """A certified search of an application, with the solutions in the package's coordinates.
 
     Attributes
     ----------
     solutions : ndarray
         The midpoints of the root enclosures, in the coordinates of the corresponding sampled
-        solver (``pinned_equilibria``: rows ``(psi, k_rel, mode)``; ``forward_elliptic``:
+        solver (``pinned_equilibria``: rows ``(psi, k_rel, mode)``; ``forward``:
         ``(psi_i, k_rel_i)`` per rod).
     stable : list of (bool or None)
         Per solution: True (proven stable), False (proven unstable), None (not decided).
-    parts : tuple of mechnum.certify.search.Roots
+    parts : tuple of mechnum.certify.Roots
         The searches (one per mode, or one for a mechanism), each with its certificate.
     """
 
@@ -64,7 +75,7 @@ class Certified(Roots):
     stable: list
     parts: tuple
 
-    def certificate(self, inputs=None):
+    def certificate(self, inputs: dict | None = None) -> certify.Certificate:
         """The certificate of the one search (a certificate is made per search: for several,
         ``parts[i].certificate()``)."""
         if len(self.parts) != 1:
@@ -73,7 +84,8 @@ class Certified(Roots):
         return self.parts[0].certificate(inputs)
 
 
-def combine(parts, solutions, stable, extra=""):
+def combine(parts: Sequence, solutions: np.ndarray, stable: list,
+            extra: str = "") -> Certified:
     """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
     n = parts[0].roots.shape[1] if parts else 2
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
@@ -114,7 +126,7 @@ AROUND = 1e-6
 ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
-def around_boxes(points, n_rods: int) -> np.ndarray:
+def around_boxes(points: ArrayLike, n_rods: int) -> np.ndarray:
     """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
     the chart and to each point's branch (the side of ``t = 0`` it lies on).
 
@@ -140,7 +152,7 @@ def around_boxes(points, n_rods: int) -> np.ndarray:
     return np.stack((lo, hi), axis=-1)
 
 
-def around_note(around):
+def around_note(around: object) -> str:
     """The message of a search around given points (its count is a lower bound)."""
     return "" if around is None else (
         f"; searched around {len(around)} given points only: the count is a lower bound")
@@ -150,8 +162,8 @@ def _ends(x: arb) -> tuple:
     """The float interval a ball stands for: the exact box of a ball from
     :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
     own bounds (rounded outward)."""
-    box = guard.interval(x)
-    return box if box is not None else certify.bounds(arb(x))
+    box = interval(x)
+    return box if box is not None else certify.balls.bounds(arb(x))
 
 
 def branch_of(X: list, i: int) -> int:
@@ -176,12 +188,12 @@ def branch_of(X: list, i: int) -> int:
     return 1 if t1 > 0.0 else -1
 
 
-def pinned_system(EI, L, target, mode):
+def pinned_system(EI: float, L: float, target: ArrayLike, mode: int) -> tuple:
     """``residual, jacobian`` of ``tip(psi, t) - target`` (over ``L``) for :mod:`mechnum.certify`.
 
     Examples
     --------
-    >>> from mechnum.certify import ball
+    >>> from mechnum.certify.balls import ball
     >>> f, J = pinned_system(1.0, 1.0, [0.8, 0.1], 2)
     >>> [bool(v.contains(0)) for v in f([ball(3.0, 3.1), ball(0.3, 0.5)])]
     [True, True]
@@ -200,10 +212,11 @@ def pinned_system(EI, L, target, mode):
     return residual, jacobian
 
 
-def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
+def certify_pinned(EI: float, L: float, target: ArrayLike, modes: Sequence = (1, 2, 3), *,
+                   max_boxes: int = MAX_BOXES) -> Certified:
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`~mechnum.rods.pinned.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,
@@ -257,15 +270,16 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     return combine(parts, solutions, [None] * len(rows), extra)
 
 
-def placed(EI, L, X, i, mode, origin, angle, jacobian):
+def placed(EI: float, L: float, X: Sequence, i: int, mode: int, origin: ArrayLike,
+           angle: float, jacobian: bool) -> tuple:
     """Rod ``i`` of a box of balls ``X = (psi_1, t_1, psi_2, t_2, ...)``, placed at its clamp
-    (:func:`mechnum.rods.balls.place`)."""
+    (``rods._balls.place``)."""
     rod = balls.clamped_pinned(EI, L, X[2 * i], X[2 * i + 1], mode, branch_of(X, i),
                                jacobian=jacobian)
     return balls.place(rod, origin, angle)
 
 
-def stiffness(rod):
+def stiffness(rod: object) -> list:
     """The tip stiffness ``d force / d tip = J_force J_tip^-1`` of a placed rod (2 x 2 balls,
     symmetrised): the Hessian of the rod's energy as a function of its pinned tip, along its
     branch of equilibria."""
@@ -283,7 +297,7 @@ MEMORY = 4
 midpoint and cut interleave)."""
 
 
-def memoised(rods):
+def memoised(rods: Callable) -> Callable:
     """``rods(X, jacobian)`` remembering its last ``MEMORY`` answers: the residual, the
     exclusion test, the cut and the Jacobian of one box share one evaluation of the rods (a
     Jacobian's evaluation also serves the residual). The key is the balls exactly, and the
@@ -291,7 +305,7 @@ def memoised(rods):
     memory = {}
 
     def cached(X, jacobian):
-        key = tuple((guard.interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
+        key = tuple((interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
                     for x in X)
         known = memory.get(key)
         if known is not None and (known[0] or not jacobian):
@@ -311,7 +325,7 @@ def enclosed(root: np.ndarray) -> list:
     return certify.balls.guarded(root)
 
 
-def verdict(reduced):
+def verdict(reduced: Sequence) -> bool | None:
     """Stability from the reduced Hessian (balls) of an equilibrium: False where it is proven
     to have a negative eigenvalue (the equilibrium is then unstable, whatever the rods' own
     pinned-tip index: the index is the sum of the rods' pinned-tip indices and the reduced
@@ -323,7 +337,7 @@ def verdict(reduced):
 
 def _box(values):
     """Float bounds ``[(lo, hi), ...]`` of balls."""
-    return [certify.bounds(v) for v in values]
+    return [certify.balls.bounds(v) for v in values]
 
 
 def _norm_range(box):
@@ -371,7 +385,7 @@ def _allowed(rods, load, i):
     return _box(c) if all(v.is_finite() for v in c) else None
 
 
-def forces_exclude(rods, load):
+def forces_exclude(rods: Callable, load: ArrayLike) -> Callable:
     """Whether ``sum of the rods' forces = load`` is impossible over a box, in polar form.
 
     For each rod ``i`` the others' forces give the box ``c = load - sum_{j != i} n_j`` that
@@ -394,7 +408,7 @@ def forces_exclude(rods, load):
     return False
 
 
-def forces_split(rods, load, X):
+def forces_split(rods: Callable, load: ArrayLike, X: Sequence) -> object:
     """Where to cut the box ``X`` of chart coordinates ``(psi_1, t_1, ...)``: at an edge of the
     directions that the force balance leaves rod ``i`` (see :func:`forces_exclude`), when that
     edge lies inside ``psi_i``'s range; the half beyond it is then excluded at once. The rod

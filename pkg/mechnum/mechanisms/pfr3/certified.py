@@ -1,20 +1,20 @@
 """Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
 
-:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: the same six reduced equations
-(:func:`~mechnum.mechanisms.pfr3.model.forward_system`: the tips form the platform, ``d_1 / b_1
+:func:`~mechnum.mechanisms.pfr3.certify_forward` is the certified counterpart of
+:func:`~mechnum.mechanisms.pfr3.forward`: the same six reduced equations
+(:func:`~mechnum.mechanisms.pfr3.forward_system`: the tips form the platform, ``d_1 / b_1
 = d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
 forces carry ``F``; the moments about the centroid carry ``M``) in the same chart, re-derived
-from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
-:func:`~mechnum.mechanisms.pfr3.model.clamps`, and enclosed over boxes
-(:mod:`mechnum.rods.balls`). Two exclusion tests of the mechanism's own speed the search up:
+from the :class:`~mechnum.mechanisms.pfr3.Mechanism`'s public fields and
+:func:`~mechnum.mechanisms.pfr3.clamps`, and enclosed over boxes
+(:mod:`mechnum.rods.certified`). Two exclusion tests of the mechanism's own speed the search up:
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
 Without ``around``, the search covers the chart's whole domain (8 boxes, one per sign pattern
 of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
 ``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
-sampled ``forward_elliptic(...).chart``), it covers a small box around each point: each
+sampled ``forward(...).x``), it covers a small box around each point: each
 equilibrium there is then proven to exist, alone in its box, and the count is a lower bound.
 
 **Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): ``stable`` is False
@@ -23,12 +23,19 @@ term ``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K
 stiffnesses), is proven to have a negative eigenvalue, None otherwise.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import acb, arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
-from mechnum.mechanisms.pfr3.model import clamps
-from mechnum.rods import certified, regular
+from mechnum.mechanisms.pfr3._model import clamps
+from mechnum.rods import certified, k_rel_from_t
+
+__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is pfr3's
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -41,16 +48,16 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, lambdas, modes=(1, 1, 1)):
+def system(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1)) -> tuple:
     """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes
     (``exclude.split``: the cut of :func:`mechnum.rods.certified.forces_split`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
     >>> f, J, rods, exclude = system(TABLE8, TABLE8_LAMBDAS)
     >>> z = chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
-    >>> X = [certify.ball(v - 1e-3, v + 1e-3) for v in z]
+    >>> X = [certify.balls.ball(v - 1e-3, v + 1e-3) for v in z]
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True, True, True], False)
     """
@@ -108,7 +115,7 @@ def system(mech, lambdas, modes=(1, 1, 1)):
         if certified.forces_exclude(rs, mech.force):
             return True
         for i, j in ((0, 1), (1, 2), (2, 0)):
-            box = [certify.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
+            box = [certify.balls.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
             low, high = certified._norm_range(box)
             if bool(a < low) or bool(a > high):
                 return True
@@ -139,10 +146,10 @@ def _reduced(rs):
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.pfr3.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -152,15 +159,16 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(3)
 
 
-def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: ArrayLike,
+                       modes: Sequence = (1, 1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    certificate : ~mechnum.certify.Certificate
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
     modes : tuple of int, optional
@@ -170,18 +178,19 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified
+    ~mechnum.certify.Verified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:1]
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> sampled = forward(TABLE8, TABLE8_LAMBDAS, rng=0).x[:1]
     >>> cert = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled).certificate()
     >>> v = verify_certificate(cert, TABLE8, TABLE8_LAMBDAS)
     >>> v.count, v.scope, v.complete
@@ -191,12 +200,14 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1), *,
+                    max_boxes: int = MAX_BOXES,
+                    around: ArrayLike | None = None) -> certified.Certified:
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     modes : (int, int, int), optional
@@ -205,14 +216,14 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 6), optional
         Chart points to search around (boxes of half-width
-        :data:`mechnum.rods.certified.AROUND` times the chart's ranges) instead of the whole
+        ``mechnum.rods.certified.AROUND`` times the chart's ranges) instead of the whole
         chart.
 
     Returns
     -------
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
-        ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
+        ``(psi_i, k_rel_i)`` (``forward``'s coordinates), sorted by ``psi1``;
         ``stable``: False or None (see the module); ``scope``: ``"all"`` (the chart's whole
         domain searched; ``complete``: the count is a theorem over it) or, with ``around``,
         ``"existence"`` (each root proven, alone in its box, but others may lie elsewhere:
@@ -222,9 +233,10 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     --------
     Each of the equilibria that the sampling finds, proven (here the first):
 
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
-    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> sampled = forward(TABLE8, TABLE8_LAMBDAS, rng=0)
+    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.x[:1])
     >>> r.count, r.scope, r.complete, np.round(r.solutions[0], 4).tolist()
     (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
@@ -236,7 +248,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     z = part.x
     solutions = z.copy()
     if len(z):
-        solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
+        solutions[:, 1::2] = k_rel_from_t(z[:, 0::2], z[:, 1::2])
     stable = [certified.verdict(_reduced(rods(certified.enclosed(root), True)))
               for root in part.roots]
     return certified.combine([part], solutions, stable, certified.around_note(around))

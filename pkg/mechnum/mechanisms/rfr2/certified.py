@@ -1,11 +1,11 @@
 """Every equilibrium of the 2RFR at given motor angles, proven by interval arithmetic.
 
 :func:`~mechnum.mechanisms.rfr2.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.rfr2.forward_elliptic`: the same four equations (both tips at one
+:func:`~mechnum.mechanisms.rfr2.forward`: the same four equations (both tips at one
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
-:class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields and enclosed over boxes
-(:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots` over the
+:class:`~mechnum.mechanisms.rfr2.Mechanism`'s public fields and enclosed over boxes
+(:mod:`mechnum.rods.certified`), searched by :func:`~mechnum.certify.roots` over the
 chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
@@ -13,24 +13,31 @@ tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rod
 Its force is at least ``R = EI TAIL_LAMBDA**2 / L**2``; the other rod's is ``F`` minus it,
 at least ``R - |F|``, so its ``Lambda`` is large too and the forces are antiparallel to within
 ``|e1 + e2| <= 2 |F| / R``. Both tips at one point then need
-``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; :func:`tail_excluded` checks that the motors
+``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; ``tail_excluded`` checks that the motors
 are nearer than that (as for the study's Table 7), else the result is not ``complete``.
 
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
 and the index of the reduced Hessian ``K1 + K2`` (each ``K_i = d n_i / d tip_i`` along the
 rod's branch, :func:`mechnum.rods.certified.stiffness`), by Haynsworth's inertia additivity.
-``stable`` is False where :func:`~mechnum.certify.definite.definite` proves ``K1 + K2`` over
+``stable`` is False where :func:`~mechnum.certify.definite` proves ``K1 + K2`` over
 the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are
 not enclosed).
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
-from mechnum.mechanisms.rfr2.model import Mechanism
-from mechnum.rods import certified, regular
-from mechnum.rods.assembly import check_type
+from mechnum.mechanisms._assembly import check_type
+from mechnum.mechanisms.rfr2._model import Mechanism
+from mechnum.rods import certified, k_rel_from_t
+
+__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is rfr2's
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -43,7 +50,7 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, theta, modes=(1, 1)):
+def system(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1)) -> tuple:
     """``residual, jacobian`` of the 2RFR's closed form over boxes, for :mod:`mechnum.certify`,
     with ``rods(X, jacobian)`` (both rods, placed) and ``exclude(X)`` (the force balance in
     polar form, :func:`mechnum.rods.certified.forces_exclude`), whose attribute ``split`` is
@@ -51,10 +58,11 @@ def system(mech, theta, modes=(1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
     >>> f, J, rods, exclude = system(TABLE7, TABLE7_THETA)
-    >>> X = [certify.ball(1.96, 1.97), certify.ball(-0.06, -0.05), certify.ball(4.81, 4.82),
-    ...      certify.ball(0.85, 0.86)]                  # holds a root: no test excludes it
+    >>> ball = certify.balls.ball
+    >>> X = [ball(1.96, 1.97), ball(-0.06, -0.05), ball(4.81, 4.82),
+    ...      ball(0.85, 0.86)]                  # holds a root: no test excludes it
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True], False)
     """
@@ -91,13 +99,13 @@ def system(mech, theta, modes=(1, 1)):
     return residual, jacobian, rods, exclude
 
 
-def tail_excluded(mech, modes=(1, 1)):
+def tail_excluded(mech: Mechanism, modes: Sequence = (1, 1)) -> bool:
     """Whether no equilibrium has a rod beyond the chart (``q > Q_MAX``), by the bound of the
     module (True for the study's Table 7).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7
     >>> tail_excluded(TABLE7, (3, 3))
     True
     """
@@ -117,10 +125,10 @@ def tail_excluded(mech, modes=(1, 1)):
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.rfr2.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -130,15 +138,16 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(2)
 
 
-def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta: ArrayLike,
+                       modes: Sequence = (1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate
-    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    certificate : ~mechnum.certify.Certificate
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
     modes : tuple of int, optional
@@ -148,18 +157,19 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified
+    ~mechnum.certify.Verified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart[:1]
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> sampled = forward(TABLE7, TABLE7_THETA, rng=0).x[:1]
     >>> cert = certify_forward(TABLE7, TABLE7_THETA, around=sampled).certificate()
     >>> v = verify_certificate(cert, TABLE7, TABLE7_THETA)
     >>> v.count, v.scope, v.complete
@@ -169,12 +179,14 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1), *,
+                    max_boxes: int = MAX_BOXES,
+                    around: ArrayLike | None = None) -> certified.Certified:
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         Motor angles (rad).
     modes : (int, int), optional
@@ -182,7 +194,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     max_boxes : int, optional
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 4), optional
-        Chart points (for example ``forward_elliptic(...).chart``) to search around instead of
+        Chart points (for example ``forward(...).x``) to search around instead of
         the whole chart (boxes of :func:`mechnum.rods.certified.around_boxes`): each
         equilibrium found there is proven, alone in its box, and the count is a lower bound
         (``complete`` is then False).
@@ -192,16 +204,16 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart ``(psi1, t1, psi2, t2)``; ``solutions``: their
         midpoints as ``(psi1, k_rel1, psi2, k_rel2)`` (the coordinates of
-        ``forward_elliptic``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
+        ``forward``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
         unstable) or None (see the module); ``complete``: the count is a theorem (the chart
         searched whole, and the tail beyond it excluded).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
-    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
-    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.chart)
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> sampled = forward(TABLE7, TABLE7_THETA, rng=0)
+    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.x)
     >>> r.count, r.complete, bool(np.abs(r.solutions - sampled.solutions).max() < 1e-12)
     (3, False, True)
     """
@@ -210,7 +222,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     boxes = chart() if around is None else certified.around_boxes(around, 2)
     part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
                          split=exclude.split, scope="all" if around is None else "existence")
-    k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
+    k_rel = (k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
     stable = []
