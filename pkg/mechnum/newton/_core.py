@@ -56,6 +56,7 @@ of itself (the customary constant: any decrease counts, but not a vanishing one)
 _SQRT_EPS = np.sqrt(np.finfo(float).eps)  # the forward-difference step that balances errors
 _MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 _TINY = np.finfo(float).tiny
+_SQRT_TINY = np.sqrt(_TINY)  # a 2-norm below it was summed from squares that lost digits
 
 
 def describe(rule: StoppingRule) -> str:
@@ -74,12 +75,15 @@ def describe(rule: StoppingRule) -> str:
 def norms(v: np.ndarray, norm: float) -> np.ndarray:
     """``np.linalg.norm(v, norm, axis=-1)``, several times faster for a stack of short vectors
     (the sums over the short last axis are products with a vector of ones), and without
-    overflow: a 2-norm whose squares overflow is computed again from ``v`` scaled by its
-    largest entry.
+    overflow or underflow: a 2-norm whose squares overflow, or underflow (entries below
+    ``sqrt(tiny)``, about ``1.5e-154``, square to subnormals or zero), is computed again from
+    ``v`` scaled by its largest entry.
 
     Examples
     --------
     >>> round(float(norms(np.array([3e200, 4e200]), 2)) / 1e200, 12)
+    5.0
+    >>> round(float(norms(np.array([3e-200, 4e-200]), 2)) / 1e-200, 12)
     5.0
     """
     if v.ndim == 1 and norm != 2:
@@ -91,15 +95,18 @@ def norms(v: np.ndarray, norm: float) -> np.ndarray:
         return np.abs(v) @ ones
     with np.errstate(over="ignore"):   # as np.linalg.norm: the root of the sum of squares
         out = np.sqrt(v.dot(v) if v.ndim == 1 else (v * v) @ ones)
-    if not np.isinf(out).any():
+    # squares that overflow (inf), or underflow (a norm below sqrt(tiny), zero for a non-zero v,
+    # was summed from squares that lost digits): computed again from v scaled by its largest entry
+    lost = np.isinf(out) | (out < _SQRT_TINY)
+    if not lost.any():
         return out
     a = np.abs(v)
-    overflow = np.isinf(out) & np.isfinite(a).all(axis=-1)
-    if not overflow.any():
-        return out
     top = largest(a)
-    scaled = np.sqrt((a / np.maximum(top, _TINY)[..., None]) ** 2 @ ones) * top
-    return np.where(overflow, scaled, out)
+    lost &= (top > 0) & np.isfinite(a).all(axis=-1)
+    if not lost.any():
+        return out
+    scaled = np.sqrt((a / np.where(top > 0, top, 1.0)[..., None]) ** 2 @ ones) * top
+    return np.where(lost, scaled, out)
 
 
 @functools.cache
