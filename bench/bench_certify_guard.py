@@ -54,7 +54,7 @@ def unguarded(monkeypatch):
     """The search without the guard (the peer)."""
     for module in (kr, sr):
         monkeypatch.setattr(module, "guarded", _marked)
-    monkeypatch.setattr(guard, "interval", lambda x: getattr(x, "interval", None))
+    monkeypatch.setattr(certified, "interval", lambda x: getattr(x, "interval", None))
     monkeypatch.setattr(guard, "values", lambda f, X, n, point=False: _plain(f(X), n))
     monkeypatch.setattr(guard, "matrix", lambda J, X, n: [_plain(row, n) for row in J(X)])
     monkeypatch.setattr(guard, "decision", lambda exclude, X: bool(exclude(X)))

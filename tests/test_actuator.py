@@ -24,7 +24,6 @@ from mechnum.errors import (
 )
 from mechnum.mechanisms.actuator import (
     Actuator,
-    centres_of_mass,
     draw,
     energy,
     forward,
@@ -42,6 +41,7 @@ from mechnum.mechanisms.actuator import (
     stroke_kinematics,
     virtual_power_force,
 )
+from mechnum.mechanisms.actuator._velocities import centres_of_mass
 from mechnum.mechanisms.actuator.study import ANNEX
 from mechnum.plotting import animate
 

@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from mechnum.mechanisms import _assembly as assembly
-from mechnum.rods import _regular as profile
+from mechnum.rods import _profile as profile
 from mechnum.rods import chart_from_clamps, peak_moment
 
 PACKAGE = Path(assembly.__file__).resolve().parents[2]

@@ -21,6 +21,7 @@ from mechnum.mechanisms import _assembly as assembly  # noqa: E402
 from mechnum.mechanisms import pfr3, rfr2  # noqa: E402
 from mechnum.mechanisms._assembly import _atlas as atlases  # noqa: E402
 from mechnum.mechanisms._assembly import _parallel as parallel  # noqa: E402
+from mechnum.mechanisms._assembly._lockstep import track_paths  # noqa: E402
 
 
 # ---------------------------------------------------------------- the cusp, x**3 - a x - b = 0
@@ -34,15 +35,13 @@ def cusp_search(task):
     return out
 
 
-def cusp_trace(params, u0):
-    def fun(x, p):
-        return x ** 3 - p[:, :1] * x - p[:, 1:], (3 * x ** 2 - p[:, :1])[:, :, None]
-
-    return assembly.follow(fun, u0, params, tol=assembly.ATLAS_STEP_TOL, resume=False,
-                           criterion="step")
+def cusp_system(x, p):
+    """The cusp's residual and derivative at rows ``x`` (n, 1) and inputs ``p`` (n, 2)."""
+    return x ** 3 - p[:, :1] * x - p[:, 1:], (3 * x ** 2 - p[:, :1])[:, :, None]
 
 
-CUSP = atlases.AtlasProblem(cusp_search, cusp_trace, lambda p, x: x, 1)
+CUSP = atlases.AtlasProblem(cusp_search, cusp_system, lambda x: np.ones(len(x), dtype=bool),
+                            lambda p, x: x, 1)
 
 
 def cusp_atlas(a, b, executor=1, problem=CUSP):
@@ -72,6 +71,54 @@ def test_the_cusp_counts_are_exact_at_every_point_with_few_searches():
     assert len(at.folds) == changes > 0
     A, B = at.folds.T
     assert np.abs(4 * A ** 3 - 27 * B ** 2).max() < 1.0      # near the cusp's two fold lines
+
+
+@pytest.mark.parametrize("steps", [2, 9])
+def test_the_flood_steps_all_its_edges_at_once_as_follow_steps_each(steps):
+    """One lockstep step of the flood (all its paths in one damped Newton per point) decides as
+    assembly.follow (solve_path and the branch tests) does path by path: the cusp's roots
+    followed over random steps across its folds, as one step and as the REFINE short ones
+    (statuses converged, branch-jump, stagnated, lost), and the 2RFR's (left-domain, maxiter
+    too)."""
+    rng = np.random.default_rng(0)
+    a0, b0 = rng.uniform(0.2, 1.5, 400), rng.uniform(-0.3, 0.3, 400)
+    u0 = np.array([[rng.choice(cusp_search(([0], [(a, b)]))[0][0][:, 0])] for a, b in
+                   zip(a0, b0)])
+    p0 = np.column_stack((a0, b0))
+    params = np.linspace(p0, p0 + rng.uniform(-0.8, 0.8, (400, 2)), steps)
+    follow = assembly.follow(cusp_system, u0, params, tol=atlases.STEP_TOL, resume=False,
+                             criterion="step")
+    status, x, iterations, _ = track_paths(CUSP.system, CUSP.domain, 1, params, u0,
+                                           tol=atlases.STEP_TOL)
+    assert np.array_equal(status, follow.status) and len(set(status.ravel())) >= 3
+    assert np.array_equal(iterations, follow.iterations)
+    assert np.array_equal(x, follow.x[-1], equal_nan=True)
+    assert steps == 9 or "branch-jump" in status            # the one-step jumps across folds
+
+    from mechnum.mechanisms.rfr2._continuation import grid_trace
+    from mechnum.rods import _kernels as kernels
+    from mechnum.rods import in_chart
+
+    M, theta0 = rfr2.study.TABLE7, np.radians([40.0, 60.0])
+    eq = rfr2.forward(M, theta0, rng=0)
+    pick = rng.integers(0, len(eq.x), 200)
+    u0 = np.concatenate((eq.x[pick], eq.pose[pick]), axis=1)
+    params = np.linspace(np.broadcast_to(theta0, (200, 2)),
+                         theta0 + np.radians(rng.uniform(-40.0, 40.0, (200, 2))), steps)
+
+    def system(u, p):
+        return kernels.joined(M.EI, M.L, M.origins, p, [1.0, 1.0], M.force, u)
+
+    def domain(u):
+        return in_chart(u[:, :4])
+
+    with kernels.reference():           # the same arithmetic: the same numbers
+        follow = grid_trace(M, np.ones(2), tol=atlases.STEP_TOL, criterion="step")(params, u0)
+        status, x, iterations, _ = track_paths(system, domain, 4, params, u0,
+                                               tol=atlases.STEP_TOL)
+    assert np.array_equal(status, follow.status) and len(set(status.ravel())) >= 4
+    assert np.array_equal(iterations, follow.iterations)
+    assert np.array_equal(x, follow.x[-1], equal_nan=True)
 
 
 def test_a_point_next_to_a_fold_is_searched_and_a_vouched_one_has_no_branch_ending():
@@ -260,3 +307,16 @@ def test_parallel_runs_in_order_on_every_executor():
     assert parallel.run(abs, [], None) == []
     assert [len(c) for c in parallel.chunks(list(range(9)), 1)] == [3, 2, 2, 2]
     assert parallel.chunks([], None) == []
+
+
+def test_two_ends_on_each_side_of_an_edge_pair_up_crosswise():
+    # two equilibria at each of two points, listed in opposite orders, the same past the
+    # chart (their last unknown) within a step: each has its partner, whatever the order
+    store = atlases._Store(2, 2, 1)
+    store.insert(np.array([0, 0, 1, 1]), np.array([[0.1, 5.0], [0.2, 7.0], [0.3, 7.01],
+                                                   [0.4, 5.01]]),
+                 np.array([True, False, False, True]))
+    store.move = 0.1
+    assert atlases._paired(store, 0, np.array([0, 1]), 1, np.array([0, 1]))
+    store.stable[1] = [True, False]                 # the verdicts no longer match: no pairs
+    assert not atlases._paired(store, 0, np.array([0, 1]), 1, np.array([0, 1]))

@@ -85,6 +85,7 @@ SCALED_OPEN = frozenset((
     'continuation.pseudo_arclength',
     'continuation.solve_path',
     'linear.conjugate_gradient',
+    'linear.gauss_seidel',
     'linear.iterative_refinement',
     'linear.jacobi',
     'linear.least_squares',

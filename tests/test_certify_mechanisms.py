@@ -2,10 +2,13 @@
 not samples): the enclosures of the closed form, the chapters' counts, the sampled solvers
 against the certified ones, and the stored certificates."""
 
+import dataclasses
+import json
 import pathlib
 
 import numpy as np
 import pytest
+from flint import arb
 
 from mechnum import certify, rods
 from mechnum.certify.balls import ball, bounds
@@ -16,6 +19,9 @@ from mechnum.rods import _balls as balls
 from mechnum.rods import _regular as regular
 from mechnum.rods import certified
 from mechnum.rods.certified import TWO_PI
+
+TABLE7, THETA7 = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
+TABLE8, LAMBDAS8 = pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 
@@ -160,6 +166,21 @@ def test_the_stored_pinned_certificates_verify_complete(mode):
         certify.verify(half, f, J, domain=certified.branch_boxes(1))
 
 
+def test_a_leaf_the_rods_refuse_is_a_certificate_error():
+    """A zero-width leaf on the face t = 0 (the branches' edge, where the rods' closed form
+    is refused) spliced into the stored mode-1 cover still merges into its box; verify then
+    names the leaf and the rods' reason in a CertificateError."""
+    data = json.loads((CERTIFICATES / "ch3_pinned_mode1.json").read_text())
+    part = data["leaves"][0]
+    i = next(i for i, leaf in enumerate(part) if leaf["box"][1][0] == 0.0)
+    part.insert(i, {"box": [part[i]["box"][0], [0.0, 0.0]], "test": "residual"})
+    f, J = certified.pinned_system(1.0, 1.0, [0.8, 0.1], 1)
+    with pytest.raises(certify.CertificateError,
+                       match=r"leaf .* \(residual\): the caller's functions refuse it: .*both"):
+        certify.verify(certify.Certificate.from_json(json.dumps(data)), f, J,
+                       domain=certified.branch_boxes(1))
+
+
 def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
     """The branch is read from the box's own float interval: a box that ends at t = 0 is on
     its side; one across t = 0, or beyond the chart, is refused (its closed form would be
@@ -188,3 +209,71 @@ def test_boxes_around_points_stay_in_the_chart_and_the_branch():
     for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):
         with pytest.raises(ValueError, match="points of the chart"):
             certified.around_boxes(points, 1)
+
+
+def test_arcs_meet_modulo_two_pi_at_any_number_of_turns():
+    """The polar force test's arcs, shifted by whole turns (up to 10**6), agree with the
+    arcs reduced to one turn (in floats, with a margin: arcs closer than it are skipped)."""
+    rng = np.random.default_rng(29)
+    pi = balls.B.PI
+    checked = 0
+    for _ in range(400):
+        a0, b0 = rng.uniform(-np.pi, np.pi, 2)
+        wa, wb = rng.uniform(0.01, 3.0), rng.uniform(0.01, 3.0)
+        turns = int(rng.choice([-10**6, -7, -3, 3, 4, 9, 10**6]))
+        gap = (b0 - a0) % TWO_PI                   # b's start, from a's start, in [0, 2 pi)
+        meet = gap <= wa or gap + wb >= TWO_PI
+        margin = min(abs(gap - wa), abs(gap + wb - TWO_PI))
+        if margin < 1e-6:
+            continue
+        a = (arb(a0) + 2 * turns * pi, arb(a0 + wa) + 2 * turns * pi)
+        assert certified._arcs_meet(a, (arb(b0), arb(b0 + wb))) == meet
+        checked += 1
+    assert checked > 350
+
+
+def _one_root_around(system, mech, inputs, point, half):
+    f, J, _, exclude = system(mech, inputs)
+    box = np.column_stack((point - half, point + half))
+    r = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    return r, certify.verify(r.certificate(), f, J, exclude, domain=box)
+
+
+@pytest.mark.parametrize("turns", [2, -3, 10**6])
+def test_rfr2_motor_angles_plus_whole_turns_keep_their_equilibria(turns):
+    """The same 2RFR with its motor angles turned by whole turns: a box around a known
+    equilibrium is proven to hold it (the polar test once excluded it, 'complete, 0')."""
+    point = rfr2.forward(TABLE7, THETA7, rng=0).x[0]
+    theta = THETA7 + 2 * np.pi * turns
+    r, v = _one_root_around(rfr2_certified.system, TABLE7, theta, point, 1e-3)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_pfr3_clamp_angles_plus_whole_turns_keep_their_equilibria():
+    """The same 3PFR with its clamps turned by three whole turns keeps Table 8's first
+    equilibrium (the polar test once excluded its box)."""
+    mech = dataclasses.replace(TABLE8, clamp_angles=TABLE8.clamp_angles + 6 * np.pi)
+    point = pfr3.forward(TABLE8, LAMBDAS8, rng=0).x[0]
+    r, v = _one_root_around(pfr3_certified.system, mech, LAMBDAS8, point, 1e-6)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_the_verifier_refuses_an_exclusion_by_the_old_arc_test(monkeypatch):
+    """A certificate made with the arcs compared at shifts -2..2 only (the old test) excludes
+    a box around an equilibrium at motor angles + 2 turns; the verifier, re-running the
+    caller's exclusion test, refuses it."""
+    def old(a, b):
+        two_pi = 2 * balls.B.PI
+        return any(not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1]))
+                   for k in (-2, -1, 0, 1, 2))
+    point = rfr2.forward(TABLE7, THETA7, rng=0).x[0]
+    theta = THETA7 + 4 * np.pi
+    f, J, _, exclude = rfr2_certified.system(TABLE7, theta)
+    box = np.column_stack((point - 1e-3, point + 1e-3))
+    with monkeypatch.context() as patch:
+        patch.setattr(certified, "_arcs_meet", old)
+        bad = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    assert (bad.count, bad.complete) == (0, True)          # the old hole
+    f, J, _, exclude = rfr2_certified.system(TABLE7, theta)
+    with pytest.raises(certify.CertificateError, match="exclusion test fails"):
+        certify.verify(bad.certificate(), f, J, exclude, domain=box)

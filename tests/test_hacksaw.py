@@ -30,6 +30,12 @@ from mechnum.errors import (  # noqa: E402
 from mechnum.mechanisms import hacksaw as hs  # noqa: E402
 from mechnum.mechanisms import prr3  # noqa: E402  (another mechanism, passed by mistake)
 from mechnum.mechanisms.hacksaw import study  # noqa: E402
+from mechnum.mechanisms.hacksaw._equations import (  # noqa: E402  (internal: the rates' pieces)
+    acceleration_residual,
+    rate_jacobian,
+    velocity_residual,
+)
+from mechnum.mechanisms.hacksaw._exact import solve_rates  # noqa: E402
 from mechnum.mechanisms.hacksaw._kernels import MODES  # noqa: E402
 from mechnum.mechanisms.hacksaw._model import FORMS  # noqa: E402
 from mechnum.mechanisms.hacksaw._solvers import MAX_POINTS, METHODS, PREDICTORS  # noqa: E402
@@ -171,19 +177,19 @@ BAD_EVALUATOR_CALLS = [
      "not finite"),  # the eliminated form divides by sin(theta1) = 0
     (hs.position_jacobian, (S, np.ones(2)), "q must have shape"),
     (hs.position_jacobian, (S, np.ones(3), "elim"), "form must be one of"),
-    (hs.rate_jacobian, (S, [np.inf, 0, 0]), "q must be finite"),
-    (hs.velocity_residual, (S, np.ones((2, 3)), np.ones(3), 0.0, [1.0, 2.0, 3.0]),
+    (rate_jacobian, (S, [np.inf, 0, 0]), "q must be finite"),
+    (velocity_residual, (S, np.ones((2, 3)), np.ones(3), 0.0, [1.0, 2.0, 3.0]),
      "do not broadcast"),
-    (hs.velocity_residual, (S, np.ones(3), np.ones(3), 0.0, np.nan), "omega2 must be finite"),
-    (hs.velocity_residual, (S, np.full(3, 1e200), [1e200, 1, 1], 0.0, 1.0), "not finite"),
-    (hs.acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(2), 0, 0, 0), "q must have"),
-    (hs.acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(3), 0, 0, None),
+    (velocity_residual, (S, np.ones(3), np.ones(3), 0.0, np.nan), "omega2 must be finite"),
+    (velocity_residual, (S, np.full(3, 1e200), [1e200, 1, 1], 0.0, 1.0), "not finite"),
+    (acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(2), 0, 0, 0), "q must have"),
+    (acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(3), 0, 0, None),
      "alpha2 must be numeric"),
     (hs.residual, (S, np.ones(8), 0, 0, 0), "x must have shape"),
     (hs.residual, (S, np.ones(9), 0, 0, np.inf), "alpha2 must be finite"),
     (hs.jacobian, (S, np.ones((3, 3))), "x must have shape"),
     (hs.jacobian, (S, np.full(9, 1e200)), "not finite"),
-    (hs.jacobian, (prr3.EXAMPLES["Table 3"][0], np.ones(9)), "mech must be a hacksaw"),
+    (hs.jacobian, (prr3.study.EXAMPLES["Table 3"][0], np.ones(9)), "mech must be a hacksaw"),
 ]
 
 
@@ -231,9 +237,9 @@ def test_position_jacobian_is_the_derivative(g, q, th2, form):
        th2=angles, w2=rates)
 def test_velocity_residual_is_linear_with_the_rate_jacobian(g, q, v, th2, w2):
     q, v = np.array(q), np.array(v)
-    F = hs.velocity_residual(g, v, q, th2, w2)
-    F0 = hs.velocity_residual(g, np.zeros(3), q, th2, w2)
-    Jr = hs.rate_jacobian(g, q)
+    F = velocity_residual(g, v, q, th2, w2)
+    F0 = velocity_residual(g, np.zeros(3), q, th2, w2)
+    Jr = rate_jacobian(g, q)
     assert F.shape == (3,) and Jr.shape == (3, 3)
     size = np.abs(Jr).max() * np.abs(v).max() + np.abs(F0).max() + 1
     np.testing.assert_allclose(F - F0, Jr @ v, rtol=0, atol=1e-13 * size)
@@ -245,8 +251,8 @@ def test_velocity_residual_is_linear_with_the_rate_jacobian(g, q, v, th2, w2):
 def test_acceleration_residual_is_linear_with_the_position_jacobian(g, x, state):
     x = np.array(x)
     a, v, q = x[6:], x[3:6], x[:3]
-    F = hs.acceleration_residual(g, a, v, q, *state)
-    F0 = hs.acceleration_residual(g, np.zeros(3), v, q, *state)
+    F = acceleration_residual(g, a, v, q, *state)
+    F0 = acceleration_residual(g, np.zeros(3), v, q, *state)
     J = hs.position_jacobian(g, q)
     size = np.abs(J).max() * np.abs(a).max() + np.abs(F0).max() + 1
     np.testing.assert_allclose(F - F0, J @ a, rtol=0, atol=1e-13 * size)
@@ -403,12 +409,12 @@ def test_singular_points_refuse_what_is_not_a_mechanism():
 X1 = hs.closed_form(S, 1.0)
 REST = (0.0, 0.0, 0.0)
 BAD_SOLVER_CALLS = [  # function, arguments, keyword arguments, error, message
-    (hs.solve_rates, (S, X1[:4], hs.motor(1.0)), {}, ValueError, "q must have shape"),
-    (hs.solve_rates, (S, X1[:3], (0.0, 1.0)), {}, ValueError, "motor_state must be"),
-    (hs.solve_rates, (hs.Geometry(r3=0.12), [0.045, np.pi / 2, np.pi / 2],
+    (solve_rates, (S, X1[:4], hs.motor(1.0)), {}, ValueError, "q must have shape"),
+    (solve_rates, (S, X1[:3], (0.0, 1.0)), {}, ValueError, "motor_state must be"),
+    (solve_rates, (hs.Geometry(r3=0.12), [0.045, np.pi / 2, np.pi / 2],
                       (-np.pi / 2, 1.0, 0.0)), {}, SingularJacobianError, "dead point"),
     # positions off the constraints (the closed form at another time): no configuration
-    (hs.solve_rates, (S, X1[:3], hs.motor(1.2)), {}, ValueError,
+    (solve_rates, (S, X1[:3], hs.motor(1.2)), {}, ValueError,
      "q must satisfy the position constraints"),
     (hs.solve_consecutive, (S, REST, np.zeros(8)), {}, ValueError, "seed must have shape"),
     (hs.solve_consecutive, (S, REST, study.STUDY_SEED), {"tol": -1.0}, ValueError,
@@ -451,7 +457,7 @@ def test_solve_rates_recovers_the_closed_form_rates(g, state, batch):
         x = hs.closed_form(g, motor_state=states)
     except MechnumError:
         return
-    v, a = hs.solve_rates(g, x[..., :3], states)
+    v, a = solve_rates(g, x[..., :3], states)
     assert v.shape == a.shape == (batch, 3)
     # two ways to the same rates agree to round-off times the condition number of J
     cond = np.linalg.cond(hs.position_jacobian(g, x[..., :3])).max(initial=1)
@@ -557,10 +563,10 @@ def study_iterations(g, t, seed, method, predictor, tol):
             counts.append([
                 newton.solve(lambda z, m=m: hs.position_residual(g, z, m[0]), start[:3],
                              lambda z: hs.position_jacobian(g, z), **rule).iterations,
-                newton.solve(lambda z, m=m, q=q: hs.velocity_residual(g, z, q, *m[:2]),
-                             start[3:6], lambda z, q=q: hs.rate_jacobian(g, q),
+                newton.solve(lambda z, m=m, q=q: velocity_residual(g, z, q, *m[:2]),
+                             start[3:6], lambda z, q=q: rate_jacobian(g, q),
                              **rule).iterations,
-                newton.solve(lambda z, m=m, q=q, v=v: hs.acceleration_residual(g, z, v, q, *m),
+                newton.solve(lambda z, m=m, q=q, v=v: acceleration_residual(g, z, v, q, *m),
                              start[6:], lambda z, q=q: hs.position_jacobian(g, q),
                              **rule).iterations])
         x = exact[i]

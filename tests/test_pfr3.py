@@ -359,7 +359,7 @@ def test_buildable_means_stable_crossing_free_and_elastic(table8):
     assert (worst[table8.buildable] < 0.002).all()
     assert (worst[~table8.buildable] > 0.018).all() and worst.max() < 0.053
     # each rod's strain from its clamp state is the largest of its profile
-    from mechnum.rods import _regular as profile
+    from mechnum.rods import _profile as profile
     for z, e in zip(table8.x, table8.strain):
         rod = profile.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
         sampled = 0.5 * MECH.diameter * np.abs(rod.m).max(axis=-1) / MECH.EI

@@ -127,7 +127,9 @@ def test_parts_refuse_bad_input():
     with pytest.raises(ValueError, match="artists must be the dict"):
         parts(ax, {"bar": ([[0, 0], [1, 1]], {}), "pin": ([[0, 0]], {})}, drawn)
     with pytest.raises(ValueError, match="kind of part 'bar' must be one of"):
-        parts(ax, {"bar": ([[0, 0]], {"kind": "arrow"})})
+        parts(ax, {"bar": ([[0, 0]], {"kind": "spline"})})
+    with pytest.raises(ValueError, match="arrow 'load' needs two points"):
+        parts(ax, {"load": ([[0, 0]], {"kind": "arrow"})})
     with pytest.raises(ValueError, match="ax must be a matplotlib Axes"):
         parts(None, {"bar": ([[0, 0]], {})})
     with pytest.raises(ValueError, match="ax must be"):

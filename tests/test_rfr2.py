@@ -1,11 +1,13 @@
 """Tests of mechnum.mechanisms.rfr2: the flexible 2RFR mechanism of Chapter 5."""
 
+import inspect
 from pathlib import Path
 
 import numpy as np
 import pytest
 from published import check_row, read_registry
 
+from mechnum import newton
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import rfr2
 from mechnum.mechanisms.rfr2 import _analysis as analysis
@@ -266,12 +268,12 @@ def test_inverse_finds_every_equilibrium_at_an_end_effector(table7):
 
 
 def test_strain_is_the_largest_bending_strain(table7):
-    from mechnum.rods import _regular as regular
+    from mechnum.rods import _profile as profile
     strain = analysis.strain(MECH, THETA, table7.x)
     np.testing.assert_array_equal(strain, table7.strain)
     # sampled along the rods (20001 nodes): the closed form is the supremum of the samples
     for z, e in zip(table7.x, strain):
-        rod = regular.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
+        rod = profile.shape(MECH.EI, MECH.L, z[0::2], z[1::2], 1, nodes=20001)
         sampled = 0.5 * MECH.diameter * np.abs(rod.m).max(axis=-1) / MECH.EI
         assert (sampled <= e * (1 + 1e-12)).all() and (sampled > e * (1 - 1e-7)).all()
     # music wire bends 0.77 %: Table 7's solution 1 needs 0.79 %, so only the equilibrium
@@ -424,3 +426,36 @@ def test_sizes_are_bounded(table7):
         rfr2.forward_path(MECH, [THETA], table7.x[0], nodes=10**7)
     with pytest.raises(ValueError, match="bound on the work"):
         rfr2.workspace(MECH, table7.state(0), step=1e-6)
+
+
+@pytest.mark.parametrize(("theta", "modes"), [(THETA, (1, 1)), (np.radians([55.0, 62.0]), (1, 1)),
+                                              (THETA, (2, 3))])
+def test_every_start_of_the_lockstep_search_ends_as_it_does_alone(theta, modes):
+    """The search and its check run as one batch (each start's rows evaluated together with
+    the others', the halvings of all the starts that refuse a full step tried in one call);
+    each start, run alone as a batch of one (its halvings one at a time), ends with the same
+    status, after the same iterations, at the same point."""
+    from mechnum.rods import _kernels as kernels
+
+    halvings = inspect.signature(newton.solve_all).parameters["halvings"].default
+    found = elliptic.search_roots(MECH, theta, modes, 25, 3, 7)
+    rng = np.random.default_rng(7)
+    starts = np.concatenate((elliptic.sample(rng, 25), elliptic.sample(rng, 75)))
+    M = MECH
+
+    def both(z):
+        return kernels.meeting(M.EI, M.L, M.origins, theta, np.array(modes, float), M.force, z)
+
+    alone = [newton.solve_batch(both, start[None], True, tol=elliptic.SEARCH_TOL,
+                                maxiter=elliptic.SEARCH_MAXITER, damping=True,
+                                domain=elliptic.in_chart_rows, raise_on_failure=False,
+                                halvings=halvings) for start in starts]
+    lockstep = found[0]
+    assert lockstep.status.tolist() == [r.status[0] for r in alone]
+    assert lockstep.iterations.tolist() == [r.iterations[0] for r in alone]
+    assert len(set(lockstep.status.tolist())) > 2             # the test sees several outcomes
+    ends = np.array([r.x[0] for r in alone])[lockstep.status == "converged"]
+    for root in lockstep.x:           # the same roots, and no other
+        assert (np.abs(ends - root).max(axis=1) < 1e-12).any()
+    gap = np.abs(ends[:, None] - lockstep.x[None]).max(axis=-1).min(axis=1)
+    assert gap.max() < 1e-8

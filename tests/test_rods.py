@@ -18,7 +18,7 @@ from mechnum.mechanisms.elastica import study as elastica
 from mechnum.rods import NoEquilibriumError
 from mechnum.rods import _rod as rod_module
 from mechnum.rods import _shooting as shooting
-from mechnum.rods._growing import START_TOL
+from mechnum.rods._pinned import START_TOL
 
 PI = np.pi
 EPS = np.finfo(float).eps

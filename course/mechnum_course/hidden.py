@@ -52,6 +52,16 @@ def _newton():
                  (*three, np.array([1.2, 0.9, 0.4]), 1e-11, 30))]
 
 
+def _update():
+    rng = np.random.default_rng(131)
+    B = rng.normal(size=(5, 5)) + 5 * np.eye(5)
+    scaled = np.diag([100.0, 1.0, 0.01]) + 0.001 * rng.normal(size=(3, 3))
+    return [Case("a random 5 x 5 matrix, step and change",
+                 (np.linalg.inv(B), rng.normal(size=5), rng.normal(size=5))),
+            Case("a 3 x 3 matrix of rows of sizes 100, 1 and 0.01",
+                 (np.linalg.inv(scaled), rng.normal(size=3), rng.normal(size=3)))]
+
+
 def _sweep():
     rng = np.random.default_rng(121)
     M = rng.normal(size=(7, 7))
@@ -164,7 +174,7 @@ def _force():
                  (state(heavy, 0.9), heavy, 1.62))]
 
 
-HIDDEN = {"1.1": _loop, "1.2": _newton, "2.1": _sweep, "2.2": _lstsq, "3.1": _step,
+HIDDEN = {"1.1": _loop, "1.2": _newton, "1.3": _update, "2.1": _sweep, "2.2": _lstsq, "3.1": _step,
           "3.2": _shooting, "4.1": _companion, "4.2": _prr3_step, "5.1": _tip, "5.2": _pin,
           "5.3": _krawczyk, "6.1": _index, "6.2": _rigid, "7.1": _coefficients, "7.2": _force}
 """The hidden cases of each self-checked exercise, by its number (functions that build them)."""

@@ -133,6 +133,8 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
         kind = style.pop("kind", "line")
         if kind not in _KINDS:
             raise ValueError(f"the kind of part {name!r} must be one of {_KINDS}, got {kind!r}")
+        if kind == "arrow" and len(xy) != 2:
+            raise ValueError(f"the arrow {name!r} needs two points (tail, head), got {len(xy)}")
         if artists is not None:
             if kind == "line":
                 out[name].set_data(xy[:, 0], xy[:, 1])

@@ -106,6 +106,18 @@ def _transposed_r(A, b):
     return np.linalg.solve(R.T, Q.T @ b)
 
 
+def _cancelling(A, b):  # v_0 = x_0 - sign(x_0) ||x||: cancels where x is nearly e_1
+    R, y = np.array(A, dtype=float), np.array(b, dtype=float)
+    m, n = R.shape
+    for k in range(n):
+        v = R[k:, k].copy()
+        v[0] -= np.copysign(np.linalg.norm(v), v[0])
+        v /= np.linalg.norm(v)
+        R[k:, k:] -= 2 * np.outer(v, v @ R[k:, k:])
+        y[k:] -= 2 * v * (v @ y[k:])
+    return np.linalg.solve(np.triu(R[:n]), y[:n])
+
+
 _LIBRARY_LEAST_SQUARES = (
     *(f"numpy.linalg.{name}" for name in ("qr", "lstsq", "pinv", "svd")),
     *(f"numpy.linalg._umath_linalg.{name}" for name in ("qr_*", "lstsq", "svd*")),
@@ -118,6 +130,7 @@ _LIBRARY_LEAST_SQUARES = (
 """Library routes to a least-squares solution or a QR factorization: the exercise asks for
 Householder reflections written by hand."""
 
+
 SOLUTIONS = {
     "2.1": Solution(one_sor_sweep, {"a Jacobi sweep": _jacobi,
                                     "the relaxation without (1 - omega) x_i": _unrelaxed_old_value,
@@ -127,6 +140,7 @@ SOLUTIONS = {
                                "mechnum.linear._sweeps.splitting")),
     "2.2": Solution(lstsq_householder, {"the normal equations": _normal_equations,
                                         "b left without its reflections": _no_qt,
-                                        "a transposed R": _transposed_r},
+                                        "a transposed R": _transposed_r,
+                                        "the cancelling sign": _cancelling},
                     forbidden=_LIBRARY_LEAST_SQUARES),
 }

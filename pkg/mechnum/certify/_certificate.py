@@ -94,6 +94,8 @@ def _floats(value, shape, name):
             array = np.array(value, dtype=float)
         except ValueError:
             raise _malformed(f"{name} is ragged (rows of different lengths)") from None
+        except OverflowError:
+            raise _malformed(f"{name} holds an integer beyond the float range") from None
     if len(shape) == 3 and array.size == 0 and array.ndim < 3:
         array = array.reshape(0, *(s or 0 for s in shape[1:]))
     if array.ndim != depth or any(s is not None and s != a for s, a in zip(shape, array.shape)):

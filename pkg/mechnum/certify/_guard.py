@@ -18,9 +18,14 @@ with a :class:`BallArithmeticError` naming the operation,
   (``x > 0`` is True when every point of ``x`` is positive, False when none is, and an error
   otherwise).
 
-``x.mid()``, ``x.lower()``, ``x.upper()`` and ``x.rad()`` are Balls too (exact points), so a
-midpoint cannot leak into float arithmetic either. A ball made from a box also knows the box's
-exact float ends (:func:`interval`), which the balls' radii, rounded outward, do not give back.
+``x.mid()``, ``x.lower()``, ``x.upper()`` and ``x.rad()`` are Balls too (exact points), and
+so are the ends of the box a ball was made from (:func:`interval`): none of them converts to a
+float, and a pickled or copied Ball (``__getstate__``, ``__reduce_ex__``) is refused, so no
+method of a Ball hands out a float of its points (the predicates kept give bools, bit counts and
+text). Comparisons with them are certain (they are points) and
+therefore allowed: a residual can still learn where its box lies, by comparisons alone (a
+bisection on ``x.mid() > c`` recovers the midpoint bit by bit, and one on ``x > c`` the
+ball's ends); see below.
 
 What comes back is checked (:func:`values`, :func:`matrix`, :func:`decision`): a sequence of
 exactly ``n`` balls (``flint.arb``; Python ``int`` is accepted as exact, a ``float`` is not: it
@@ -40,16 +45,31 @@ arithmetic, not all of them. The caller must still make sure that
   ``flint.acb`` or ``flint.arb_mat`` built from the balls (their results are plain flint
   objects), static functions such as ``arb.atan2``, the text of ``str(x)``, or state kept
   between calls;
-* the predicates of a ball (``x.contains(0)``, ``x.is_finite()``, ``x.rad()`` compared with a
-  number) are used only to choose between formulas that each enclose ``f`` on that ball.
+* the answers of certain comparisons and of the predicates of a ball (``x > 0``,
+  ``x.mid() > c``, ``x.contains(0)``, ``x.is_finite()``, ``x.rad()`` compared with a number)
+  are used only to choose between formulas that each enclose ``f`` on that ball, never to
+  compute a value: the guard cannot tell a branch from a bisection that recovers a point of
+  the box as a float by comparisons alone;
+* nothing reads a Ball's private attributes (``x._box``) or calls base-class methods on it
+  (``arb.mid(x)``), which are plain ``flint.arb``'s.
 
 Examples
 --------
 >>> import math
 >>> from mechnum.certify.balls import guarded
 >>> x = guarded([[3.0, 3.3]])[0]                    # holds pi, where sin is 0
->>> type(x.sin()).__name__, bool(x.sin().contains(0)), interval(x)
-('Ball', True, (3.0, 3.3))
+>>> type(x.sin()).__name__, bool(x.sin().contains(0))
+('Ball', True)
+>>> lo, hi = interval(x)                            # the box's exact ends, as Balls
+>>> type(hi).__name__, hi.is_exact(), bool(hi == 3.3)
+('Ball', True, True)
+>>> bool(x.mid() > 3.1)              # certain (a point): allowed, and it tells where x lies
+True
+>>> math.sin(sum(interval(x)) / 2)
+Traceback (most recent call last):
+...
+mechnum.certify.BallArithmeticError: float() of a ball [3.15000000000000 +/- 8.91e-17]: \
+a residual must stay in ball arithmetic (use the ball's own methods, such as x.sin())
 >>> math.sin(float(x.mid()))
 Traceback (most recent call last):
 ...
@@ -132,8 +152,8 @@ class Ball(arb):
     """An Arb ball that refuses to leave ball arithmetic (see the module).
 
     Arithmetic with numbers, ``flint.arb`` and other Balls, and arb's methods (``sin``,
-    ``sqrt``, ``mid``, ...), return Balls. ``interval(ball)`` gives the exact float ends of the
-    box it was made from (:func:`mechnum.certify.balls.guarded`), or None.
+    ``sqrt``, ``mid``, ...), return Balls. ``interval(ball)`` gives the exact ends of the box it
+    was made from (:func:`mechnum.certify.balls.guarded`), as Balls, or None.
 
     Examples
     --------
@@ -147,14 +167,14 @@ class Ball(arb):
 must stay in ball arithmetic (use the ball's own methods, such as x.sin())
     """
 
-    __slots__ = ("interval",)
+    __slots__ = ("_box",)
 
     def __init__(self, value=0, *, box=None):
         if type(value) not in (int, float) and not isinstance(value, arb):
             raise ValueError(f"a Ball is made from a ball (flint.arb) or a number, got "
                              f"{shown(value)}")
         super().__init__(value)
-        self.interval = box
+        self._box = None if box is None else (float(box[0]), float(box[1]))
 
     def __float__(self):
         _left("float()", self)
@@ -176,6 +196,12 @@ must stay in ball arithmetic (use the ball's own methods, such as x.sin())
 
     def __trunc__(self):
         _left("math.trunc()", self)
+
+    def __getstate__(self):
+        _left("pickling (__getstate__)", self)
+
+    def __reduce_ex__(self, protocol):
+        _left("pickling or copying (__reduce_ex__)", self)
 
     __lt__ = _certain("__lt__", "<", arb.__lt__, arb.__ge__)
     __le__ = _certain("__le__", "<=", arb.__le__, arb.__gt__)
@@ -226,16 +252,18 @@ for _name, _value in vars(arb).items():
 
 
 def interval(x: arb) -> tuple | None:
-    """The exact float ends ``(lo, hi)`` of the box a :class:`~mechnum.certify.Ball` was made from
-    (:func:`mechnum.certify.balls.guarded`), or None (a plain ball, or a Ball computed from
-    others).
+    """The exact ends ``(lo, hi)`` of the float box a :class:`~mechnum.certify.Ball` was made
+    from (:func:`mechnum.certify.balls.guarded`), as Balls (exact points, so comparisons with
+    them are certain), or None (a plain ball, or a Ball computed from others).
 
     Examples
     --------
-    >>> interval(Ball(arb(1), box=(1.0, 1.0))), interval(arb(1))
-    ((1.0, 1.0), None)
+    >>> lo, hi = interval(Ball(arb(1), box=(1.0, 1.0)))
+    >>> type(lo).__name__, bool(lo == 1), interval(arb(1))
+    ('Ball', True, None)
     """
-    return x.interval if isinstance(x, Ball) else None
+    box = x._box if isinstance(x, Ball) else None
+    return None if box is None else (Ball(box[0]), Ball(box[1]))
 
 
 def _component(value, name, where):

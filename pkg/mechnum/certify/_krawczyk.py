@@ -68,8 +68,19 @@ def residual_excludes(values: Sequence) -> bool:
 
 
 def midpoint(X: np.ndarray) -> tuple:
-    """The float midpoint of the float box ``X``, as exact balls and as floats."""
-    y = 0.5 * X[:, 0] + 0.5 * X[:, 1]
+    """A float point of the float box ``X`` near its midpoint, as exact balls and as floats.
+
+    ``0.5 lo + 0.5 hi`` is rounded twice, and can leave the box where the halves of
+    subnormal ends round up (``lo = hi = 3 * 2**-1074`` gives ``4 * 2**-1074``); the
+    mean-value form and Krawczyk's operator need a point of ``X``, so it is clipped to it.
+
+    Examples
+    --------
+    >>> tiny = 3 * 5e-324
+    >>> midpoint(np.array([[tiny, tiny], [0.0, 1.0]]))[1].tolist() == [tiny, 0.5]
+    True
+    """
+    y = np.clip(0.5 * X[:, 0] + 0.5 * X[:, 1], X[:, 0], X[:, 1])
     return [arb(float(v)) for v in y], y
 
 

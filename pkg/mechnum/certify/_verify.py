@@ -32,6 +32,7 @@ from mechnum import _validate
 from mechnum._validate import shown
 from mechnum.certify import _krawczyk as kr
 from mechnum.certify._certificate import SCOPES, Certificate, CertificateError
+from mechnum.certify._guard import ResidualError
 from mechnum.certify.balls import as_array
 from mechnum.results import Result
 
@@ -42,23 +43,78 @@ def _within(inner, outer):
     return bool(np.all(inner[:, 0] >= outer[:, 0]) and np.all(inner[:, 1] <= outer[:, 1]))
 
 
-def _interiors_meet(a, b):
-    return bool(np.all(a[:, 0] < b[:, 1]) and np.all(b[:, 0] < a[:, 1]))
+MAX_PAIRS = 2_000_000
+"""The most pairs of boxes that :func:`overlapping` and :func:`distinct_roots` compare. Their
+sweep compares two boxes only when their ranges meet along the sweep's coordinate (the one with
+the fewest such pairs), and counts these pairs before it compares any: interior-disjoint boxes
+in a row need none, a grid of ``k x k`` about ``k**3 / 2``. More than this (a few seconds of
+work) is refused with an error that gives the number."""
+CHUNK = 100_000
+"""Pairs compared at once (a bound on the sweep's memory)."""
+
+
+def meeting_pairs(boxes: np.ndarray, *, closed: bool = False) -> np.ndarray:
+    """The pairs ``(i, j)``, ``i < j``, of boxes ``(m, n, 2)`` whose interiors meet
+    (``lo_i < hi_j`` and ``lo_j < hi_i`` in every coordinate), or, if ``closed``, that meet
+    as closed boxes (``<=``); sorted. Sort and sweep: ``O(m log m)`` plus the pairs whose
+    ranges meet along the sweep's coordinate (at most ``MAX_PAIRS``).
+
+    Raises
+    ------
+    ValueError
+        If more than ``MAX_PAIRS`` pairs would have to be compared.
+
+    Examples
+    --------
+    >>> meeting_pairs(np.array([[[0.0, 1.0]], [[1.0, 2.0]], [[1.5, 3.0]]])).tolist()
+    [[1, 2]]
+    >>> meeting_pairs(np.array([[[0.0, 1.0]], [[1.0, 2.0]]]), closed=True).tolist()
+    [[0, 1]]
+    """
+    m = len(boxes)
+    start = np.arange(m)
+    best = None
+    for d in range(boxes.shape[1] if m > 1 else 0):
+        order = np.argsort(boxes[:, d, 0], kind="stable")
+        ends = np.searchsorted(boxes[order, d, 0], boxes[order, d, 1],
+                               side="right" if closed else "left")
+        reach = np.maximum(ends - start - 1, 0)
+        if best is None or reach.sum() < best[0].sum():
+            best = reach, order
+    if best is None:
+        return np.zeros((0, 2), dtype=int)
+    reach, order = best
+    total = int(reach.sum())
+    if total > MAX_PAIRS:
+        raise ValueError(f"{m} boxes give {total} pairs to compare (boxes whose ranges meet "
+                         f"along every coordinate), more than MAX_PAIRS = {MAX_PAIRS}")
+    first = np.repeat(start, reach)
+    second = first + 1 + np.arange(total) - np.repeat(np.cumsum(reach) - reach, reach)
+    found = []
+    for c in range(0, total, CHUNK):
+        i, j = order[first[c:c + CHUNK]], order[second[c:c + CHUNK]]
+        a, b = boxes[i], boxes[j]
+        if closed:
+            meet = np.all((a[..., 0] <= b[..., 1]) & (b[..., 0] <= a[..., 1]), axis=1)
+        else:
+            meet = np.all((a[..., 0] < b[..., 1]) & (b[..., 0] < a[..., 1]), axis=1)
+        found.append(np.sort(np.column_stack((i[meet], j[meet])), axis=1))
+    pairs = np.concatenate(found) if found else np.zeros((0, 2), dtype=int)
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
 
 
 def overlapping(boxes: np.ndarray) -> tuple | None:
-    """The indices ``(i, j)`` of two boxes whose interiors meet, or None (faces may touch).
+    """The indices ``(i, j)`` of two boxes whose interiors meet (the first such pair), or None
+    (faces may touch). ``O(m log m)`` for boxes that meet along few ranges
+    (:func:`meeting_pairs`).
 
     Examples
     --------
     >>> overlapping(np.array([[[0.0, 1.0]], [[1.0, 2.0]], [[1.5, 3.0]]]))
     (1, 2)
     """
-    for i in range(len(boxes)):
-        for j in range(i + 1, len(boxes)):
-            if _interiors_meet(boxes[i], boxes[j]):
-                return i, j
-    return None
+    pairs = meeting_pairs(np.asarray(boxes, dtype=float))
+    return (int(pairs[0, 0]), int(pairs[0, 1])) if len(pairs) else None
 
 
 def sorted_roots(found: list) -> list:
@@ -81,7 +137,10 @@ def distinct_roots(leaves: Sequence) -> tuple:
 
     Each Krawczyk leaf's test box holds exactly one root, in its enclosure. Two leaves hold
     the same root when one's enclosure lies in the other's test box; different ones when their
-    enclosures are disjoint; anything else is undecided (the count is then not proven).
+    enclosures are disjoint; anything else is undecided (the count is then not proven). Each
+    leaf is compared, in order, with the roots found before it whose leaf's boxes meet its
+    own (:func:`meeting_pairs`; the others are disjoint from it): ``O(k log k)`` for ``k``
+    leaves of few roots each.
 
     Returns
     -------
@@ -98,12 +157,17 @@ def distinct_roots(leaves: Sequence) -> tuple:
     >>> [E.tolist() for E in roots], undecided
     ([[[0.45, 0.55]]], [])
     """
-    found, undecided = [], []
-    for leaf in leaves:
-        if leaf.test != "krawczyk":
-            continue
+    proven = [leaf for leaf in leaves if leaf.test == "krawczyk"]
+    hulls = np.array([np.column_stack((np.minimum(leaf.enclosure[:, 0], leaf.test_box[:, 0]),
+                                       np.maximum(leaf.enclosure[:, 1], leaf.test_box[:, 1])))
+                      for leaf in proven])
+    earlier = [[] for _ in proven]          # the leaves before j whose boxes meet j's
+    for i, j in (meeting_pairs(hulls, closed=True) if proven else ()):
+        earlier[j].append(i)
+    found, founder, undecided = [], {}, []
+    for j, leaf in enumerate(proven):
         E, T = leaf.enclosure, leaf.test_box
-        for root in found:
+        for root in (found[founder[i]] for i in earlier[j] if i in founder):
             if _within(E, root[1]) or _within(root[0], T):
                 root[0] = np.column_stack((np.maximum(E[:, 0], root[0][:, 0]),
                                            np.minimum(E[:, 1], root[0][:, 1])))
@@ -112,6 +176,7 @@ def distinct_roots(leaves: Sequence) -> tuple:
                 undecided.append((leaf, "its root's enclosure overlaps another's"))
                 break
         else:
+            founder[j] = len(found)
             found.append([E, T])
     return sorted_roots([E for E, _ in found]), undecided
 
@@ -236,7 +301,10 @@ def _check_domain(certificate, domain, scope):
             if not any(box.shape == D.shape and _within(box, D) for D in domain):
                 raise CertificateError(f"searched box {b}, {box.tolist()}, lies in no box of "
                                        f"the domain, {_listed(domain)}")
-    pair = overlapping(boxes)
+    try:
+        pair = overlapping(boxes)
+    except ValueError as error:
+        raise CertificateError(f"the searched boxes cannot be checked: {error}") from None
     if pair is not None:
         raise CertificateError(f"the searched boxes {pair[0]} and {pair[1]} overlap: "
                                f"{boxes[pair[0]].tolist()}, {boxes[pair[1]].tolist()}")
@@ -303,8 +371,9 @@ def verify(certificate: Certificate, residual: Callable, jacobian: Callable,
     Raises
     ------
     CertificateError
-        If anything derived differs from what the certificate stores or needs; the message
-        names the leaf or box and both values.
+        If anything derived differs from what the certificate stores or needs, or the
+        caller's functions refuse a leaf (a ``ValueError``: a box they are not defined on);
+        the message names the leaf or box and both values.
     ValueError
         If an argument is not what it must be (no ``domain``, say).
 
@@ -344,7 +413,14 @@ def verify(certificate: Certificate, residual: Callable, jacobian: Callable,
     for b, (box, part) in enumerate(zip(certificate.boxes, certificate.leaves)):
         _check_cover(b, box, part)
         for i, leaf in enumerate(part):
-            problem = _check_leaf(leaf, residual, jacobian, counter, exclude, box)
+            try:
+                problem = _check_leaf(leaf, residual, jacobian, counter, exclude, box)
+            except ResidualError:
+                raise
+            except ValueError as error:            # the caller's functions refuse the leaf
+                raise CertificateError(f"leaf {i} of box {b}, {leaf.box.tolist()} "
+                                       f"({leaf.test}): the caller's functions refuse it: "
+                                       f"{error}") from error
             if problem:
                 raise CertificateError(f"leaf {i} of box {b}, {leaf.box.tolist()} "
                                        f"({leaf.test}): {problem}")

@@ -87,7 +87,7 @@ def guarded(box: ArrayLike) -> list:
     --------
     >>> from mechnum.certify._guard import interval
     >>> [interval(x) for x in guarded([[0.0, 1.0], [2.0, 2.0]])]
-    [(0.0, 1.0), (2.0, 2.0)]
+    [(0, 1.00000000000000), (2.00000000000000, 2.00000000000000)]
     """
     return [guard.Ball(ball(lo, hi), box=(float(lo), float(hi))) for lo, hi in box]
 

@@ -7,7 +7,7 @@ stored right ones:
 
 >>> from mechnum import exercises
 >>> sorted(exercises.CHECKS)[:3]
-['1.1', '1.2', '2.1']
+['1.1', '1.2', '1.3']
 >>> def rk4_step(f, s, y, h):
 ...     return y + h * f(s, y)          # Euler's method, not RK4
 >>> result = exercises.check("3.1", rk4_step)
@@ -40,9 +40,9 @@ __all__ = ["CHECKS", "EXERCISES", "ROLES", "TIME_LIMIT", "Result", "cells", "che
            "check_cases", "check_code", "starter", "statement"]
 
 EXERCISES = {e.number: e for e in (
-    _ch1.LOOP, _ch1.NEWTON, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING, _ch4.COMPANION,
-    _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK, _ch6.INDEX, _ch6.RIGID,
-    _ch7.COEFFICIENTS, _ch7.FORCE)}
+    _ch1.LOOP, _ch1.NEWTON, _ch1.UPDATE, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING,
+    _ch4.COMPANION, _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK, _ch6.INDEX,
+    _ch6.RIGID, _ch7.COEFFICIENTS, _ch7.FORCE)}
 """Every self-checked exercise by its number: its statement, starter, public cases, the form
 of its answer, its typical mistakes and its points."""
 
@@ -164,7 +164,7 @@ def check_code(number: str) -> str:
     --------
     >>> from mechnum import exercises
     >>> exercises.check_code("1.2")
-    'exercises.check("1.2", newton_study)'
+    'exercises.check("1.2", newton_damped)'
     """
     return f'exercises.check("{number}", {_exercise(number).name})'
 

@@ -38,7 +38,9 @@ What the package holds: the rod, its equations and its RK4 sweeps (:class:`Rod`,
 (:func:`clamped_pinned`, :func:`elliptic_k`, :func:`elliptic_parameters`,
 :func:`k_rel_for_force`) and in the regular chart ``(psi, t)``, which holds every digit
 (:func:`clamped_pinned_regular` with its Jacobian, :func:`shape`, :func:`k_rel_from_t`,
-:func:`t_from_k_rel`; :class:`ClampedRods` for a mechanism's rods in a solver's loop); every
+:func:`t_from_k_rel`; :class:`ClampedRods` for a mechanism's rods in a solver's loop, and
+the compiled residual and Jacobian of rods whose tips meet, :class:`MeetingRods`, for the
+searches and the atlas of the rod mechanisms); every
 equilibrium through a point and what a shot rod is (:func:`pinned_equilibria`,
 :func:`classify`); the shooting solvers, single and multiple (:func:`shoot_cantilever`,
 :func:`shoot_pinned`, :func:`shoot_pinned_multiple`, :class:`Shooting`); the second variation
@@ -66,15 +68,16 @@ from mechnum.rods._elliptic import (
     k_rel_for_force,
 )
 from mechnum.rods._loading import DeadLoad
+from mechnum.rods._meeting import MeetingRods
 from mechnum.rods._multiple import shoot_pinned_multiple
 from mechnum.rods._pinned import classify, pinned_equilibria
+from mechnum.rods._profile import shape
 from mechnum.rods._regular import (
     T_MAX,
     ClampedRods,
     clamped_pinned_regular,
     in_chart,
     k_rel_from_t,
-    shape,
     t_from_k_rel,
 )
 from mechnum.rods._rod import Rod, ShotRods, equations, integrate, tip_jacobian
@@ -91,7 +94,7 @@ from mechnum.rods._shooting import Shooting as Shooting
 from mechnum.rods._stability import constrained_eigenvalues, constrained_index, rod_block
 from mechnum.rods.certified import certify_pinned
 
-__all__ = ["SHOOTING_TOL", "T_MAX", "ClampedRods", "DeadLoad", "NoEquilibriumError",
+__all__ = ["SHOOTING_TOL", "T_MAX", "ClampedRods", "DeadLoad", "MeetingRods", "NoEquilibriumError",
            "NotAnElasticaError", "Rod", "ShotRods", "UnresolvedRodError", "cantilever",
            "certify_pinned", "chart_from_clamps", "clamped_pinned", "clamped_pinned_regular",
            "classify", "constrained_eigenvalues", "constrained_index",

@@ -99,8 +99,8 @@ def peak_moment(EI: float, clamp_moment: ArrayLike, force: ArrayLike, clamp_angl
     --------
     A rod of mode 2: the largest moment is inside, beyond the clamp's 0.2 N m.
 
-    >>> from mechnum.rods import _regular as regular
-    >>> rod = regular.shape(1.0, 1.0, 2.0, -0.6, 2, nodes=20001)
+    >>> from mechnum.rods import shape
+    >>> rod = shape(1.0, 1.0, 2.0, -0.6, 2, nodes=20001)
     >>> peak = peak_moment(1.0, rod.m[0], rod.force, 0.0, 2)
     >>> bool(abs(peak - np.abs(rod.m).max()) < 1e-6), bool(peak > abs(rod.m[0]))
     (True, True)

@@ -20,6 +20,7 @@ from scipy.special import elliprf
 
 from mechnum import _validate
 from mechnum.errors import MechnumError
+from mechnum.rods import _profile as profile
 from mechnum.rods import _regular as regular
 from mechnum.rods._growing import growing_branch
 from mechnum.rods._jacobi import amplitude
@@ -189,7 +190,7 @@ def clamped_pinned(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, k_rel: ArrayLike
     complement = np.sqrt(one_minus_kmin * (1.0 - np.abs(k_rel)) * (1.0 + np.abs(k)))
     tip_angle = psi - 2.0 * np.arctan2(complement, k * np.sin(phi2))
     R = np.hypot(end.force[..., 0], end.force[..., 1])
-    rod = None if nodes is None else regular.shape(EI, L, psi, t, mode, nodes=nodes)
+    rod = None if nodes is None else profile.shape(EI, L, psi, t, mode, nodes=nodes)
     return EllipticRod(k, k_min, phi1, phi2, R, end.force, end.tip, tip_angle,
                        end.clamp_moment, rod)
 

@@ -10,19 +10,18 @@ variable ``zeta`` in which every quantity is smooth and free of cancellation, fr
 ``1e-200`` (linear beam theory to rounding) to ``P L**2 / EI`` near ``1e5``; the study's formulas
 (:func:`mechnum.rods.clamped_pinned`) lose the small loads and the large ones. It serves
 :func:`mechnum.rods.cantilever`, the default starts of the shooting solvers
-(:func:`growing_rod`, :func:`pinned_start`), :func:`mechnum.rods.k_rel_for_force`
+(:func:`growing_rod`, the pinned rod's start), :func:`mechnum.rods.k_rel_for_force`
 (:func:`growing_branch`) and the shapes of nearly unloaded rods (:func:`branch_shape`).
 """
 
-import functools
 import math
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import elliprd, elliprf
 
-from mechnum import _validate, newton
-from mechnum.errors import ConvergenceError, MechnumError
+from mechnum import _validate
+from mechnum.errors import ConvergenceError
 from mechnum.rods._rod import MAX_NODES, Rod
 
 # The growing branch in Carlson's symmetric form (the cantilever and k_rel_for_force).
@@ -46,22 +45,14 @@ _TINY = np.finfo(float).tiny  # keeps R_D finite where a = cos(psi/2) is 0 (its 
 _TAN_LIMIT = 1.5  # the start's beam-column law arctan(...) is used below the Euler plateau pi/2
 _TANH_LIMIT = 0.999  # and kept away from zeta = infinity
 _B_MIN = 1e-150  # below, sin(psi/2)**2 underflows; the rod deflects by less than b L: none
-_SERIES = 5e-3  # _rf_excess uses its series below: error near 4e-17 of the excess at 5e-3;
-#                  beyond, the difference loses at most eps / 5e-3 of it
+SERIES = 5e-3
+"""Below this relative spread of its arguments, :func:`_rf_excess` uses its series (error near
+``4e-17`` of the excess at ``5e-3``); beyond, the difference loses at most ``eps / 5e-3`` of
+it."""
 _STRAIGHT = 0.25  # _Branch.tip: a deviation from the straight rod where |excess| is below
 _SMALL_STEP = 1e-8  # a Newton step below 1e-8 t1 leaves an error near 1e-16 t1 (quadratic rate)
 CLOSED_FORM_TOL = 1e-14  # relative residual of lambda L at which the cantilever's modulus is kept
 CLOSED_FORM_MAXITER = 100  # Newton-bisection steps for it: bisection alone needs some 60
-START_TOL = 1e-9
-"""Residual (tip distance over ``L``) at which the closed-form start of a pinned rod is good
-enough: RK4 on the requested grid differs from the closed form by more."""
-START_MAXITER = 60
-"""Most iterations of that start's Newton (two or three on a transverse load, up to some seven
-on loads within 45 degrees of transverse, from ``P L**2 / EI = 0.1`` to 15)."""
-START_TABLE = np.linspace(0.0, 8.0, 61)
-"""The values of ``lambda L`` at which the start's table of transversely loaded cantilevers is
-computed: ``P L**2 / EI`` up to 64, deflections up to ``0.93 L`` (a point beyond starts from
-the last)."""
 
 
 def _folded(psi):
@@ -134,18 +125,39 @@ def chart_tip(a: np.ndarray, b: np.ndarray, v: np.ndarray, w: np.ndarray) -> tup
     """
     # unchecked: a kernel of the closed form's inner loop (its callers checked the chart)
     a, b, v, w = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (a, b, v, w)))
+    X = w * a * a / (a * a + b * b * v * v)
+    return tip_deviations(a, b, v, w, elliprf(X, 1.0, w), elliprd(X, 1.0, w))
+
+
+def tip_deviations(a, b, v, w, RF, RD, rates=True) -> tuple:
+    """:func:`chart_tip` from the partial wave's ``R_F = R_F(X, 1, w)`` and ``R_D = R_D(X, 1,
+    w)`` (the closed form has them), unchecked as it is: arrays of one shape. Its Carlson
+    integrals: ``R_D(1, w, X)`` with the ``rates`` (which it returns only then: else ``(du,
+    dw)``), and :func:`_rf_excess`'s where its series does not serve.
+
+    Examples
+    --------
+    >>> a, b, v, w = (np.array([x]) for x in (np.cos(1.0), np.sin(1.0), 0.3, 0.91))
+    >>> X = w * a * a / (a * a + b * b * v * v)
+    >>> fast = tip_deviations(a, b, v, w, elliprf(X, 1.0, w), elliprd(X, 1.0, w))
+    >>> bool(np.allclose(fast, chart_tip(a, b, v, w), rtol=0, atol=0))
+    True
+    """
     aa, sa = np.abs(a), np.where(a < 0, -1.0, 1.0)
     m, p = a * a + b * b * v * v, b * b * w
-    k, X = np.sqrt(m), w * a * a / m
-    RF, RD = elliprf(X, 1.0, w), elliprd(X, 1.0, w)
-    vI, g1, g2 = k / RF, p * v * v * RD / (3.0 * m * RF), p * v * RD / (3.0 * k * RF * RF)
+    k = np.sqrt(m)
+    vI = k / RF
+    du = 2.0 * b * b * v * v * (1.0 - w * RD / (3.0 * RF))
+    dw = -2.0 * sa * b * vI * _rf_excess(a, b, v, w)
+    if not rates:
+        return du, dw
+    X = w * a * a / m
+    g1, g2 = p * v * v * RD / (3.0 * m * RF), p * v * RD / (3.0 * k * RF * RF)
     u_v = 2.0 * (v * p + m * v * g1 * g1 + aa * g2) / w
     u_psi = -sa * (b * vI * (1.0 - g1) + aa * b * w + m * aa * g1 * g1 / b)
     X_v = -2.0 * a * a * v * (m + b * b * w) / (m * m)
     vI_v = b * b * v / (k * RF) + k * (elliprd(1.0, w, X) * X_v - 2.0 * v * RD) / (6.0 * RF * RF)
     vI_psi = -vI * vI * sa * (b * b / m - aa * g1 / vI) / (2.0 * b)
-    du = 2.0 * b * b * v * v * (1.0 - w * RD / (3.0 * RF))
-    dw = -2.0 * sa * b * vI * _rf_excess(a, b, v, w)
     return du, dw, u_v, u_psi, 2.0 * b * vI_v, a * vI + 2.0 * b * vI_psi
 
 
@@ -329,9 +341,9 @@ def _rf_excess(a, b, v, w):
     R_F(a**2, a**2, a**2)``: for small loads the excess is a difference of nearly equal values.
     The three arguments exceed ``a**2`` by ``delta = v**2 (-a**2, b**2, b**2 w - a**2)``,
     computed without cancellation; where they differ from their mean ``A`` by less than
-    ``_SERIES A``, Carlson's series of R_F about ``A`` (DLMF 19.36.1, with an error of the
+    ``SERIES A``, Carlson's series of R_F about ``A`` (DLMF 19.36.1, with an error of the
     eighth order in the deviations) gives the excess from the ``delta`` alone. Beyond, the
-    plain difference loses at most ``eps / _SERIES`` of the excess.
+    plain difference loses at most ``eps / SERIES`` of the excess.
     """
     deltas = (-(v * a) ** 2, (v * b) ** 2, v * v * (b * b * w - a * a))
     mean = sum(deltas) / 3.0
@@ -340,13 +352,22 @@ def _rf_excess(a, b, v, w):
         if a == 0.0:
             return -1.0
         X, Y = ((mean - delta) / A for delta in deltas[:2])
-        if max(abs(X), abs(Y), abs(X + Y)) > _SERIES:
+        if max(abs(X), abs(Y), abs(X + Y)) > SERIES:
             return _rf_far(a, b, v, w)
         return _rf_near(abs(a), mean, A, X, Y)
     with np.errstate(divide="ignore", invalid="ignore"):       # a = 0 is answered below
         X, Y = ((mean - delta) / A for delta in deltas[:2])
-        out = np.where(np.maximum(np.maximum(np.abs(X), np.abs(Y)), np.abs(X + Y)) > _SERIES,
-                       _rf_far(a, b, v, w), _rf_near(np.abs(a), mean, A, X, Y))
+        far = np.maximum(np.maximum(np.abs(X), np.abs(Y)), np.abs(X + Y)) > SERIES
+        if not far.any():
+            out = _rf_near(np.abs(a), mean, A, X, Y)
+        elif far.all():
+            out = _rf_far(a, b, v, w)
+        else:      # each formula on its own rows (the far one costs an integral)
+            a, b, v, w, mean, A, X, Y = np.broadcast_arrays(a, b, v, w, mean, A, X, Y)
+            out = np.empty(far.shape)
+            out[far] = _rf_far(a[far], b[far], v[far], w[far])
+            near = ~far
+            out[near] = _rf_near(np.abs(a[near]), mean[near], A[near], X[near], Y[near])
     return np.where(a == 0, -1.0, out)
 
 
@@ -367,10 +388,9 @@ def _rf_near(aa, mean, A, X, Y):
 
 
 class _Branch:
-    """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and the
-    default start of :func:`mechnum.rods.shoot_pinned`: the force direction's ``a``
-    (signed as ``n_y``) and ``b``, ``v``, ``s = sqrt(1 - v**2)``, ``Lam = lambda L`` and
-    ``(c, d) = (cos psi, sin psi)``.
+    """One rod of the growing branch (mode 1) in the clamp's frame, for the cantilever and its
+    shape: the force direction's ``a`` (signed as ``n_y``) and ``b``, ``v``,
+    ``s = sqrt(1 - v**2)``, ``Lam = lambda L`` and ``(c, d) = (cos psi, sin psi)``.
 
     In the force's frame, the point at arc fraction ``sigma`` lies ``L (sigma c + along)``
     along the force and ``-2 sign(a) b L (v - eta) / Lam`` across it, with ``along = 2 (b
@@ -431,69 +451,3 @@ class _Branch:
     def moment(self, eta):
         """``m L / EI`` where ``sin(t) = b eta / |k|``."""
         return 2.0 * self.Lam * self.sign * self.b * eta
-
-
-def _growing_tip(psi, Lam):
-    """The growing branch at the force direction ``psi`` (any real) and ``lambda L = Lam``
-    (taken as ``|Lam|``, at most the closed form's range): ``(x(L) / L, y(L) / L, m(0) L / EI)``.
-    The chart of :func:`pinned_start`."""
-    a, b = _folded(psi)
-    Lam = min(max(abs(Lam), _TINY), _ZETA_MAX)
-    rod = _Branch.solved(a, b, Lam, math.cos(psi), math.sin(psi), CLOSED_FORM_TOL,
-                         CLOSED_FORM_MAXITER)
-    return (*rod.tip(), rod.moment(rod.v))
-
-
-@functools.cache
-def _transverse_table():
-    """``(y(L) / L, P L**2 / EI)`` of cantilevers under a transverse tip load ``P`` at
-    ``lambda L`` in :data:`START_TABLE`, by the closed form (computed once)."""
-    y = [_growing_tip(0.5 * math.pi, lam)[1] for lam in START_TABLE.tolist()]
-    return np.array(y), START_TABLE ** 2
-
-
-def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.ndarray:
-    """The closed-form cantilevers through points: the default start of
-    :func:`mechnum.rods.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3).
-
-    A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
-    branch) under its tip force. Damped Newton drives the closed form's tip to the point in
-    the force's components ``n L**2 / EI`` in the clamp's frame (in which the tip of a nearly
-    straight rod is nearly linear: its deflection follows ``n_y``, its shortening ``n_x``
-    weakly), from the transverse load whose cantilever deflects as far as the point does:
-    ``3 EI Y / L**3`` at small loads (linear beam theory, ``Y`` the point's offset from the
-    clamp line), interpolated in a table of the closed form (:func:`_transverse_table`) at
-    large ones. If Newton stops short (no mode-1 rod reaches the point, or a nearly straight
-    rod leaves its axial force ill-determined), its best iterate is the start.
-
-    Examples
-    --------
-    >>> tip = growing_rod(1.0, 1.0, [0.0, 1.0]).tip              # P L^2/EI = 1
-    >>> (np.round(pinned_start(1.0, 1.0, tip[None], 0.0), 6) + 0.0).tolist()
-    [[0.943567, 0.0, 1.0]]
-    """
-
-    def growing(n):      # the closed form at the load n = (n_x, n_y) L**2 / EI
-        return _growing_tip(math.atan2(n[1], n[0]), math.sqrt(math.hypot(n[0], n[1])))
-
-    EI, L, theta0 = _validate.numbers(dict(EI=EI, L=L, theta0=theta0), positive=("EI", "L"))
-    points = _validate.array(points, "points", shape=(None, 2))
-    deflections, loads = _transverse_table()
-    c, s = math.cos(theta0), math.sin(theta0)
-    starts = np.empty((len(points), 3))
-    for i, (px, py) in enumerate(points.tolist()):
-        X, Y = (c * px + s * py) / L, (c * py - s * px) / L   # the point in the clamp's frame
-
-        def fun(n, point=(X, Y)):      # n of shape (2,), or (1, 2) in the line search
-            return np.reshape(np.subtract(growing(n.ravel())[:2], point), n.shape)
-
-        n = np.array([0.0, math.copysign(np.interp(abs(Y), deflections, loads), Y)])
-        try:
-            n = newton.solve(fun, n, tol=START_TOL, maxiter=START_MAXITER,
-                             criterion="residual", damping=True).x
-        except MechnumError as error:
-            n = error.result.history[np.argmin(error.result.residual_norms)]
-        nx, ny = n.tolist()
-        starts[i] = (growing(n)[2] * EI / L,
-                     EI / L ** 2 * (c * nx - s * ny), EI / L ** 2 * (s * nx + c * ny))
-    return starts

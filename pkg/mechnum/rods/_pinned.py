@@ -11,6 +11,7 @@ use). :func:`pinned_equilibria` samples the chart and polishes the candidates;
 spurious: a solution of the discrete equations near which no equilibrium lies.
 """
 
+import functools
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -18,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
+from mechnum.rods import _kernels as kernels
 from mechnum.rods import _regular as regular
 from mechnum.rods._elliptic import TWO_PI
 from mechnum.rods._rod import Rod, as_modes, rod_scales
@@ -38,6 +40,20 @@ RESOLVED = 1e-3
 """The largest relative gap between a rod found by shooting and its nearest equilibrium that
 :func:`classify` accepts as RK4's error: a resolved rod is off by far less (``1e-6`` on the
 thesis's 61 nodes), a spurious one by order one."""
+START_TOL = 1e-9
+"""Residual (tip distance over ``L``) at which the closed-form start of a pinned rod is good
+enough: RK4 on the requested grid differs from the closed form by more."""
+START_MAXITER = 60
+"""Most iterations of that start's Newton (two to four on a transverse load, up to some seven
+on loads within 45 degrees of transverse, from ``P L**2 / EI = 0.1`` to 15)."""
+START_HALVINGS = 20
+"""Most halvings of that Newton's step (as :func:`mechnum.newton.solve`'s damping by
+default): a start whose step must be cut further has stopped short, and its best iterate is
+the start."""
+START_TABLE = np.linspace(0.0, 0.99, 67)
+"""The chart's ``t`` at which the start's table of transversely loaded cantilevers is computed:
+deflections up to ``0.97 L`` (``P L**2 / EI`` up to some 700; a point beyond starts from the
+last)."""
 
 
 def _polish(EI, L, point, mode, starts, tol, maxiter):
@@ -334,3 +350,50 @@ def _nearest(gaps, z):
         if np.abs(step).max() <= 1e-14 * (1.0 + np.abs(z).max()):
             return z
     return z
+
+
+@functools.cache
+def _transverse_table():
+    """``(y(L) / L, P L**2 / EI)`` of cantilevers under a transverse tip load ``P`` (the growing
+    branch of mode 1 at ``psi = pi / 2``) at ``t`` in :data:`START_TABLE` (computed once)."""
+    rod = regular.closed_form(1.0, 1.0, 0.5 * np.pi, START_TABLE[1:], 1, jacobian=False)
+    return (np.concatenate(([0.0], rod.tip[:, 1])),
+            np.concatenate(([0.0], np.hypot(rod.force[:, 0], rod.force[:, 1]))))
+
+
+def pinned_start(EI: float, L: float, points: np.ndarray, theta0: float) -> np.ndarray:
+    """The closed-form cantilevers through points: the default start of
+    :func:`mechnum.rods.shoot_pinned`, ``(m0, n_x, n_y)`` of shape (batch, 3).
+
+    A pinned tip carries no moment, so a pinned rod of mode 1 is the cantilever (growing
+    branch) under its tip force. Damped Newton drives the closed form's tip to the point in
+    the force's components ``n L**2 / EI`` in the clamp's frame (in which the tip of a nearly
+    straight rod is nearly linear: its deflection follows ``n_y``, its shortening ``n_x``
+    weakly), with the analytic Jacobian of the regular chart (compiled,
+    ``rods``'s kernels module, ``pinned_starts``), from the transverse load whose cantilever
+    deflects as far as the point does: interpolated in a table of the closed form
+    (:func:`_transverse_table`; linear beam theory, ``3 EI Y / L**3`` for the point's offset
+    ``Y`` from the clamp line, at small loads). If Newton stops short (no mode-1 rod reaches
+    the point, or a nearly straight rod leaves its axial force ill-determined), its last
+    iterate, the best, is the start.
+
+    Examples
+    --------
+    >>> from mechnum.rods._growing import growing_rod
+    >>> tip = growing_rod(1.0, 1.0, [0.0, 1.0]).tip              # P L^2/EI = 1
+    >>> (np.round(pinned_start(1.0, 1.0, tip[None], 0.0), 6) + 0.0).tolist()
+    [[0.943567, 0.0, 1.0]]
+    """
+    EI, L, theta0 = _validate.numbers(dict(EI=EI, L=L, theta0=theta0), positive=("EI", "L"))
+    points = _validate.array(points, "points", shape=(None, 2))
+    deflections, loads = _transverse_table()
+    c, s = np.cos(theta0), np.sin(theta0)
+    X, Y = (c * points[:, 0] + s * points[:, 1]) / L, (c * points[:, 1] - s * points[:, 0]) / L
+    n_y = np.copysign(np.interp(np.abs(Y), deflections, loads), Y)
+    n_y = np.where(n_y == 0.0, np.copysign(3.0 * _EPS, Y), n_y)   # on the clamp line
+    start = kernels.pinned_starts(np.column_stack((X, Y)), np.column_stack((0.0 * Y, n_y)),
+                                  tol=START_TOL, maxiter=START_MAXITER,
+                                  halvings=START_HALVINGS)
+    n = start[:, 1:] * EI / L ** 2
+    return np.column_stack((start[:, 0] * EI / L, c * n[:, 0] - s * n[:, 1],
+                            s * n[:, 0] + c * n[:, 1]))

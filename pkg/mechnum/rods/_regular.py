@@ -47,9 +47,8 @@ from numpy.typing import ArrayLike
 from scipy.special import elliprd, elliprf
 
 from mechnum import _validate
-from mechnum.rods._growing import branch_shape, chart_tip
-from mechnum.rods._jacobi import amplitude
-from mechnum.rods._rod import MAX_NODES, Rod, as_modes, as_vectors, batch_shape, rod_scales
+from mechnum.rods._growing import tip_deviations
+from mechnum.rods._rod import as_modes, as_vectors, batch_shape, rod_scales
 
 TWO_PI = 2.0 * np.pi
 # Largest q = t**2 / (1 - t**2): 1 - k**2 = b**2 exp(-q) must stay a normal double (exp(-708)
@@ -200,31 +199,21 @@ def clamped_pinned_regular(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: Array
     return closed_form(EI, L, psi, t, mode, jacobian=jacobian)
 
 
-def _integrals(a, b, v, w, whole=True):
-    """``(k**2, p, I, G, p I + k**2 G, K, E(k))`` of :func:`_waves` (``K, E(k)`` None unless
-    ``whole``)."""
-    m, p = a * a + b * b * v * v, b * b * w
-    k = m ** 0.5
-    X = w * a * a / m
-    Iw = v / k * elliprf(X, 1.0, w)
-    G = p * v ** 3 / (3.0 * k ** 3) * elliprd(X, 1.0, w)
-    K = Ek = None
-    if whole:
-        K = elliprf(0.0, p, 1.0)
-        Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
-    return m, p, Iw, G, p * Iw + m * G, K, Ek
+def _rows(mask):
+    """An index of the rows ``mask`` holds: the whole array if all, None if none."""
+    return slice(None) if mask.all() else np.flatnonzero(mask) if mask.any() else None
 
 
 def _waves(a, b, v, w, j, sgn, rates=True):
     """The elliptic integrals of clamped-pinned rods, and their rates: the one core.
 
-    For ``a = cos(psi/2)`` (signed), ``b = sin(psi/2) > 0``, ``v = |v|``, ``w = 1 - v**2``
-    (given, not computed from ``v``: it may be tiny), ``j = 2 mode - 1`` and ``sgn = +1`` on
-    the growing branch (``sign(t) = sign(a)``, with ``a = 0`` taken as positive) or ``-1``:
-    ``Lambda = lambda L = j K - F(phi1)`` and ``D = j E(k) - E(phi1)``. They are built from
-    the complete integrals ``K``, ``E(k)`` and the **partial wave** from ``|phi1|`` to
-    ``pi/2`` (``t = pi/2 - phi`` from 0 to ``t1``, ``cos(t1) = |a| / k``; DLMF 19.25.5, 19.25.7
-    with ``sin(t)`` for ``sin(phi)``)::
+    For rows (1-D arrays) of ``a = cos(psi/2)`` (signed), ``b = sin(psi/2) > 0``, ``v = |v|``,
+    ``w = 1 - v**2`` (given, not computed from ``v``: it may be tiny), ``j = 2 mode - 1`` and
+    ``sgn = +1`` on the growing branch (``sign(t) = sign(a)``, with ``a = 0`` taken as
+    positive) or ``-1``: ``Lambda = lambda L = j K - F(phi1)`` and ``D = j E(k) - E(phi1)``.
+    They are built from the complete integrals ``K``, ``E(k)`` and the **partial wave** from
+    ``|phi1|`` to ``pi/2`` (``t = pi/2 - phi`` from 0 to ``t1``, ``cos(t1) = |a| / k``; DLMF
+    19.25.5, 19.25.7 with ``sin(t)`` for ``sin(phi)``)::
 
         I = int_0^t1 dt / Delta = (v / k) R_F(X, 1, w),    X = w a**2 / k**2
         G = int_0^t1 sin(t)**2 dt / Delta = b**2 w v**3 / (3 k**3) R_D(X, 1, w)
@@ -233,36 +222,44 @@ def _waves(a, b, v, w, j, sgn, rates=True):
     ``F(phi1) = sgn (K - I)`` and ``Lambda = (j - sgn) K + sgn I``: no difference of nearly
     equal integrals near the straight rod, and no ``m = k**2`` rounded near 1 (``p`` is exact).
 
-    With ``rates``, also their derivatives in ``|v|`` at fixed ``psi`` and in ``psi`` at fixed
-    ``v`` (``d/dm`` and ``d/dphi`` of DLMF 19.4.1 to 19.4.4 for the partial wave; the factors
-    ``1/p`` cancel analytically)::
+    With ``rates``, their derivatives in ``|v|`` at fixed ``psi`` and in ``psi`` at fixed ``v``
+    (DLMF 19.4.1 to 19.4.4, the factors ``1/p`` cancelled analytically), as ``dI/dv = (v G +
+    |a| / k**2) / w`` and ``dI/dpsi = sign(a) (b**2 v / k**2 - |a| G) / (2 b)``.
 
-        dI/dv = (v G + |a| / k**2) / w
-        dI/dpsi = sign(a) (b**2 v / k**2 - |a| G) / (2 b)
-
-    and likewise for ``K``, ``E(k)`` and ``p I + k**2 G``. Returns ``(Lambda, D)`` and, with
-    ``rates``, ``((Lambda_v, Lambda_psi), (D_v, D_psi))``. Arrays or Python floats: only
-    arithmetic and scipy's ufuncs, so the same lines serve a batch of rods and one rod
-    given as Python floats. Where ``j == sgn`` everywhere (mode 1 on its growing
-    branch) the complete integrals are not needed and not computed.
+    Each integral is computed once, on the rows that need it: the partial wave's ``R_F`` and
+    ``R_D`` on every row (returned: the growing branch's tip reuses them), ``K``, ``E(k)`` and
+    ``D`` only where ``j != sgn`` (mode 1 on its growing branch has ``Lambda = I``, and its tip
+    needs no ``D``). Returns ``(Lambda, D, R_F, R_D)`` and, with ``rates``, ``((Lambda_v,
+    Lambda_psi), (D_v, D_psi))`` (``D`` and its rates NaN on the growing rows).
     """
-    m, p, Iw, G, Dp, K, Ek = _integrals(a, b, v, w, np.any(np.not_equal(j, sgn)))
-    if K is None:
-        Lam, D = Iw, Dp
-    else:
-        Lam, D = (j - sgn) * K + sgn * Iw, (j - sgn) * Ek + sgn * Dp
-    if not rates:
-        return Lam, D
+    m, p = a * a + b * b * v * v, b * b * w
+    k = m ** 0.5
+    X = w * a * a / m
+    RF, RD = elliprf(X, 1.0, w), elliprd(X, 1.0, w)
+    Iw = v / k * RF
+    G = p * v ** 3 / (3.0 * k ** 3) * RD
+    Dp = p * Iw + m * G
     sa, aa = np.where(a < 0, -1.0, 1.0), abs(a)   # sign(a) (+1 at a = 0) and |a|
+    Lam, D = Iw.copy(), np.full(Iw.shape, np.nan)
     Lam_d = [(v * G + aa / m) / w, sa * (b * b * v / m - aa * G) / (2.0 * b)]
-    D_d = [(v * p * (Dp - Iw) / w + aa * b * b) / m, sa * b * (v - aa * w * (Dp - Iw)) / (2.0 * m)]
-    if K is not None:
-        K_d = (v * (Ek - p * K) / (m * w), -a * (Ek - p * K) / (2.0 * m * b))
-        Ek_d = (v * b * b * (Ek - K) / m, -a * b * w * (Ek - K) / (2.0 * m))
-        for i in range(2):
-            Lam_d[i] = (j - sgn) * K_d[i] + sgn * Lam_d[i]
-            D_d[i] = (j - sgn) * Ek_d[i] + sgn * D_d[i]
-    return Lam, D, tuple(Lam_d), tuple(D_d)
+    D_d = [np.full(Iw.shape, np.nan), np.full(Iw.shape, np.nan)]
+    rows = _rows(j != sgn)
+    if rows is not None:          # the rows past the partial wave: K, E(k), D and rates
+        a, b, v, w, m, p, aa, sa, G, Iw, Dp, sgn = (x[rows] for x in (
+            a, b, v, w, m, p, aa, sa, G, Iw, Dp, sgn))
+        n = j[rows] - sgn
+        K = elliprf(0.0, p, 1.0)
+        Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
+        Lam[rows], D[rows] = n * K + sgn * Iw, n * Ek + sgn * Dp
+        if rates:
+            K_d = (v * (Ek - p * K) / (m * w), -a * (Ek - p * K) / (2.0 * m * b))
+            Ek_d = (v * b * b * (Ek - K) / m, -a * b * w * (Ek - K) / (2.0 * m))
+            own = ((v * p * (Dp - Iw) / w + aa * b * b) / m,
+                   sa * b * (v - aa * w * (Dp - Iw)) / (2.0 * m))
+            for i in range(2):
+                Lam_d[i][rows] = n * K_d[i] + sgn * Lam_d[i][rows]
+                D_d[i][rows] = n * Ek_d[i] + sgn * own[i]
+    return (Lam, D, RF, RD) + ((tuple(Lam_d), tuple(D_d)) if rates else ())
 
 
 def _chart(psi, t, mode):
@@ -313,22 +310,32 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     if check:                 # the door's call; the kernel's (check=False) checks nothing
         EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
         jacobian = _validate.flag(jacobian, "jacobian")
+    shape = np.broadcast_shapes(np.shape(psi), np.shape(t), np.shape(mode))
+    psi, t, mode = (np.broadcast_to(np.asarray(x, dtype=float), shape).ravel()
+                    for x in (psi, t, mode))
     a, b, v, w, j, sgn, sign, v_t = _chart(psi, t, mode)
     waves = _waves(a, b, v, w, j, sgn, jacobian)
-    Lam, D = waves[:2]
+    Lam, D, RF, RD = waves[:4]
     vb = sign * v * b                          # k cos(phi1), signed
-    growing = j == sgn      # mode 1 bending towards the force: Lambda -> 0 with the load
     cos, sin = np.cos(psi), np.sin(psi)
-    with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
-        u, w2 = 1.0 - 2.0 * D / Lam, 2.0 * vb / Lam
-        x, y = u * cos + w2 * sin, u * sin - w2 * cos
-    if np.any(growing):     # there the quotients lose every digit as the load vanishes
-        small = chart_tip(a, b, v, w)
-        du, dw = small[:2]
-        u, w2 = np.where(growing, cos + du, u), np.where(growing, sin + dw, w2)
-        x = np.where(growing, 1.0 + (du * cos + dw * sin), x)
-        y = np.where(growing, du * sin - dw * cos, y)
+    # mode 1 bending towards the force, where Lambda -> 0 with the load and the quotients below
+    # would lose every digit: there the tip is the straight rod plus its deviations
+    grow, other = _rows(j == sgn), _rows(j != sgn)
+    x, y, u, w2 = (np.empty(psi.shape) for _ in range(4))
+    if other is not None:
+        with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
+            u[other] = 1.0 - 2.0 * D[other] / Lam[other]
+            w2[other] = 2.0 * vb[other] / Lam[other]
+        x[other] = u[other] * cos[other] + w2[other] * sin[other]
+        y[other] = u[other] * sin[other] - w2[other] * cos[other]
+    if grow is not None:
+        small = tip_deviations(a[grow], b[grow], v[grow], w[grow], RF[grow], RD[grow],
+                               jacobian)
+        du, dw, c, s = small[0], small[1], cos[grow], sin[grow]
+        u[grow], w2[grow] = c + du, s + dw
+        x[grow], y[grow] = 1.0 + (du * c + dw * s), du * s - dw * c
     L = np.asarray(L)
+    x, y, Lam, vb, cos, sin = (z.reshape(shape) for z in (x, y, Lam, vb, cos, sin))
     tip = L[..., None] * np.stack((x, y), axis=-1)
     R = EI * Lam ** 2 / L ** 2
     force = R[..., None] * np.stack((cos, sin), axis=-1)
@@ -336,28 +343,30 @@ def closed_form(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode:
     if not jacobian:
         return RegularRod(tip, force, moment)
 
-    # derivatives in psi (column 0, at fixed t) and t (column 1): d/dt = v_t d/d|v|
-    (Lam_v, Lam_psi), (D_v, D_psi) = waves[2:]
-    Lam_d, D_d = (Lam_psi, Lam_v * v_t), (D_psi, D_v * v_t)
-    vb_d = (0.5 * sign * v * a, sign * b * v_t)
-    J = np.empty(np.broadcast_shapes(np.shape(psi), np.shape(t), np.shape(EI), L.shape,
-                                     np.shape(mode)) + (5, 2))
-    for i in range(2):
+    # derivatives in psi (row 0, at fixed t) and t (row 1): d/dt = v_t d/d|v|
+    (Lam_v, Lam_psi), (D_v, D_psi) = waves[4:]
+    Lam_d, vb_d = np.stack((Lam_psi, Lam_v * v_t)), np.stack((0.5 * sign * v * a, sign * b * v_t))
+    u_d, w2_d = np.empty((2, psi.size)), np.empty((2, psi.size))
+    if other is not None:
+        lam, lam_d = Lam.ravel()[other], Lam_d[:, other]
+        D_d = np.stack((D_psi, D_v * v_t))[:, other]
         with np.errstate(divide="ignore", invalid="ignore", under="ignore", over="ignore"):
-            u_d = -2.0 * (D_d[i] * Lam - D * Lam_d[i]) / Lam ** 2
-            w2_d = 2.0 * (vb_d[i] * Lam - vb * Lam_d[i]) / Lam ** 2
-        if np.any(growing):
-            scale = (1.0, v_t)[i]
-            u_d = np.where(growing, small[3 - i] * scale, u_d)
-            w2_d = np.where(growing, sign * small[5 - i] * scale, w2_d)
-        dR = 2.0 * EI * Lam * Lam_d[i] / L ** 2
-        if i == 0:   # the rotation Rot(psi) and the direction of the force depend on psi too
-            u_d, w2_d = u_d + w2, w2_d - u
-            J[..., 2:4, 0] = np.stack((dR * cos - R * sin, dR * sin + R * cos), -1)
-        else:
-            J[..., 2:4, 1] = dR[..., None] * np.stack((cos, sin), -1)
-        J[..., 0:2, i] = L[..., None] * np.stack((u_d * cos + w2_d * sin,
-                                                  u_d * sin - w2_d * cos), -1)
+            u_d[:, other] = -2.0 * (D_d * lam - D[other] * lam_d) / lam ** 2
+            w2_d[:, other] = 2.0 * (vb_d[:, other] * lam - vb.ravel()[other] * lam_d) / lam ** 2
+    if grow is not None:
+        scale = np.stack((np.ones(len(v_t[grow])), v_t[grow]))
+        u_d[:, grow] = np.stack((small[3], small[2])) * scale
+        w2_d[:, grow] = sign[grow] * np.stack((small[5], small[4])) * scale
+    # the rotation Rot(psi) and the direction of the force depend on psi too
+    u_d[0], w2_d[0] = u_d[0] + w2, w2_d[0] - u
+    u_d, w2_d, Lam_d, vb_d = (z.reshape((2,) + shape) for z in (u_d, w2_d, Lam_d, vb_d))
+    J = np.empty(np.broadcast_shapes(shape, np.shape(EI), L.shape) + (5, 2))
+    dR = [2.0 * EI * Lam * Lam_d[i] / L ** 2 for i in range(2)]
+    J[..., 2:4, 0] = np.stack((dR[0] * cos - R * sin, dR[0] * sin + R * cos), -1)
+    J[..., 2:4, 1] = dR[1][..., None] * np.stack((cos, sin), -1)
+    for i in range(2):
+        J[..., 0:2, i] = L[..., None] * np.stack((u_d[i] * cos + w2_d[i] * sin,
+                                                  u_d[i] * sin - w2_d[i] * cos), -1)
         J[..., 4, i] = 2.0 * EI * (vb_d[i] * Lam + vb * Lam_d[i]) / L
     return RegularRod(tip, force, moment, J)
 
@@ -394,14 +403,13 @@ def place(rod: RegularRod, origin: ArrayLike,
 def place_at(rod: RegularRod, origin: np.ndarray, angle: np.ndarray) -> tuple:
     """:func:`place` on checked input (the kernel of :class:`ClampedRods`)."""
     c, s = np.cos(angle), np.sin(angle)
-    rot = np.stack((np.stack((c, -s), -1), np.stack((s, c), -1)), -2)   # (..., 2, 2)
-    tip, force = (rot @ rod.tip[..., None])[..., 0], (rot @ rod.force[..., None])[..., 0]
-    d_angle = np.concatenate((np.stack((-tip[..., 1], tip[..., 0]), -1),
-                              np.stack((-force[..., 1], force[..., 0]), -1)), axis=-1)
-    d_chart = None
-    if rod.jacobian is not None:
-        d_chart = np.concatenate((rot @ rod.jacobian[..., 0:2, :],
-                                  rot @ rod.jacobian[..., 2:4, :]), axis=-2)
+    tip, force = (np.stack((c * x[..., 0] - s * x[..., 1], s * x[..., 0] + c * x[..., 1]), -1)
+                  for x in (rod.tip, rod.force))
+    d_angle = np.stack((-tip[..., 1], tip[..., 0], -force[..., 1], force[..., 0]), -1)
+    d_chart, J, c, s = None, rod.jacobian, c[..., None], s[..., None]
+    if J is not None:       # the rows (tip_x, tip_y) and (force_x, force_y) turned alike
+        d_chart = np.stack([f(J[..., i, :], J[..., i + 1, :]) for i in (0, 2) for f in (
+            lambda x, y: c * x - s * y, lambda x, y: s * x + c * y)], -2)
     return tip + origin, force, d_chart, d_angle
 
 
@@ -469,93 +477,3 @@ class ClampedRods:
                           jacobian=jacobian, check=False)
         tip, force, d_chart, d_angle = place_at(rod, origin, angle)
         return tip, force, rod.clamp_moment, d_chart, d_angle
-
-
-def _second_kind(phi, m, p, complete):
-    """``E(phi, k)`` for any real ``phi``, from ``m = k**2`` and ``p = 1 - k**2``, reduced by
-    whole periods (``E(phi + n pi) = E(phi) + 2 n E(k)``, ``complete = E(k)``)."""
-    turns = np.round(phi / np.pi)
-    r = phi - np.pi * turns
-    s, c = np.sin(r), np.cos(r)
-    delta2 = c * c + p * s * s
-    return (2.0 * turns * complete + s * elliprf(c * c, delta2, 1.0)
-            - m / 3.0 * s ** 3 * elliprd(c * c, delta2, 1.0))
-
-
-def shape(EI: ArrayLike, L: ArrayLike, psi: ArrayLike, t: ArrayLike, mode: ArrayLike = 1, *,
-          nodes: int = 201) -> Rod:
-    """Clamped-pinned rods of the chart sampled at ``nodes`` equally spaced points, accurate in
-    any tension and at any load (local frame: clamp at the origin, tangent along +x).
-
-    Along the rod ``F(phi, k) = F(phi1, k) + lambda s`` gives the amplitude ``phi``, and the
-    study's (86), (87), (37) and (42) the position, tangent angle and moment. Every quantity
-    comes from the complementary modulus ``k' = sqrt(1 - k**2)``, which the chart gives to full
-    precision: the amplitude from ``amplitude``, ``E(phi, k)`` in
-    Carlson's form with ``1 - k**2 sin(phi)**2 = cos(phi)**2 + k'**2 sin(phi)**2`` and the
-    tangent angle as ``psi - 2 atan2(dn, k sin(phi))`` with ``dn = sqrt(1 - k**2 sin(phi)**2)``
-    (where ``arccos(k sin(phi))`` would lose half the digits as ``k sin(phi) -> 1``). The
-    rods of the growing branch of mode 1 under a load ``lambda L <`` :data:`SMALL_LOAD`,
-    whose positions the study's formulas find as differences of nearly equal integrals divided
-    by ``lambda`` (all digits lost as the load tends to zero), are drawn in the cantilever's
-    chart instead (``branch_shape``). The clamp is at the origin
-    and the last node at :func:`clamped_pinned_regular`'s tip, exactly.
-
-    Parameters
-    ----------
-    EI, L, psi, t, mode
-        As in :func:`clamped_pinned_regular`.
-    nodes : int, optional
-        Points per rod, clamp and tip included, ``2 <= nodes <=``
-        ``MAX_NODES = 100_000``.
-
-    Returns
-    -------
-    Rod
-        Arrays of shape ``batch + (nodes,)``.
-
-    Examples
-    --------
-    A rod with ``1 - k**2 ~ 1e-26``, its tip force 60 N (EI = 0.0522 N m^2): the profile ends
-    at the closed form's tip with no moment.
-
-    >>> rod = shape(0.0522, 1.0, 6.0288, 0.9912, nodes=401)
-    >>> tip = clamped_pinned_regular(0.0522, 1.0, 6.0288, 0.9912).tip
-    >>> bool(np.abs(rod.tip - tip).max() < 1e-12), bool(abs(rod.m[-1]) < 1e-12)
-    (True, True)
-    """
-    EI, L, psi, t, mode = _inputs(EI, L, psi, t, mode)
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
-    end = closed_form(EI, L, psi, t, mode, jacobian=False, check=False)
-    psi, t, EI, L, mode = np.broadcast_arrays(psi, t, EI, L, mode)
-    a, b, v, w, j, sgn, sign, _ = _chart(psi, t, mode)
-    p, m = b * b * w, a * a + v * v * b * b                    # 1 - k**2 and k**2
-    k = sign * np.sqrt(m)
-    s1, c1 = sign * a / np.abs(k), v * b / np.abs(k)            # sin, cos of phi1
-    F1 = s1 * elliprf(c1 * c1, b * b, 1.0)
-    E1 = F1 - m / 3.0 * s1 ** 3 * elliprd(c1 * c1, b * b, 1.0)
-    K = elliprf(0.0, p, 1.0)
-    Ek = K - m / 3.0 * elliprd(0.0, p, 1.0)
-    lam = np.sqrt(np.hypot(end.force[..., 0], end.force[..., 1]) / EI)
-    s = np.linspace(0.0, 1.0, nodes) * L[..., None]
-    psi_, k_, m_, p_, E1_, c1_, lam_, Ek_, EI_ = (np.asarray(x)[..., None] for x in (
-        psi, k, m, p, E1, c1, lam, Ek, EI))
-    phi = amplitude(F1[..., None] + lam_ * s, k_, np.sqrt(p_))
-    dE = _second_kind(phi, m_, p_, Ek_) - E1_
-    dC = np.cos(phi) - c1_
-    with np.errstate(divide="ignore", invalid="ignore"):   # replaced below where lam is 0
-        x = -(np.cos(psi_) * (2 * dE - lam_ * s) + 2 * k_ * np.sin(psi_) * dC) / lam_
-        y = -(np.sin(psi_) * (2 * dE - lam_ * s) - 2 * k_ * np.cos(psi_) * dC) / lam_
-    sin_phi = np.sin(phi)
-    dn = np.sqrt(np.cos(phi) ** 2 + p_ * sin_phi ** 2)
-    theta = psi_ - 2 * np.arctan2(dn, k_ * sin_phi)
-    moment = 2 * EI_ * k_ * lam_ * np.cos(phi)
-    small = (j == sgn) & (lam * L < SMALL_LOAD)
-    for i in np.ndindex(small.shape):
-        if not small[i]:
-            continue
-        x[i], y[i], theta[i], moment[i] = branch_shape(
-            float(EI[i]), float(L[i]), float(psi[i]), float(v[i]), float(w[i]),
-            float(lam[i] * L[i]), nodes).T
-    x[..., 0] = y[..., 0] = theta[..., 0] = 0.0
-    x[..., -1], y[..., -1] = end.tip[..., 0], end.tip[..., 1]
-    return Rod(np.broadcast_to(s, x.shape), x, y, theta, moment, end.force)

@@ -33,8 +33,8 @@ from numpy.typing import ArrayLike
 from mechnum import _validate, newton
 from mechnum.errors import ConvergenceError, SingularJacobianError
 from mechnum.results import Result
-from mechnum.rods._growing import growing_rod, pinned_start
-from mechnum.rods._pinned import RESOLVED, classify
+from mechnum.rods._growing import growing_rod
+from mechnum.rods._pinned import RESOLVED, classify, pinned_start
 from mechnum.rods._rod import MAX_NODES, Rod, as_vectors, integrate, rod_scales, tip_states
 
 _EPS = np.finfo(float).eps

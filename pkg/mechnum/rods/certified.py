@@ -163,7 +163,9 @@ def _ends(x: arb) -> tuple:
     :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
     own bounds (rounded outward)."""
     box = interval(x)
-    return box if box is not None else certify.balls.bounds(arb(x))
+    if box is None:
+        return certify.balls.bounds(arb(x))
+    return float(arb(box[0])), float(arb(box[1]))          # exact points: exact floats
 
 
 def branch_of(X: list, i: int) -> int:
@@ -305,8 +307,8 @@ def memoised(rods: Callable) -> Callable:
     memory = {}
 
     def cached(X, jacobian):
-        key = tuple((interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
-                    for x in X)
+        key = tuple((interval(x) is not None and _ends(x), arb.mid(x).man_exp(),
+                     arb.rad(x).man_exp()) for x in X)
         known = memory.get(key)
         if known is not None and (known[0] or not jacobian):
             return known[1]
@@ -369,12 +371,25 @@ def _arc(box):
 
 
 def _arcs_meet(a, b):
-    """Whether two arcs ``(lo, hi)`` (each narrower than ``2 pi``) may meet modulo ``2 pi``."""
+    """Whether two arcs ``(lo, hi)`` (arb points, each narrower than ``2 pi``, at any number of
+    turns) may meet modulo ``2 pi``: whether an integer ``k`` has ``a_lo + 2 pi k <= b_hi``
+    and ``a_hi + 2 pi k >= b_lo``, that is ``k`` in ``[(b_lo - a_hi) / 2 pi,
+    (b_hi - a_lo) / 2 pi]``. The ends of that range are enclosed by Arb and rounded outward
+    to integers, so the test is sound for angles of any size (a huge angle gives a wide
+    range: the arcs may meet).
+
+    Examples
+    --------
+    >>> turns = 2 * balls.B.PI * 10**6
+    >>> _arcs_meet((arb(0.1) + turns, arb(0.2) + turns), (arb(0.15), arb(0.3)))
+    True
+    >>> _arcs_meet((arb(0.1) + turns, arb(0.2) + turns), (arb(0.25), arb(0.3)))
+    False
+    """
     two_pi = 2 * balls.B.PI
-    for k in (-2, -1, 0, 1, 2):
-        if not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1])):
-            return True
-    return False
+    first = ((b[0] - a[1]) / two_pi).lower().ceil()
+    last = ((b[1] - a[0]) / two_pi).upper().floor()
+    return not bool(last < first)
 
 
 def _allowed(rods, load, i):

@@ -12,10 +12,13 @@ fully only where the continuation cannot vouch for the count:
    check) runs at the anchors: one point per block of :data:`ANCHOR_SPACING` x
    :data:`ANCHOR_SPACING` grid points, at its centre.
 2. **Flood.** Every equilibrium found is followed from its point to each of the four neighbours
-   (:func:`follow`: a converged step on the same branch, never across a
-   fold; a step that fails is tried again in :data:`REFINE` shorter steps), and from every
-   point it reaches on to theirs, until it reaches no new point; each point keeps the distinct
-   equilibria that arrive (within :data:`SAME` in the chart).
+   (a converged step on the same branch, never across a fold, as
+   :func:`follow` decides it; a step that fails is tried again in
+   :data:`REFINE` shorter steps), and from every point it reaches on to theirs, until it
+   reaches no new point; each point keeps the distinct equilibria that arrive (within
+   :data:`SAME` in the chart). Each round of the flood takes its steps for all its edges at
+   once, in one lockstep damped Newton on the mechanism's system
+   (``track_paths``).
 3. **Vouching.** A point's count is *vouched* by continuation when every equilibrium known
    there continued to every neighbour, onto distinct equilibria there, and every equilibrium
    known at every neighbour continued to it: no branch ends on an edge of the point, from
@@ -51,6 +54,7 @@ import numpy as np
 
 from mechnum.mechanisms._assembly import _parallel as parallel
 from mechnum.mechanisms._assembly._checks import MAX_POINTS, STATUS_DTYPE
+from mechnum.mechanisms._assembly._lockstep import track_paths
 from mechnum.mechanisms._assembly._results import State
 from mechnum.results import Result
 
@@ -96,9 +100,12 @@ class AtlasProblem:
         the full search at each point of a task, its starts drawn from its ``rng``
         (``default_rng([SEED, index])`` of the point's index, the same on every executor).
         Importable (it runs on the executor's workers).
-    trace : callable
-        ``trace(params (steps, batch, k), u0 (batch, m)) -> Trace``: continuation of the direct
-        problem (:func:`~mechnum.mechanisms._assembly.follow`, ``resume=False``).
+    system : callable
+        ``system(u (rows, m), inputs (rows, k)) -> (G (rows, m), D (rows, m, m))``: the direct
+        problem in the continuation's unknowns ``u`` (the chart first), its residual and
+        Jacobian in one call, unchecked.
+    domain : callable
+        ``domain(u (rows, m)) -> (rows,) bool``: where ``system`` is defined (the chart).
     lift : callable
         ``lift(inputs (r, k), chart (r, c)) -> u (r, m)``: a search's equilibria as the
         continuation's unknowns (the chart first).
@@ -107,7 +114,8 @@ class AtlasProblem:
     """
 
     search: object
-    trace: object
+    system: object
+    domain: object
     lift: object
     chart: int
 
@@ -261,24 +269,25 @@ def _continue(problem, inputs, start, end, u0, tally):
     one step, then, for the equilibria that fail, :data:`REFINE` steps as long together.
     Returns which arrived, where, and which of the others left the chart's domain (the first
     of the short steps to fail did so with the status "left-domain")."""
-    path = np.stack((inputs[start], inputs[end]))
     ok, x = np.zeros(len(start), dtype=bool), np.full(u0.shape, np.nan)
     left = np.zeros(len(start), dtype=bool)
     for attempt in range(2):
         rows = np.flatnonzero(~ok)
-        if attempt:
-            path = np.linspace(inputs[start[rows]], inputs[end[rows]], REFINE + 1)
-        tr = problem.trace(path, u0[rows])
-        tally["nfev"] += tr.nfev
-        tally["njev"] += tr.njev
+        path = np.stack((inputs[start], inputs[end])) if attempt == 0 else np.linspace(
+            inputs[start[rows]], inputs[end[rows]], REFINE + 1)
+        status, end_x, iterations, calls = track_paths(problem.system, problem.domain,
+                                                       problem.chart, path, u0[rows],
+                                                       tol=STEP_TOL)
+        tally["nfev"] += calls
+        tally["njev"] += calls
         tally["steps"] += len(rows) * (len(path) - 1)
-        np.add.at(tally["iterations"], end[rows], tr.iterations[1:].sum(axis=0))
-        arrived = tr.status[-1] == "converged"
-        ok[rows[arrived]], x[rows[arrived]] = True, tr.x[-1][arrived]
+        np.add.at(tally["iterations"], end[rows], iterations[1:].sum(axis=0))
+        arrived = status[-1] == "converged"
+        ok[rows[arrived]], x[rows[arrived]] = True, end_x[arrived]
         if ok.all():
             break
-    first = np.argmax(tr.status != "converged", axis=0)
-    left[rows] = (tr.status[first, np.arange(len(rows))] == "left-domain") & ~ok[rows]
+    first = np.argmax(status != "converged", axis=0)
+    left[rows] = (status[first, np.arange(len(rows))] == "left-domain") & ~ok[rows]
     return ok, x, left
 
 
@@ -346,7 +355,9 @@ def _paired(store, a, ended_a, b, ended_b) -> bool:
     c = store.chart
     if len(ended_a) != len(ended_b) or store.u.shape[-1] == c or store.move == 0.0:
         return False
-    gap = np.abs(store.u[a, ended_a, None, c:] - store.u[b, None, ended_b, c:]).max(axis=-1)
+    # (ended_a, ended_b): u[b, None, ended_b] would put ended_b's axis first (the indices
+    # b and ended_b apart), so the pairs are formed from the two gathered blocks
+    gap = np.abs(store.u[a, ended_a, c:][:, None] - store.u[b, ended_b, c:][None]).max(axis=-1)
     gap[store.stable[a, ended_a][:, None] != store.stable[b, ended_b][None, :]] = np.inf
     nearest = gap.argmin(axis=1)
     return (len(set(nearest.tolist())) == len(nearest)

@@ -90,11 +90,10 @@ def search(fun, sample, *, domain, n_starts, check, rng, tol, maxiter, same=1e-8
     """
     n_starts = _validate.maxiter(n_starts, "n_starts", maximum=MAX_STARTS)
     check = _validate.maxiter(check, "check", minimum=0, maximum=MAX_CHECK)
-    f, counts = _counted(fun)
-    found = newton.solve_all(f, sample, True, n_starts=n_starts, check=check,
+    found = newton.solve_all(fun, sample, True, n_starts=n_starts, check=check,
                              rng=_validate.rng(rng), domain=domain, tol=tol, maxiter=maxiter,
                              same=same)
-    return found, counts["nfev"], counts["njev"]
+    return found, found.nfev, found.njev
 
 
 def shoot(fun, seed, known, *, width: int, tol: float, maxiter: int):

@@ -5,7 +5,8 @@ grid ``lambdas[i, j] = origin + a[i] u + b[j] v`` of two directions ``u``, ``v``
 :func:`~mechnum.mechanisms.pfr3.atlas` runs :func:`mechnum.mechanisms._assembly.atlas_of` (its
 module explains the method) with the 3PFR's closed form: the full search is
 :func:`~mechnum.mechanisms.pfr3.forward` with its defaults (none where no platform can close
-between the clamps), the continuation the one of :func:`~mechnum.mechanisms.pfr3.forward_path`.
+between the clamps), the continuation that of :func:`~mechnum.mechanisms.pfr3.forward_path`
+(the rods and the pose as the sliders move, :func:`~mechnum.mechanisms.pfr3.full_system`).
 """
 
 from __future__ import annotations
@@ -19,8 +20,7 @@ from mechnum.errors import GeometryError
 from mechnum.mechanisms import _assembly as assembly
 from mechnum.mechanisms.pfr3 import _model as model
 from mechnum.mechanisms.pfr3._elliptic import forward
-from mechnum.mechanisms.pfr3._paths import forward_trace
-from mechnum.rods import ClampedRods
+from mechnum.rods import ClampedRods, in_chart
 
 MAX_SLIDER = 1e100
 """The largest slider input of an atlas's grid (m): the plane's dot products of larger ones
@@ -104,9 +104,14 @@ def atlas(mech: model.Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLik
         tip = model.rods_at(family, mech, lambdas, chart, jacobian=False)[0]
         return np.concatenate((chart, model.pose_at(mech, tip)), axis=-1)
 
-    trace = forward_trace(mech, np.array(modes, dtype=float), tol=assembly.ATLAS_STEP_TOL,
-                          criterion="step")
-    problem = assembly.AtlasProblem(partial(search, mech, modes), trace, lift, 6)
+    full, columns = model.full_system(mech, modes), model.LAYOUT.forward_columns
+
+    def system(u, lambdas):
+        G, D = full(u[:, :6], lambdas, u[:, 6:])
+        return G, D[..., columns]
+
+    problem = assembly.AtlasProblem(partial(search, mech, modes), system,
+                                    lambda u: in_chart(u[:, :6]), lift, 6)
     labels = tuple(f"{name} (m) along ({', '.join(f'{c:.2f}' for c in d)})"
                    for name, d in zip("ab", directions))
     return assembly.atlas_of(problem, grid, (axes, origin, directions), labels, 1.0, modes,

@@ -54,19 +54,40 @@ a loose one beyond which the check checks nothing."""
 EQUILIBRIUM_TOL = 1e-2
 
 
-def _blocks(mech, theta, chart, modes, segments):
-    """The two rods' discretised second variations, and the constraint ``tip1 = tip2``."""
+def _angles(mech, theta, z, modes, segments):
+    """The rods' tangent angles at the midpoints of ``segments`` segments, ``(n, 2, segments)``
+    for each resolution, and their tip forces ``(n, 2, 2)``, of equilibria ``z`` (n, 4) at
+    ``theta`` (n, 2), checked to be equilibria. The shapes are sampled once, at the finest
+    resolution, when every other one divides it: a coarser resolution's midpoints are nodes of
+    the finest's, computed from the same ``s``, so they are the same numbers."""
+    modes = check_modes(modes, 2)
+    tip, force = rods(mech, theta, z, modes, jacobian=False)[:2]
+    for i in range(len(z)):
+        check_equilibrium(np.concatenate(((tip[i, 0] - tip[i, 1]) / mech.L, (
+            force[i].sum(axis=0) - mech.force) * mech.L ** 2 / mech.EI)), EQUILIBRIUM_TOL)
+    finest = max(segments)
+    samples = {}
+    for n in ([finest] if all(finest % n == 0 for n in segments) else sorted(set(segments))):
+        rod = rod_shapes(mech.EI, mech.L, z[:, 0::2], z[:, 1::2], modes, nodes=2 * n + 1)
+        samples[n] = rod.theta + theta[..., None]
+    return [samples[finest][..., finest // n::2 * finest // n] if n not in samples
+            else samples[n][..., 1::2] for n in segments], force
+
+
+def _blocks(angles, force, mech):
+    """The two rods' discretised second variations (angles (2, N)), and the constraint
+    ``tip1 = tip2``."""
+    blocks = [rod_block(mech.EI, mech.L, angles[i], force[i]) for i in range(2)]
+    return blocks, np.concatenate((blocks[0].tip_gradient, -blocks[1].tip_gradient), axis=1)
+
+
+def _one(mech, theta, chart, modes, segments):
+    """The blocks of one equilibrium at ``segments`` segments per rod."""
     theta, z = broadcast(theta, chart)
     if z.shape != (4,):
         raise ValueError(f"chart must be one equilibrium, shape (4,), got {z.shape}")
-    modes = check_modes(modes, 2)
-    tip, force = rods(mech, theta, z, modes, jacobian=False)[:2]
-    check_equilibrium(np.concatenate(((tip[0] - tip[1]) / mech.L, (force.sum(axis=0)
-                                       - mech.force) * mech.L ** 2 / mech.EI)), EQUILIBRIUM_TOL)
-    rod = rod_shapes(mech.EI, mech.L, z[0::2], z[1::2], modes, nodes=2 * segments + 1)
-    angles = (rod.theta + theta[:, None])[:, 1::2]
-    blocks = [rod_block(mech.EI, mech.L, angles[i], force[i]) for i in range(2)]
-    return blocks, np.concatenate((blocks[0].tip_gradient, -blocks[1].tip_gradient), axis=1)
+    angles, force = _angles(mech, theta[None], z[None], modes, (segments,))
+    return _blocks(angles[0][0], force[0], mech)
 
 
 def index(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
@@ -92,8 +113,7 @@ def index(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike 
     0
     """
     segments = _validate.maxiter(segments, "segments", minimum=2, maximum=MAX_SEGMENTS)
-    blocks, constraints = _blocks(mech, theta, chart, modes, segments)
-    return int(constrained_index(blocks, constraints))
+    return int(constrained_index(*_one(mech, theta, chart, modes, segments)))
 
 
 def stability(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
@@ -122,8 +142,44 @@ def stability(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayL
     >>> stability(TABLE7, TABLE7_THETA, z)
     (0, 0)
     """
-    return tuple(int(constrained_index(*_blocks(mech, theta, chart, modes, n)))
-                 for n in check_segments(segments))
+    theta, z = broadcast(theta, chart)
+    if z.shape != (4,):
+        raise ValueError(f"chart must be one equilibrium, shape (4,), got {z.shape}")
+    return tuple(stabilities(mech, theta[None], z[None], modes, segments=segments)[0].tolist())
+
+
+def stabilities(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1),
+                *, segments: tuple = SEGMENTS) -> np.ndarray:
+    """:func:`stability` of many equilibria at once: their indices, ``(n, len(segments))``.
+
+    The rods of all of them are sampled in one evaluation of the closed form (once, at the
+    finest resolution, when the others divide it), then each index is counted as
+    :func:`stability` counts it.
+
+    Parameters
+    ----------
+    mech, modes, segments
+        As in :func:`stability`.
+    theta, chart : array_like, shapes (n, 2) and (n, 4)
+        The equilibria (an empty batch is valid).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> eq = forward(TABLE7, TABLE7_THETA, rng=0)
+    >>> stabilities(TABLE7, eq.inputs[None].repeat(3, axis=0), eq.x).tolist()
+    [[0, 0], [0, 0], [0, 0]]
+    """
+    segments = check_segments(segments)
+    theta, z = broadcast(theta, chart)
+    if z.ndim != 2:
+        raise ValueError(f"chart must be a batch of equilibria, shape (n, 4), got {z.shape}")
+    if not len(z):
+        return np.zeros((0, len(segments)), dtype=int)
+    angles, force = _angles(mech, theta, z, modes, segments)
+    return np.array([[constrained_index(*_blocks(a[i], force[i], mech)) for a in angles]
+                     for i in range(len(z))], dtype=int)
 
 
 def eigenvalues(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: ArrayLike = (1, 1), *,
@@ -143,7 +199,7 @@ def eigenvalues(mech: Mechanism, theta: ArrayLike, chart: ArrayLike, modes: Arra
     [7.0, 28.0]
     """
     segments = _validate.maxiter(segments, "segments", minimum=2, maximum=MAX_DENSE_SEGMENTS)
-    blocks, constraints = _blocks(mech, theta, chart, modes, segments)
+    blocks, constraints = _one(mech, theta, chart, modes, segments)
     hessian = np.zeros((2 * segments, 2 * segments))
     hessian[:segments, :segments] = blocks[0].hessian
     hessian[segments:, segments:] = blocks[1].hessian

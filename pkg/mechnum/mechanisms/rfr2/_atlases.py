@@ -3,8 +3,10 @@
 :func:`~mechnum.mechanisms.rfr2.atlas` runs :func:`mechnum.mechanisms._assembly.atlas_of` (its
 module explains the method: full searches at anchors and where continuation cannot vouch for
 the count, continuation everywhere else) with the 2RFR's closed form: the full search is
-:func:`~mechnum.mechanisms.rfr2.forward` with its defaults, the continuation the one with
-which :func:`~mechnum.mechanisms.rfr2.forward_map` follows one equilibrium.
+:func:`~mechnum.mechanisms.rfr2.forward`'s with its defaults, and the stability of what it
+finds (not its crossings or strain, which the atlas does not show); the continuation follows
+the rods and the end effector as the motors turn, on the compiled closed form
+(:class:`mechnum.rods.MeetingRods`).
 """
 
 from __future__ import annotations
@@ -15,9 +17,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum.mechanisms import _assembly as assembly
-from mechnum.mechanisms.rfr2._continuation import grid_trace
-from mechnum.mechanisms.rfr2._elliptic import forward
+from mechnum.mechanisms.rfr2._analysis import stabilities
+from mechnum.mechanisms.rfr2._elliptic import CHECK, N_STARTS, in_chart_rows, search_roots
 from mechnum.mechanisms.rfr2._model import Mechanism, rods
+from mechnum.rods import MeetingRods
 
 MAX_ANGLE = 4 * np.pi
 """The largest motor angle of an atlas, two turns either way (rad): an angle is defined modulo a
@@ -27,12 +30,15 @@ as 40 rad is six turns; 1e300 rad gave overflow warnings and a grid of meaningle
 
 def search(mech: Mechanism, modes: tuple, task: tuple) -> list:
     """The full search at the motor angles of a task ``(rngs, thetas)``: for each point,
-    ``(chart, stable, complete, nfev)`` of :func:`forward`, its starts drawn from its ``rng``
-    (the atlas's tasks, run on its executor's workers)."""
+    ``(chart, stable, complete, nfev)`` of :func:`~mechnum.mechanisms.rfr2.forward`, its
+    starts drawn from its ``rng`` (the atlas's tasks, run on its executor's workers); only the
+    stability of the equilibria is classified."""
     out = []
     for rng, theta in zip(*task):
-        eq = forward(mech, theta, modes=modes, rng=rng)
-        out.append((eq.x, eq.stable, eq.search.complete, eq.nfev))
+        found, nfev, _ = search_roots(mech, theta, modes, N_STARTS, CHECK, rng)
+        z = found.x
+        index = stabilities(mech, np.broadcast_to(theta, (len(z), 2)), z, modes)
+        out.append((z, (index == 0).all(axis=1), found.complete, nfev))
     return out
 
 
@@ -106,8 +112,12 @@ def atlas(mech: Mechanism, a: ArrayLike, b: ArrayLike, *, origin: ArrayLike | No
         return np.concatenate((chart, rods(mech, theta, chart, modes, jacobian=False)[0][
             ..., 0, :]), axis=-1)
 
-    trace = grid_trace(mech, np.array(modes, dtype=float), tol=assembly.ATLAS_STEP_TOL,
-                       criterion="step")
-    problem = assembly.AtlasProblem(partial(search, mech, modes), trace, lift, 4)
+    rods_meet = MeetingRods(mech.EI, mech.L, mech.origins, modes, mech.force)
+
+    def system(u, theta):
+        return rods_meet.joined(theta, u)
+
+    problem = assembly.AtlasProblem(partial(search, mech, modes), system,
+                                    lambda u: in_chart_rows(u[:, :4]), lift, 4)
     return assembly.atlas_of(problem, grid, (axes, origin, directions), labels,
                              np.degrees(1.0), modes, executor)

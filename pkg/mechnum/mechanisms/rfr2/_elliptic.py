@@ -21,9 +21,9 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.mechanisms import _assembly as assembly
-from mechnum.mechanisms.rfr2._analysis import crossings, stability, strain
+from mechnum.mechanisms.rfr2._analysis import crossings, stabilities, strain
 from mechnum.mechanisms.rfr2._model import Mechanism, rods, rods_at, thesis_from_chart
-from mechnum.rods import ClampedRods, in_chart
+from mechnum.rods import T_MAX, ClampedRods, MeetingRods, in_chart
 
 # Starts of the all-solutions search are drawn with |t| <= 0.985 (forces up to ~(q/2)**2 =
 # 1000 EI / L**2, far beyond what the study's mechanism can balance); iterates may go on to T_MAX.
@@ -31,6 +31,8 @@ START_T = 0.985
 # Newton's step tolerance in the (dimensionless) chart, and its most iterations from a start.
 SEARCH_TOL = 1e-12
 SEARCH_MAXITER = 40
+# Starts of the search, and of its completeness check in multiples of them (the defaults).
+N_STARTS, CHECK = 200, 10
 
 
 def _scales(mech):
@@ -200,7 +202,7 @@ def _equilibria(mech, theta, pose, modes, found, nfev, njev, inputs, given_pose)
     _, force, moment, _, _ = rods(mech, theta, z, modes, jacobian=False)
     index, cross, own = np.zeros((0, 2), int), np.zeros(0, int), np.zeros((0, 2), int)
     if n:
-        index = np.array([stability(mech, theta[i], z[i], modes) for i in range(n)])
+        index = stabilities(mech, theta, z, modes)
         cross, own = crossings(mech, theta, z, modes)
     return assembly.Equilibria(
         x=z, status=np.full(n, "converged"), iterations=njev, nfev=nfev, njev=njev,
@@ -211,8 +213,45 @@ def _equilibria(mech, theta, pose, modes, found, nfev, njev, inputs, given_pose)
         strain_limit=mech.strain_limit, search=found)
 
 
+def in_chart_rows(z: np.ndarray) -> np.ndarray:
+    """:func:`~mechnum.rods.in_chart` unchecked, for a solver's iterates (finite rows of four).
+
+    Examples
+    --------
+    >>> in_chart_rows(np.array([[1.0, 0.5, 2.0, -0.5], [1.0, 0.0, 2.0, 0.5]])).tolist()
+    [True, False]
+    """
+    psi, t = z[:, 0::2], z[:, 1::2]
+    return ((psi > 0) & (psi < 2.0 * np.pi) & (t != 0) & (np.abs(t) <= T_MAX)).all(axis=1)
+
+
+def search_roots(mech: Mechanism, theta: np.ndarray, modes: ArrayLike, n_starts: int,
+                 check: int, rng: np.random.Generator | int | None) -> tuple:
+    """The search of :func:`forward` alone, its roots unclassified: ``(found, nfev, njev)``.
+    Every start of it and of its check in one damped Newton over all of them
+    (:func:`mechnum.newton.solve_all`), on the compiled closed form
+    (:class:`mechnum.rods.MeetingRods`: residual and Jacobian in one call).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> found, nfev, njev = search_roots(TABLE7, TABLE7_THETA, (1, 1), 200, 10, 0)
+    >>> len(found.x), found.complete
+    (3, True)
+    """
+    assembly.check_type(mech, Mechanism)
+    theta = _validate.array(theta, "theta", shape=(2,))
+    rods = MeetingRods(mech.EI, mech.L, mech.origins, assembly.check_modes(modes, 2), mech.force)
+
+    def both(z):
+        return rods.meeting(theta, z)
+
+    return assembly.search(both, sample, domain=in_chart_rows, n_starts=n_starts, check=check,
+                           rng=rng, tol=SEARCH_TOL, maxiter=SEARCH_MAXITER)
+
+
 def forward(mech: Mechanism, theta: ArrayLike, *, modes: ArrayLike = (1, 1),
-            n_starts: int = 200, check: int = 10,
+            n_starts: int = N_STARTS, check: int = CHECK,
             rng: np.random.Generator | int | None = None) -> assembly.Equilibria:
     """Every equilibrium of the mechanism at the motor angles ``theta`` with the given modes.
 
@@ -259,11 +298,8 @@ def forward(mech: Mechanism, theta: ArrayLike, *, modes: ArrayLike = (1, 1),
     >>> np.round(eq.solutions, 6).tolist()[0], eq.stable.tolist(), eq.search.complete
     ([1.962541, -0.004391, 4.811041, 0.943413], [True, True, True], True)
     """
-    system = forward_system(mech, theta, modes)
+    found, nfev, njev = search_roots(mech, theta, modes, n_starts, check, rng)
     theta, modes = np.asarray(theta, dtype=float), assembly.check_modes(modes, 2)
-    found, nfev, njev = assembly.search(system, sample, domain=in_chart, n_starts=n_starts,
-                                        check=check, rng=rng, tol=SEARCH_TOL,
-                                        maxiter=SEARCH_MAXITER)
     pose = rods(mech, theta, found.x, modes, jacobian=False)[0][:, 0]
     return _equilibria(mech, np.broadcast_to(theta, (len(pose), 2)), pose, modes, found, nfev,
                        njev, theta, pose)
