@@ -840,6 +840,26 @@ def test_exercise_1_2_requires_its_runtime_error():
         assert "maxiter = 2" in result.message
 
 
+def test_the_chapters_householder_qr_does_not_pass_exercise_2_2():
+    """The chapter's own ``householder_qr``, which forms Q and each m x m reflection, fails:
+    the exercise asks for reflections applied in place, and its tall case has no room for an
+    m x m matrix."""
+    cells = nbformat.read(ROOT / "book" / "02_linear_systems_finger.ipynb", as_version=4).cells
+    source = next(c.source for c in cells if c.source.startswith("def householder_qr("))
+    namespace = {"np": np}
+    exec(source.split("\n\n\n")[0], namespace)
+    qr = namespace["householder_qr"]
+
+    def lstsq_householder(A, b):
+        Q, R = qr(A)
+        n = A.shape[1]
+        return np.linalg.solve(R[:n], (Q.T @ b)[:n])
+    A, b = exercises.EXERCISES["2.2"].cases()[0].args  # the method is right where m is small
+    assert_allclose(lstsq_householder(A, b), ref("2.2")(A, b), rtol=1e-7)
+    result = exercises.check("2.2", lstsq_householder)
+    assert not result.passed and "100000 x 3" in result.message, result.message
+
+
 @pytest.mark.parametrize("call", [
     lambda A, b: np.linalg.lstsq(A, b, rcond=None)[0],
     lambda A, b: np.linalg.pinv(A) @ b,

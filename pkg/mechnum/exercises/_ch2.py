@@ -99,6 +99,10 @@ def freudenstein(theta_in, linkage):
 FINGER = (30.6, 7.0, 24.8, 7.0)  # a linkage of the chapter's size (mm)
 
 
+TALL = 100_000
+"""The height of 2.2's tall case: an m x m float matrix of this size needs 80 GB."""
+
+
 def _lstsq_cases():
     rng = np.random.default_rng(22)
     cases = []
@@ -106,6 +110,9 @@ def _lstsq_cases():
         A, b = freudenstein(np.linspace(5.0, 5.0 + width, 13), FINGER)
         cases.append(Case(f"Freudenstein's 13 x 3 matrix of a finger four-bar, exact angles "
                           f"over {width} rad", (A, b)))
+    t = np.linspace(-1.0, 1.0, TALL)  # an m x m Q of this height would take 80 GB
+    cases.append(Case(f"a {TALL} x 3 matrix (1, t, t^2): Q and the reflections must not be "
+                      "formed", (np.column_stack([np.ones_like(t), t, t * t]), np.cos(2 * t))))
     A = rng.normal(size=(9, 4))
     cases.append(Case("a random 9 x 4 matrix and a b off its range", (A, rng.normal(size=9))))
     t = np.linspace(0.0, 1.0, 6)
@@ -124,10 +131,12 @@ LSTSQ = Exercise(
         "$I - 2vv^{\\mathsf T}/v^{\\mathsf T}v$ zeroes the entries below the diagonal (choose the "
         "sign of $v_0$ that avoids cancellation: a column that is already nearly $e_1$ shows "
         "the difference), applied to $A$ and to $b$ alike; then solve "
-        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Do not form $Q$, and call "
-        "none of numpy's or scipy's `qr`, `lstsq`, `pinv` and `svd`: the check runs your "
-        "function with them unavailable. Try it on the chapter's narrow-range design, where "
-        "the normal equations lose digits."),
+        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Unlike the chapter's "
+        "`householder_qr`, form neither $Q$ nor an $m \\times m$ reflection: one case is "
+        "$100\\,000 \\times 3$ (80 GB per $m \\times m$ matrix). Call none of numpy's or "
+        "scipy's `qr`, `lstsq`, `pinv` and `svd`: the check runs your function with them "
+        "unavailable. Try it on the chapter's narrow-range design, where the normal equations "
+        "lose digits."),
     starter=LSTSQ_STARTER, cases=_lstsq_cases, returns=Array(),
     forbidden=tuple(f"{module}.{name}" for module in ("numpy.linalg", "scipy.linalg")
                     for name in ("qr", "lstsq", "pinv", "svd")),
