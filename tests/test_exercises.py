@@ -893,6 +893,27 @@ def test_exercise_2_2_has_a_case_that_only_the_stable_sign_gets_right():
     assert np.abs(ref("2.2")(A, b) / exact - 1).max() < 1e-3 * 1e-7
 
 
+def test_chapter_3s_printed_tip_does_not_pass_exercise_5_1():
+    """Chapter 3's study codes the tip as printed (differences of integrals from 0); it agrees
+    at ordinary loads and fails the exercise's small load, where it loses digits."""
+    from scipy.special import ellipeinc, ellipkinc
+    cells = nbformat.read(ROOT / "book" / "03_elastica_study.ipynb", as_version=4).cells
+    source = next(c.source for c in cells if c.source.startswith("def printed_tip("))
+    namespace = {"np": np, "rods": rods, "ellipkinc": ellipkinc, "ellipeinc": ellipeinc}
+    exec(source, namespace)
+
+    def elliptic_tip(EI, L, psi, k_rel, mode):
+        return namespace["printed_tip"](psi, k_rel, mode, EI, L)
+    EI, L, psi, k_rel, mode = exercises.EXERCISES["5.1"].cases()[0].args
+    assert_allclose(elliptic_tip(EI, L, psi, k_rel, mode),
+                    rods.clamped_pinned(EI, L, psi, k_rel, mode).tip, rtol=1e-12)
+    result = exercises.check("5.1", elliptic_tip)
+    assert not result.passed and "k_rel = 1e-14" in result.message, result.message
+    assert "Likely mistake, the printed formulas" in result.message
+    small = exercises.EXERCISES["5.1"].cases()[-1].args  # the reference agrees with the package
+    assert_allclose(ref("5.1")(*small), rods.clamped_pinned(*small).tip, rtol=0, atol=1e-15)
+
+
 def test_exercise_1_3_runs_the_answer_without_inverting():
     def inverted(H, s, y):
         B = np.linalg.inv(H)

@@ -23,19 +23,21 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ndarray, shape (2,)
         The tip ``(x, y)`` in the clamp's frame (m).
     """
-    from scipy.special import ellipeinc, ellipkinc
+    from scipy.integrate import quad
 
     k_min = abs(np.cos(psi / 2))
     k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel  # the study's (91)
-    phi1 = np.arcsin(np.cos(psi / 2) / k)  # the clamp, (41)
-    phi2 = (mode - 0.5) * np.pi  # the pinned tip, (43)
-    m = k ** 2  # scipy takes the parameter m = k^2
-    dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
-    dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
-    lam = dF / L  # (40): lambda L = F(phi2, k) - F(phi1, k)
-    dC = np.cos(phi2) - np.cos(phi1)  # then x by (45), y by (46)
-    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam
-    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam
+    q = (1 - k_min) * (1 - abs(k_rel)) * (1 + abs(k))  # 1 - k^2
+    kc = np.sqrt((1 - k_min) * abs(k_rel) * (abs(k) + k_min))
+    c = np.sign(k) * np.cos(psi / 2)  # |k| (sin phi1, cos phi1) = (c, kc)
+    width = (mode - 1) * np.pi + np.arctan2(kc, c)  # phi2-phi runs 0..width
+    dF, chord = (quad(f, 0, width, epsabs=1e-15, epsrel=1e-12)[0] for f in (
+        lambda u: 1 / np.sqrt(q + k**2 * np.sin(u) ** 2),  # u = phi2 - phi
+        lambda u: (2 * q - 1 + 2 * k**2 * np.sin(u) ** 2)
+        / np.sqrt(q + k**2 * np.sin(u) ** 2)))  # 2 dE - dF
+    side = -2 * np.sign(k) * kc  # 2 k (cos(phi2) - cos(phi1))
+    x = -(np.cos(psi) * chord + np.sin(psi) * side) * L / dF  # (45)
+    y = -(np.sin(psi) * chord - np.cos(psi) * side) * L / dF  # (46)
     return np.array([x, y])
 
 
@@ -194,7 +196,8 @@ def _krawczyk_variant(sign=-1, centred=True, enclosed=True, overlap="undecided",
 
 
 SOLUTIONS = {
-    "5.1": Solution(elliptic_tip, {"the modulus for the parameter": _tip_variant(lambda k: k),
+    "5.1": Solution(elliptic_tip, {"the printed formulas": _tip_variant(),
+                                   "the modulus for the parameter": _tip_variant(lambda k: k),
                                    "phi2 = mode pi": _tip_variant(phi2_turns=0.0),
                                    "a sign in y": _tip_variant(y_sign=1)},
                     forbidden=("mechnum.rods.clamped_pinned",)),

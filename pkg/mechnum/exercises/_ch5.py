@@ -86,7 +86,9 @@ def _tip_cases():
                  (0.16, 1.0, 2.5, -0.3, 1)),
             Case("EI = 0.16, L = 1 m, psi = 3.49 rad, k_rel = -0.32, mode 2",
                  (0.16, 1.0, 3.49, -0.32, 2)),
-            Case("EI = 2, L = 0.7 m, psi = 4 rad, k_rel = 0.8, mode 3", (2.0, 0.7, 4.0, 0.8, 3))]
+            Case("EI = 2, L = 0.7 m, psi = 4 rad, k_rel = 0.8, mode 3", (2.0, 0.7, 4.0, 0.8, 3)),
+            Case("a small load: EI = L = 1, psi = 2 rad, k_rel = 1e-14, mode 1",
+                 (1.0, 1.0, 2.0, 1e-14, 1))]
 
 
 ELLIPTIC = Exercise(
@@ -95,12 +97,17 @@ ELLIPTIC = Exercise(
         "**Implement it yourself.** Write `elliptic_tip(EI, L, psi, k_rel, mode)`, the tip of "
         "one clamped-pinned rod in its clamp's frame from the thesis's closed form: $k$ from "
         "$k_{rel}$ by (91), $\\phi_1$ by (41), $\\phi_2 = (\\text{mode} - \\tfrac12)\\pi$, "
-        "$\\lambda L = F(\\phi_2, k) - F(\\phi_1, k)$, and the tip by (45) and (46). "
-        "`scipy.special.ellipkinc(phi, m)` and `ellipeinc(phi, m)` take the parameter "
-        "$m = k^2$. Compare with `rods.clamped_pinned(EI, L, psi, k_rel, mode).tip`."),
+        "$\\lambda L = F(\\phi_2, k) - F(\\phi_1, k)$, and the tip by (45) and (46), "
+        "accurate at small loads too, where Chapter 3's `printed_tip` is not: one case has "
+        "$k_{rel} = 10^{-14}$. So take $\\phi_2 - \\phi_1$ itself by `arctan2`, and "
+        "the integrals over $[\\phi_1, \\phi_2]$ directly (`scipy.integrate.quad`), never "
+        "as differences of integrals from 0. Compare with "
+        "`rods.clamped_pinned(EI, L, psi, k_rel, mode).tip`."),
     starter=TIP_STARTER, cases=_tip_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12, what="the tip"),
-    mistakes=(Mistake("the modulus for the parameter", "scipy's ellipkinc(phi, m) and "
+    mistakes=(Mistake("the printed formulas", "differences of integrals from 0, divided by a "
+                      "small lambda, amplify rounding: integrate over [phi1, phi2] itself."),
+              Mistake("the modulus for the parameter", "scipy's ellipkinc(phi, m) and "
                       "ellipeinc(phi, m) take m = k^2, not k."),
               Mistake("phi2 = mode pi", "a pinned tip carries no moment: cos(phi2) = 0, "
                       "phi2 = (mode - 1/2) pi."),
