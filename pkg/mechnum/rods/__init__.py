@@ -52,6 +52,13 @@ more than one rod (the cost of a sweep is per numpy call, not per rod).
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
+from mechnum.rods._apriori import chart_t_bound, pair_bound, pinned_bound, reach
+from mechnum.rods._cocertificate import CoCertificate, CoVerified
+from mechnum.rods._cocertificate import verify as verify_corefined
+from mechnum.rods._cosearch import CertifiedAll, CoRefined, certified_all, corefine
+from mechnum.rods._index import free_index, pinned_index, proven_stability
+from mechnum.rods._leaves import ChartRod
+from mechnum.rods._tuples import Assembly
 from mechnum.rods.certified import certify_pinned
 from mechnum.rods.elliptic import (
     TWO_PI,
@@ -76,11 +83,14 @@ from mechnum.rods.shooting import (
     shoot_pinned,
 )
 
-__all__ = ["SHOOTING_TOL", "TWO_PI", "Classification", "DeadLoad", "EllipticRod",
+__all__ = ["SHOOTING_TOL", "TWO_PI", "Assembly", "CertifiedAll", "ChartRod", "Classification",
+           "CoCertificate", "CoRefined", "CoVerified", "DeadLoad", "EllipticRod",
            "NoEquilibriumError", "NotAnElasticaError", "Rod", "Shooting", "UnresolvedRodError",
-           "cantilever", "certify_pinned", "clamped_pinned", "classify", "elliptic_k",
-           "elliptic_parameters", "equations", "integrate", "k_rel_for_force", "pinned_equilibria",
-           "shoot_cantilever", "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian"]
+           "cantilever", "certified_all", "certify_pinned", "chart_t_bound", "clamped_pinned",
+           "classify", "corefine", "elliptic_k", "elliptic_parameters", "equations",
+           "free_index", "integrate", "k_rel_for_force", "pair_bound", "pinned_bound",
+           "pinned_equilibria", "pinned_index", "proven_stability", "reach", "shoot_cantilever",
+           "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian", "verify_corefined"]
 
 METHODS = ("elliptic", "shooting")
 

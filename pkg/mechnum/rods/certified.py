@@ -116,8 +116,10 @@ def around_note(around):
 
 
 def branch_of(X, i):
-    """The sign of ``t`` of rod ``i`` on the box of balls ``X`` (boxes lie on one side)."""
-    return 1 if bool(X[2 * i + 1].upper() > 0) else -1
+    """The sign of ``t`` of rod ``i`` on the box of balls ``X`` (boxes lie on one side): the
+    sign of its midpoint (a ball's upper end pokes above 0 for the box ``[-0.25, 0]``, whose
+    radius Arb rounds up)."""
+    return 1 if float(X[2 * i + 1].mid()) > 0 else -1
 
 
 def pinned_system(EI, L, target, mode):

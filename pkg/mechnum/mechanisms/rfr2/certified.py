@@ -5,8 +5,12 @@
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
 :class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields and enclosed over boxes
-(:mod:`mechnum.rods.balls`), searched by :func:`~mechnum.certify.search.roots` over the
-chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
+(:mod:`mechnum.rods.balls`). The whole chart, both branches of each rod, is searched by
+co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live pairs of
+boxes, then Krawczyk's search of their clusters), each rod's chart cut to the a-priori bound
+on its load (:func:`mechnum.rods.pair_bound`: no equilibrium has a rod beyond it); its
+certificate (:func:`certificate_inputs`, :func:`verify_forward`) is re-checked from the
+mechanism's inputs alone.
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
 tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rods.certified`).
@@ -19,15 +23,16 @@ are nearer than that (as for the study's Table 7), else the result is not ``comp
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
 and the index of the reduced Hessian ``K1 + K2`` (each ``K_i = d n_i / d tip_i`` along the
 rod's branch, :func:`mechnum.rods.certified.stiffness`), by Haynsworth's inertia additivity.
-``stable`` is False where :func:`~mechnum.certify.definite.definite` proves ``K1 + K2`` over
-the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are
-not enclosed).
+Each rod's pinned index is proven in closed form over the root's enclosure
+(:func:`mechnum.rods.pinned_index`), and ``K1 + K2`` by :func:`~mechnum.certify.definite`:
+``stable`` is True (proven stable), False (proven unstable) or None where a sign is not
+proven (:func:`mechnum.rods.proven_stability`).
 """
 
 import numpy as np
 from flint import arb
 
-from mechnum import _validate, certify
+from mechnum import _validate, certify, rods
 from mechnum.mechanisms.rfr2.model import Mechanism
 from mechnum.rods import certified, regular
 from mechnum.rods.assembly import check_type
@@ -135,12 +140,14 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
 
     Returns
     -------
-    mechnum.rods.certified.Certified
+    mechnum.rods.CertifiedAll or mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart ``(psi1, t1, psi2, t2)``; ``solutions``: their
         midpoints as ``(psi1, k_rel1, psi2, k_rel2)`` (the coordinates of
-        ``forward_elliptic``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
-        unstable) or None (see the module); ``complete``: the count is a theorem (the chart
-        searched whole, and the tail beyond it excluded).
+        ``forward_elliptic``'s ``solutions``), sorted by ``psi1``; ``stable``: True (proven
+        stable), False (proven unstable) or None (see the module); ``complete``: the count is
+        a theorem (the chart searched whole, every rod beyond it excluded by the a-priori
+        bound). Without ``around``, a :class:`~mechnum.rods.CertifiedAll`, whose
+        ``certificate(certificate_inputs(...))`` :func:`verify_forward` re-checks.
 
     Examples
     --------
@@ -152,19 +159,104 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     (3, False, True)
     """
     modes = _modes(modes)
-    f, J, rods, exclude = system(mech, theta, modes)
-    boxes = certified.branch_boxes(2) if around is None else certified.around_boxes(around, 2)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split)
+    f, J, placed, exclude = system(mech, theta, modes)
+    if around is None:
+        result = rods.corefine(chart_rods(mech, theta, modes), assembly(mech),
+                               (f, J, exclude, exclude.split), max_boxes=max_boxes)
+        part = result.search
+    else:
+        part = certify.roots(f, J, certified.around_boxes(around, 2), max_boxes=max_boxes,
+                             exclude=exclude, split=exclude.split)
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
-    stable = []
-    for root in part.roots:
-        r1, r2 = rods(certified.enclosed(root), True)
-        K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
-        stable.append(certified.verdict([[K1[i][j] + K2[i][j] for j in range(2)]
-                                         for i in range(2)]))
-    extra = certified.around_note(around) + ("" if tail_excluded(mech, modes) else (
+    stable = [_stability(mech, modes, placed, root) for root in part.roots]
+    if around is not None:
+        return certified.combine([part], solutions, stable, certified.around_note(around))
+    beyond = all(rod.t_max < regular.T_MAX for rod in chart_rods(mech, theta, modes)) or (
+        tail_excluded(mech, modes))
+    return rods.certified_all(result, solutions, stable, "" if beyond else (
         "; rods beyond the chart (q > Q_MAX) are not excluded"))
-    return certified.combine([part], solutions, stable, extra)
+
+
+def _stability(mech, modes, placed, root):
+    """The proven verdict of one root's enclosure (see the module)."""
+    r1, r2 = placed(certified.enclosed(root), True)
+    K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
+    reduced = [[K1[i][j] + K2[i][j] for j in range(2)] for i in range(2)]
+    pinned = [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                                1 if root[2 * i + 1].mean() > 0 else -1) for i in range(2)]
+    return rods.proven_stability(pinned, reduced)
+
+
+def chart_rods(mech, theta, modes=(1, 1)):
+    """The two rods as the co-refinement searches them: each chart up to the a-priori bound on
+    its load (:func:`mechnum.rods.pair_bound`; the chart's whole range where that bound is
+    beyond it, for which :func:`tail_excluded` must then exclude the rest).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
+    >>> [round(rod.lam_max, 2) for rod in chart_rods(TABLE7, TABLE7_THETA)]
+    [10.39, 10.39]
+    """
+    check_type(mech, Mechanism)
+    theta = _validate.array(theta, "theta", shape=(2,))
+    modes = _modes(modes)
+    gap = float(np.hypot(*(mech.origins[1] - mech.origins[0])))
+    bound = rods.pair_bound(modes, gap, float(np.hypot(*mech.force)), mech.EI, mech.L)
+    return [rods.ChartRod(mech.EI, mech.L, modes[i], mech.origins[i], theta[i],
+                          rods.chart_t_bound(bound[i]), bound[i]) for i in range(2)]
+
+
+def assembly(mech):
+    """The tips at one point, the forces summing to the load: the co-refinement's tests."""
+    check_type(mech, Mechanism)
+    return rods.Assembly(((0, 1, 0.0),), mech.force)
+
+
+def certificate_inputs(mech, theta, modes=(1, 1)):
+    """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
+    fields, the motor angles and the modes (JSON-ready)."""
+    check_type(mech, Mechanism)
+    return {"function": "mechnum.mechanisms.rfr2.certified.verify_forward",
+            "origins": mech.origins.tolist(), "force": mech.force.tolist(), "L": mech.L,
+            "EI": mech.EI, "theta": _validate.array(theta, "theta", shape=(2,)).tolist(),
+            "modes": _modes(modes), "unknowns": ["psi1", "t1", "psi2", "t2"]}
+
+
+def verify_forward(cert):
+    """Re-check a certificate of :func:`certify_forward` (whole chart) from its inputs alone.
+
+    The mechanism, the a-priori bound, the rods' domains and the equations are derived again
+    from ``cert.inputs`` (:func:`certificate_inputs`); nothing else stored is trusted
+    (:func:`mechnum.rods.verify_corefined`).
+
+    Returns
+    -------
+    mechnum.rods.CoVerified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says, or its inputs are not a mechanism.
+    """
+    if not isinstance(cert, rods.CoCertificate):
+        raise ValueError(f"cert must be a mechnum.rods.CoCertificate, got "
+                         f"{type(cert).__name__}")
+    try:
+        data = cert.inputs
+        mech = Mechanism(origins=data["origins"], force=data["force"], L=data["L"],
+                         EI=data["EI"])
+        theta, modes = data["theta"], data["modes"]
+        chart = chart_rods(mech, theta, modes)
+    except (KeyError, TypeError, ValueError) as error:
+        raise certify.CertificateError(f"the certificate's inputs are not a 2RFR: "
+                                       f"{error}") from error
+    f, J, _, exclude = system(mech, theta, modes)
+    verified = rods.verify_corefined(cert, chart, assembly(mech), f, J, exclude)
+    if verified.complete and not all(rod.t_max < regular.T_MAX for rod in chart) and not (
+            tail_excluded(mech, modes)):
+        raise certify.CertificateError("rods beyond the chart are not excluded: the count is "
+                                       "not complete")
+    return verified
