@@ -55,7 +55,7 @@ from mechnum import _validate
 from mechnum.rods._apriori import chart_t_bound, pair_bound, pinned_bound, reach
 from mechnum.rods._cocertificate import CoCertificate, CoVerified
 from mechnum.rods._cocertificate import verify as verify_corefined
-from mechnum.rods._cosearch import CertifiedAll, CoRefined, certified_all, corefine
+from mechnum.rods._cosearch import MAX_LIVE, CertifiedAll, CoRefined, certified_all, corefine
 from mechnum.rods._index import free_index, pinned_index, proven_stability
 from mechnum.rods._leaves import ChartRod
 from mechnum.rods._tuples import Assembly
@@ -83,8 +83,8 @@ from mechnum.rods.shooting import (
     shoot_pinned,
 )
 
-__all__ = ["SHOOTING_TOL", "TWO_PI", "Assembly", "CertifiedAll", "ChartRod", "Classification",
-           "CoCertificate", "CoRefined", "CoVerified", "DeadLoad", "EllipticRod",
+__all__ = ["MAX_LIVE", "SHOOTING_TOL", "TWO_PI", "Assembly", "CertifiedAll", "ChartRod",
+           "Classification", "CoCertificate", "CoRefined", "CoVerified", "DeadLoad", "EllipticRod",
            "NoEquilibriumError", "NotAnElasticaError", "Rod", "Shooting", "UnresolvedRodError",
            "cantilever", "certified_all", "certify_pinned", "chart_t_bound", "clamped_pinned",
            "classify", "corefine", "elliptic_k", "elliptic_parameters", "equations",

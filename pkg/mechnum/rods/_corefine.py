@@ -149,14 +149,16 @@ class Refinement:
                                self.leaves[k].data[pair.ravel()]).reshape(-1, 2)
             used.append("".join(map(str, self.leaves[k].dim[boxes])))
             halves.append((pair[where], codes[where]))
-        children, reasons = [], []
+        children = []
         for bits in itertools.product((0, 1), repeat=r):
-            children.append(np.column_stack([halves[k][0][:, b] for k, b in enumerate(bits)]))
-            reasons.append(np.max(np.column_stack(
-                [halves[k][1][:, b] for k, b in enumerate(bits)]), axis=1))
-        T, leaf = np.concatenate(children), np.concatenate(reasons)
-        _count(dropped, leaf)
-        T = T[leaf == 0]
+            codes = np.max(np.column_stack([halves[k][1][:, b] for k, b in enumerate(bits)]),
+                           axis=1)
+            _count(dropped, codes)
+            keep = codes == 0
+            children.append(np.column_stack([halves[k][0][keep, b]
+                                             for k, b in enumerate(bits)]))
+        T = np.concatenate(children)
+        self.tested += int(sum(dropped.values()))
         codes = self._codes(T)
         _count(dropped, codes)
         self.live = T[codes == 0]

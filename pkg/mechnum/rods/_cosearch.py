@@ -28,6 +28,9 @@ from mechnum.rods.certified import Certified, combine
 
 MAX_ROUNDS = 40
 """Default bound on the rounds."""
+MAX_LIVE = 2_000_000
+"""Default bound on the live tuples after a round (memory: 8 r bytes each, and their tests):
+beyond it the rounds stop, and the result is not complete."""
 MIN_ROUNDS = 4
 """Clusters are probed from this round on."""
 PROBE_BOXES = 16
@@ -36,6 +39,8 @@ TUPLE_BOXES = 4
 """The boxes a probe may test in one tuple of a cluster whose root is proven."""
 CLUSTER_TUPLES = 512
 """Only clusters of at most this many tuples are probed."""
+PROBE_LIVE = 20_000
+"""The live tuples are probed only when they are this many or fewer."""
 NEWTON_STEPS = 12
 SHARES = (0.5, 0.125, 0.0)
 """The boxes a probe tries around a root: these shares of the cluster's reach from it (at
@@ -150,7 +155,7 @@ class _Prober:
 
 
 def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
-             max_boxes=certify.MAX_BOXES):
+             max_live=MAX_LIVE, max_boxes=certify.MAX_BOXES):
     """Every equilibrium of rods joined at their tips, proven: co-refinement, then Krawczyk.
 
     Parameters
@@ -167,6 +172,9 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
     max_rounds : int, optional
         Bound on the rounds (``<= 200``); the tuples left then are searched whole, in the
         hulls of their clusters.
+    max_live : int, optional
+        Bound on the live tuples after a round (``<= 50_000_000``): beyond it the rounds stop
+        and the result is incomplete (its ``rounds`` tell how far they went).
     max_boxes : int, optional
         Bound on the boxes of the final Krawczyk search.
 
@@ -175,13 +183,14 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
     CoRefined
     """
     max_rounds = _validate.maxiter(max_rounds, "max_rounds", maximum=200)
+    max_live = _validate.maxiter(max_live, "max_live", maximum=50_000_000)
     state = Refinement(rods, assembly, grid)
     probe = _Prober(system)
-    while len(state.live) and len(state.history) <= max_rounds:
+    while 0 < len(state.live) <= max_live and len(state.history) <= max_rounds:
         state.step()
-        if len(state.history) > MIN_ROUNDS:
+        if len(state.history) > MIN_ROUNDS and len(state.live) <= PROBE_LIVE:
             state.resolve(probe(*state.boxes()))
-    if len(state.live):
+    if 0 < len(state.live) <= max_live:
         boxes, keys = state.boxes()
         state.resolve(hulls(boxes, clusters(boxes, keys)), final=True)
     return conclude(state, system, probe.boxes, max_boxes)
@@ -199,6 +208,9 @@ def conclude(state, system, probes=0, max_boxes=certify.MAX_BOXES):
     message = (f"{search.count} equilibria proven after {rounds} rounds ({last['boxes']} "
                f"boxes of the rods' charts, {state.tested} tuples tested, {probes} boxes "
                f"probed, {len(settled)} boxes settled); " + search.message)
+    if len(state.live):
+        message += (f"; {len(state.live)} tuples left undecided ({state.volume():.2e} of the "
+                    f"domain's volume): not complete")
     return CoRefined(x=search.x, status="converged" if complete else "undecided",
                      message=message, iterations=rounds,
                      nfev=last["evaluations"] + search.nfev, njev=search.njev,

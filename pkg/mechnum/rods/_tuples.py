@@ -265,7 +265,9 @@ def _statics(assembly, D):
     X_lo, X_hi = D[:, :, 8], D[:, :, 9]
     mid = 0.5 * (A_lo + A_hi)
     usable = np.all(np.isfinite(mid), axis=(1, 2)) & np.all(np.isfinite(X_hi), axis=1)
-    usable[usable] &= np.linalg.cond(mid[usable]) < 1e8
+    scale = np.abs(mid).max(axis=(1, 2))
+    det = np.linalg.det(mid) if n else np.zeros(0)
+    usable &= np.abs(det) > 1e-8 * np.where(scale > 0, scale, 1.0) ** r
     if not usable.any():
         return out
     Y = np.linalg.inv(mid[usable])
@@ -342,14 +344,17 @@ def tuple_codes(assembly, D, only=None):
     D = np.asarray(D, dtype=float)
     codes = np.zeros(len(D), dtype=np.int8)
     F = np.array(assembly.force)
-    tests = [("tips", lambda: _tips(assembly, D)), ("force", lambda: _forces(F, D)),
-             ("magnitude", lambda: _magnitudes(F, D)),
-             ("direction", lambda: _cones(F, D) | _antiparallel(F, D))]
+    tests = [("tips", lambda X: _tips(assembly, X)), ("force", lambda X: _forces(F, X)),
+             ("magnitude", lambda X: _magnitudes(F, X)),
+             ("direction", lambda X: _cones(F, X) | _antiparallel(F, X))]
     if assembly.moment is not None:
-        tests.append(("moment", lambda: _moment(assembly.moment, D)))
-    tests.append(("statics", lambda: _statics(assembly, D)))
+        tests.append(("moment", lambda X: _moment(assembly.moment, X)))
+    tests.append(("statics", lambda X: _statics(assembly, X)))
+    live = np.arange(len(D))
     with np.errstate(invalid="ignore", over="ignore"):   # NaN and inf never drop a tuple
         for name, test in tests:
-            if len(D) and (only is None or name in only):
-                codes[(codes == 0) & test()] = CODE[name]
+            if len(live) and (only is None or name in only):
+                dead = test(D[live])
+                codes[live[dead]] = CODE[name]
+                live = live[~dead]
     return codes

@@ -11,24 +11,31 @@ from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
-Without ``around``, the search covers the chart's whole domain (64 boxes, one per sign pattern
-of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
-``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
-sampled ``forward_elliptic(...).chart``), it covers a small box around each point: each
-equilibrium there is then proven to exist, alone in its box, and the count is a lower bound.
+Without ``around``, the search covers the chart's whole domain, every rod on both branches,
+by co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live triples
+of boxes, then Krawczyk's search of their clusters); rods beyond the chart (``q > Q_MAX``,
+forces above about ``9e4 EI / L**2``) are outside the claim (no a-priori bound of the load is
+derived for the platform). Its certificate (:func:`certificate_inputs`,
+:func:`verify_forward`) is re-checked from the mechanism's inputs alone. With ``around``
+(chart points, for example the sampled ``forward_elliptic(...).chart``), it covers a small box
+around each point: each equilibrium there is then proven to exist, alone in its box, and the
+count is a lower bound.
 
-**Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): ``stable`` is False
-where the reduced Hessian in the platform's pose, ``sum_i G_i^T K_i G_i`` plus the turning
-term ``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K_i`` the tips'
-stiffnesses), is proven to have a negative eigenvalue, None otherwise.
+**Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): the index is the sum
+of the rods' pinned indices (:func:`mechnum.rods.pinned_index`) and the index of the reduced
+Hessian in the platform's pose, ``sum_i G_i^T K_i G_i`` plus the turning term
+``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K_i`` the tips'
+stiffnesses); ``stable`` is True or False where proven (:func:`mechnum.rods.proven_stability`),
+None otherwise.
 """
 
 import numpy as np
 from flint import acb, arb
 
-from mechnum import _validate, certify
-from mechnum.mechanisms.pfr3.model import clamps
+from mechnum import _validate, certify, rods
+from mechnum.mechanisms.pfr3.model import Mechanism, clamps
 from mechnum.rods import certified, regular
+from mechnum.rods.assembly import check_type
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -137,7 +144,8 @@ def _reduced(rs):
     return H
 
 
-def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None,
+                    max_live=rods.MAX_LIVE):
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
     Parameters
@@ -153,16 +161,21 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
         Chart points to search around (boxes of half-width
         :data:`mechnum.rods.certified.AROUND` times the chart's ranges) instead of the whole
         chart.
+    max_live : int, optional
+        Without ``around``: the most live triples of boxes after a round of the
+        co-refinement (:func:`mechnum.rods.corefine`); beyond it the search stops, not
+        complete.
 
     Returns
     -------
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
         ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
-        ``stable``: False or None (see the module); ``complete``: the count is a theorem over
-        the chart's domain (never with ``around``, whose count is a lower bound: each root is
-        proven, alone in its box, but others may lie elsewhere; each part's ``certificate()``
-        covers its boxes).
+        ``stable``: True, False or None (see the module); ``complete``: the count is a theorem
+        over the chart's domain (never with ``around``, whose count is a lower bound: each
+        root is proven, alone in its box, but others may lie elsewhere; each part's
+        ``certificate()`` covers its boxes). Without ``around``, a
+        :class:`~mechnum.rods.CertifiedAll`.
 
     Examples
     --------
@@ -175,14 +188,86 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     (1, False, True, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
-    f, J, rods, exclude = system(mech, lambdas, modes)
-    boxes = certified.branch_boxes(3) if around is None else certified.around_boxes(around, 3)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split)
+    f, J, placed, exclude = system(mech, lambdas, modes)
+    if around is None:
+        result = rods.corefine(chart_rods(mech, lambdas, modes), assembly(mech),
+                               (f, J, exclude, exclude.split), max_live=max_live,
+                               max_boxes=max_boxes)
+        part = result.search
+    else:
+        part = certify.roots(f, J, certified.around_boxes(around, 3), max_boxes=max_boxes,
+                             exclude=exclude, split=exclude.split)
     z = part.x
     solutions = z.copy()
     if len(z):
         solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
-    stable = [certified.verdict(_reduced(rods(certified.enclosed(root), True)))
-              for root in part.roots]
-    return certified.combine([part], solutions, stable, certified.around_note(around))
+    stable = [rods.proven_stability(
+        [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                           1 if root[2 * i + 1].mean() > 0 else -1) for i in range(3)],
+        _reduced(placed(certified.enclosed(root), True))) for root in part.roots]
+    if around is not None:
+        return certified.combine([part], solutions, stable, certified.around_note(around))
+    return rods.certified_all(result, solutions, stable)
+
+
+def chart_rods(mech, lambdas, modes=(1, 1, 1)):
+    """The three rods as the co-refinement searches them: each chart whole (no a-priori bound
+    of the load is derived for the platform)."""
+    check_type(mech, Mechanism)
+    origin = clamps(mech, _validate.array(lambdas, "lambdas", shape=(3,)))
+    return [rods.ChartRod(mech.EI, mech.L, m, origin[i], mech.clamp_angles[i])
+            for i, m in enumerate(_modes(modes))]
+
+
+def assembly(mech):
+    """The tips as far apart as the platform's pins, the forces summing to the load, their
+    moments about the centroid to its moment: the co-refinement's tests."""
+    check_type(mech, Mechanism)
+    b = mech.vertices
+    return rods.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
+                               for i in range(3) for j in range(i + 1, 3)),
+                         mech.force, mech.moment)
+
+
+def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
+    """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
+    fields, the slider inputs and the modes (JSON-ready)."""
+    check_type(mech, Mechanism)
+    return {"function": "mechnum.mechanisms.pfr3.certified.verify_forward",
+            "origins": mech.origins.tolist(), "guide_angles": mech.guide_angles.tolist(),
+            "clamp_angles": mech.clamp_angles.tolist(), "a": mech.a,
+            "force": mech.force.tolist(), "moment": mech.moment, "L": mech.L, "EI": mech.EI,
+            "orientation": mech.orientation,
+            "lambdas": _validate.array(lambdas, "lambdas", shape=(3,)).tolist(),
+            "modes": _modes(modes), "domain": "the chart, |t| <= T_MAX",
+            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]}
+
+
+def verify_forward(cert):
+    """Re-check a certificate of :func:`certify_forward` (whole chart) from its inputs alone
+    (as :func:`mechnum.mechanisms.rfr2.certified.verify_forward`).
+
+    Returns
+    -------
+    mechnum.rods.CoVerified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says, or its inputs are not a mechanism.
+    """
+    if not isinstance(cert, rods.CoCertificate):
+        raise ValueError(f"cert must be a mechnum.rods.CoCertificate, got "
+                         f"{type(cert).__name__}")
+    try:
+        data = cert.inputs
+        mech = Mechanism(data["origins"], data["guide_angles"], data["clamp_angles"],
+                         data["a"], force=data["force"], moment=data["moment"], L=data["L"],
+                         EI=data["EI"], orientation=data["orientation"])
+        lambdas, modes = data["lambdas"], data["modes"]
+        chart = chart_rods(mech, lambdas, modes)
+    except (KeyError, TypeError, ValueError) as error:
+        raise certify.CertificateError(f"the certificate's inputs are not a 3PFR: "
+                                       f"{error}") from error
+    f, J, _, exclude = system(mech, lambdas, modes)
+    return rods.verify_corefined(cert, chart, assembly(mech), f, J, exclude)
