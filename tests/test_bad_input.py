@@ -242,13 +242,13 @@ def test_bad_input_gets_a_named_error(name):
 
 # Each fix's reproducer: the call and the words of its error. Each failed before its fix.
 REPRODUCERS = [
-    ("ode.rk4('a', [1.0], [0.0, 0.1])", "f must be a function"),
+    ("ode.rk4('a', [1.0], [0.0, 0.1])", "fun must be a function"),
     ("ode.multiple_shooting(lambda s, y: y, None, [0, 1], np.zeros((2, 2)))", "bc must be a"),
     ("continuation.pseudo_arclength(None, [1.0, 0.0], J)", "fun must be a function"),
     ("continuation.solve_path(lambda x, p: x - p, [0.0], [[1.0]], jac='a')", "jac must be a"),
     ("continuation.solve_path(lambda x, c: x ** 2 - c[:, None], [1.0, 1.0], [1.0, 2.0],"
      " lambda x, c: 2 * x[:, :, None])", r"Jacobian in x must be square, \(2, 2\)"),
-    ("homotopy.track(None, [1.0 + 0j])", "homotopy must be a function"),
+    ("homotopy.track(None, [1.0 + 0j])", "fun must be a function"),
     ("certify.ball([1.0, 2.0])", "two real numbers"),
     ("certify.ball(np.complex128(1 + 1j))", "two real numbers"),
     ("certify.definite(None)", "hessian_ball must be a square"),

@@ -11,7 +11,9 @@ from mechnum import certify, rods
 from mechnum.certify import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
-from mechnum.rods import balls, regular
+from mechnum.mechanisms.rfr2 import certified as rfr2_certified
+from mechnum.rods import balls, certified, regular
+from mechnum.rods.certified import TWO_PI
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 
@@ -89,42 +91,90 @@ def test_table7_sampled_equilibria_are_proven():
     sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
     result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
     assert result.count == 3 and not result.complete and "lower bound" in result.message
+    assert result.scope == "existence" and result.certificate().scope == "existence"
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
-    # no certified verdict contradicts the sampled index (False only where unstable)
+    # the certified verdicts are proven, and agree with the sampled index (both resolutions)
     for verdict, index in zip(result.stable, sampled.index):
-        assert verdict is None or (verdict is False and index.min() > 0)
+        assert verdict is bool(index.max() == 0) and index.min() == index.max()
 
 
 def test_table8_sampled_equilibria_are_proven():
     sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
     result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
-    assert result.count == 9 and result.parts[0].complete
+    assert result.count == 9 and result.scope == "existence" and not result.complete
+    assert result.status == "converged" and len(result.parts[0].undecided) == 0
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
-    for verdict, index in zip(result.stable, sampled.index):
-        assert verdict is None or (verdict is False and index.min() > 0)
+    for verdict, index in zip(result.stable, sampled.index):     # all nine proven stable
+        assert verdict is bool(index.max() == 0) and index.min() == index.max()
 
 
 def test_a_box_without_an_equilibrium_is_excluded():
     result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
                                   around=[[1.0, 0.5, 1.0, 0.5]])
-    assert result.count == 0 and result.parts[0].complete
+    assert result.count == 0 and result.status == "converged"
 
 
-def test_the_stored_table8_certificate_verifies():
+def test_the_stored_table7_certificate_verifies_as_existence():
+    cert = certify.Certificate.load(CERTIFICATES / "ch5_table7_modes11.json")
+    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA, (1, 1))
+    chart = certified.branch_boxes(2)
+    checked = certify.verify(cert, f, J, exclude, domain=chart)
+    assert (checked.count, checked.scope, checked.complete) == (3, "existence", None)
+    with pytest.raises(certify.CertificateError, match="the caller asks for 'all'"):
+        certify.verify(cert, f, J, exclude, domain=chart, scope="all")
+    again = rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA)
+    assert (again.count, again.scope) == (3, "existence")
+    with pytest.raises(certify.CertificateError, match="leaf"):          # other motor angles
+        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA + 0.01)
+
+
+def test_the_stored_table8_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
-                                             cert.inputs["modes"])
-    checked = certify.verify(cert, f, J, exclude)
-    assert checked.count == 9 and checked.complete
+    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, (1, 1, 1))
+    checked = certify.verify(cert, f, J, exclude, domain=certified.branch_boxes(3))
+    assert (checked.count, checked.scope, checked.complete) == (9, "existence", None)
     other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
-        certify.verify(cert, other[0], other[1], other[3])
+        certify.verify(cert, other[0], other[1], other[3], domain=certified.branch_boxes(3))
+    assert pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS).count == 9
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])
-def test_the_stored_pinned_certificates_verify(mode):
-    from mechnum.rods.certified import pinned_system
+def test_the_stored_pinned_certificates_verify_complete(mode):
     cert = certify.Certificate.load(CERTIFICATES / f"ch3_pinned_mode{mode}.json")
-    f, J = pinned_system(1.0, 1.0, cert.inputs["target"], mode)
-    checked = certify.verify(cert, f, J)
-    assert checked.complete and checked.count == (1 if mode == 1 else 4)
+    f, J = certified.pinned_system(1.0, 1.0, [0.8, 0.1], mode)
+    checked = certify.verify(cert, f, J, domain=certified.branch_boxes(1))
+    assert checked.scope == "all" and checked.complete
+    assert checked.count == (1 if mode == 1 else 4)
+    half = certify.roots(f, J, certified.branch_boxes(1)[:1]).certificate()
+    with pytest.raises(certify.CertificateError, match="needs the whole domain"):
+        certify.verify(half, f, J, domain=certified.branch_boxes(1))
+
+
+def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
+    """The branch is read from the box's own float interval: a box that ends at t = 0 is on
+    its side; one across t = 0, or beyond the chart, is refused (its closed form would be
+    another function, or none)."""
+    f, J = certified.pinned_system(1.0, 1.0, [0.8, 0.1], 1)
+    inside = f(certify.balls.guarded([[0.1, 0.2], [-0.5, 0.0]]))
+    assert len(inside) == 2 and all(v.is_finite() for v in inside)
+    for box, match in (([[0.1, 0.2], [-0.5, 0.5]], "both branches"),
+                       ([[0.1, 0.2], [0.0, 0.0]], "both branches"),
+                       ([[-0.1, 0.2], [0.1, 0.5]], "leaves the chart"),
+                       ([[0.1, 0.2], [0.1, 1.0]], "leaves the chart")):
+        with pytest.raises(ValueError, match=match):
+            f(certify.balls.guarded(box))
+        with pytest.raises(ValueError, match=match):
+            certify.roots(f, J, box)
+    with pytest.raises(ValueError, match="both branches"):        # a plain ball across 0
+        f([ball(0.1, 0.2), ball(-0.5, 0.0)])
+
+
+def test_boxes_around_points_stay_in_the_chart_and_the_branch():
+    boxes = certified.around_boxes([[0.0, -0.5], [3.0, 1e-9], [TWO_PI, regular.T_MAX]], 1)
+    assert boxes[0, 0, 0] == 0.0 and boxes[0, 1, 1] < 0.0
+    assert boxes[1, 1, 0] == 0.0 and boxes[1, 1, 1] > 1e-9
+    assert boxes[2, 0, 1] == TWO_PI and boxes[2, 1, 1] == regular.T_MAX
+    for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):
+        with pytest.raises(ValueError, match="points of the chart"):
+            certified.around_boxes(points, 1)

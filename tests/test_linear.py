@@ -17,7 +17,12 @@ from mechnum.errors import (
     RelaxationFactorError,
     SingularJacobianError,
 )
-from mechnum.results import Result
+from mechnum.linear._checks import check_matrix
+from mechnum.linear._krylov import POISSON3D_LIMIT
+from mechnum.linear._spectra import OMEGA_GRID
+from mechnum.linear._stationary import CHUNK, MAXITER_LIMIT
+from mechnum.linear._sweeps import METHODS, splitting
+from mechnum.results import CRITERIA, NORMS, Result, StoppingRule
 
 # Burden and Faires, Numerical Analysis, Examples 7.3.1 and 7.3.3: solution (1, 2, -1, 1).
 BF_A = np.array([[10.0, -1, 2, 0], [-1, 11, -1, 3], [2, -1, 10, -1], [0, 3, -1, 8]])
@@ -86,8 +91,8 @@ def test_burden_faires_iteration_counts(method, iterations, last):
 
 def test_sor_textbook_solution_and_speed_up():
     # Burden and Faires, Example 7.4.3: 7 decimals, an absolute test
-    sor = linear.sor(TRI_A, TRI_B, 1.25, x0=np.ones(3), tol=1e-7, relative=False)
-    gs = linear.gauss_seidel(TRI_A, TRI_B, x0=np.ones(3), tol=1e-7, relative=False)
+    sor = linear.sor(TRI_A, TRI_B, 1.25, seed=np.ones(3), tol=1e-7, relative=False)
+    gs = linear.gauss_seidel(TRI_A, TRI_B, seed=np.ones(3), tol=1e-7, relative=False)
     assert_allclose(sor.x, [3, 4, -5], atol=1e-6, rtol=0)
     assert sor.iterations < gs.iterations / 2
 
@@ -96,11 +101,11 @@ def test_optimal_omega_young_textbook_value():
     best = linear.optimal_omega(TRI_A)
     # rho_J^2 = 0.625 for this matrix, so omega* = 2 / (1 + sqrt(0.375)) = 1.2404...
     assert best.how == "young"
-    assert best.omega == pytest.approx(2 / (1 + np.sqrt(0.375)), rel=1e-12)
-    assert best.spectral_radius == pytest.approx(best.omega - 1, rel=1e-12)
+    assert best.x == pytest.approx(2 / (1 + np.sqrt(0.375)), rel=1e-12)
+    assert best.spectral_radius == pytest.approx(best.x - 1, rel=1e-12)
     fine = np.linspace(1.0, 1.5, 5001)
     radii = linear.sor_spectral_radii(TRI_A, fine)
-    assert fine[np.argmin(radii)] == pytest.approx(best.omega, abs=2e-4)
+    assert fine[np.argmin(radii)] == pytest.approx(best.x, abs=2e-4)
 
 
 def test_optimal_omega_numerical_is_a_minimum():
@@ -110,7 +115,7 @@ def test_optimal_omega_numerical_is_a_minimum():
     grid = np.linspace(0.01, 1.99, 199)
     assert best.spectral_radius <= linear.sor_spectral_radii(A, grid).min() + 1e-12
     assert best.spectral_radius == pytest.approx(
-        linear.spectral_radius(linear.iteration_matrix(A, "sor", best.omega)), rel=1e-12)
+        linear.spectral_radius(linear.iteration_matrix(A, "sor", best.x)), rel=1e-12)
 
 
 def test_condition_number_of_the_ill_conditioned_example():
@@ -186,8 +191,8 @@ def test_residual_criterion():
 
 def test_long_runs_cross_the_compiled_chunks():
     # More sweeps than one compiled chunk: the history is stitched without gaps.
-    res = linear.sor(TRI_A, TRI_B, 0.01, tol=1e-12, maxiter=linear.CHUNK * 3)
-    assert res.iterations > linear.CHUNK
+    res = linear.sor(TRI_A, TRI_B, 0.01, tol=1e-12, maxiter=CHUNK * 3)
+    assert res.iterations > CHUNK
     assert res.history.shape == (res.iterations + 1, 3)
     assert_allclose(res.residual_norms, np.abs(TRI_B - res.history @ TRI_A.T).max(axis=1),
                     rtol=1e-9, atol=1e-12)
@@ -201,7 +206,7 @@ def test_zero_right_hand_side_converges_at_once():
 
 # --- sparse matrices and the sweep ---------------------------------------------------------------
 
-@pytest.mark.parametrize("method", linear.METHODS)
+@pytest.mark.parametrize("method", METHODS)
 def test_sparse_and_dense_give_the_same_iterates(method):
     A = linear.poisson2d(5)
     b = np.arange(25.0)
@@ -257,18 +262,18 @@ def test_a_sparse_matrix_is_never_made_dense(monkeypatch):
     for call in (lambda: linear.sor(A, np.ones(9), 1.3), lambda: linear.jacobi(A, np.ones(9)),
                  lambda: linear.sor_sweep(A, np.ones(9), [0.5, 1.5]),
                  lambda: linear.conjugate_gradient(A, np.ones(9)),
-                 lambda: linear.splitting(A, "sor", 1.2).sweep(np.zeros(9), np.ones(9))):
+                 lambda: splitting(A, "sor", 1.2).sweep(np.zeros(9), np.ones(9))):
         call()
     with pytest.raises(ValueError, match="dense"):
         linear.iteration_matrix(A, "jacobi")
 
 
 @HYPOTHESIS
-@given(dominant_systems(), omegas, st.sampled_from(linear.METHODS))
+@given(dominant_systems(), omegas, st.sampled_from(METHODS))
 def test_compiled_sweep_is_the_textbook_sweep(system, omega, method):
     A, b = system
     x = np.linspace(-1, 1, b.size)
-    split = linear.splitting(A, method, omega)
+    split = splitting(A, method, omega)
     if method == "jacobi":
         expected = (b - (A - np.diag(np.diag(A))) @ x) / np.diag(A)
     else:
@@ -321,7 +326,7 @@ def test_bad_systems(solver, A, b, error, message):
 def test_omega_outside_open_interval(omega):
     for call in (lambda: linear.sor(TRI_A, TRI_B, omega),
                  lambda: linear.iteration_matrix(TRI_A, "sor", omega),
-                 lambda: linear.splitting(TRI_A, "sor", omega),
+                 lambda: splitting(TRI_A, "sor", omega),
                  lambda: linear.sor_spectral_radii(TRI_A, [1.0, omega]),
                  lambda: linear.sor_sweep(TRI_A, TRI_B, [omega]),
                  lambda: linear.sweep_by_components(TRI_A, TRI_B, np.zeros(3), omega)):
@@ -334,7 +339,7 @@ def test_omega_outside_open_interval(omega):
     (dict(maxiter=0), "maxiter"), (dict(maxiter=np.inf), "maxiter"),
     (dict(maxiter=2.5), "maxiter"), (dict(criterion="size"), "criterion"),
     (dict(norm=3), "norm"), (dict(norm="fro"), "norm"), (dict(relative="yes"), "relative"),
-    (dict(x0=[1.0, 2.0]), "x0"), (dict(x0=[1, np.nan, 0]), "x0")])
+    (dict(seed=[1.0, 2.0]), "seed"), (dict(seed=[1, np.nan, 0]), "seed")])
 def test_bad_controls(kwargs, message):
     for solver in (linear.gauss_seidel, linear.jacobi,
                    lambda A, b, **k: linear.sor(A, b, 1.2, **k),
@@ -345,7 +350,7 @@ def test_bad_controls(kwargs, message):
 
 @pytest.mark.parametrize("call, error, message", [
     (lambda: linear.iteration_matrix(TRI_A, "richardson"), ValueError, "method"),
-    (lambda: linear.splitting(TRI_A, "sor_sweep"), ValueError, "method"),
+    (lambda: splitting(TRI_A, "sor_sweep"), ValueError, "method"),
     (lambda: linear.condition_number(TRI_A, 3), ValueError, "p must be"),
     (lambda: linear.condition_number([[1.0, 2.0]], 1), ValueError, "square"),
     (lambda: linear.condition_number(linear.poisson2d(2)), ValueError, "dense"),
@@ -359,16 +364,17 @@ def test_bad_controls(kwargs, message):
     (lambda: linear.young_omega(np.nan), ValueError, "finite"),
     (lambda: linear.optimal_omega([[1.0, 2.0]]), ValueError, "square"),
     (lambda: linear.optimal_omega(linear.poisson2d(2)), ValueError, "dense"),
-    (lambda: linear.check_matrix([1.0, 2.0]), ValueError, "dimension"),
-    (lambda: linear.check_matrix(sp.csr_array(np.eye(2) * 1j)), ValueError, "real"),
-    (lambda: linear.splitting(TRI_A).sweep([0.0, 0.0], TRI_B), ValueError, "x must have"),
-    (lambda: linear.splitting(TRI_A).sweep(np.zeros(3), [1, 2, np.nan]), ValueError, "finite"),
+    (lambda: check_matrix([1.0, 2.0]), ValueError, "dimension"),
+    (lambda: check_matrix(sp.csr_array(np.eye(2) * 1j)), ValueError, "real"),
+    (lambda: splitting(TRI_A).sweep([0.0, 0.0], TRI_B), ValueError, "x must have"),
+    (lambda: splitting(TRI_A).sweep(np.zeros(3), [1, 2, np.nan]), ValueError, "finite"),
     (lambda: linear.sweep_by_components(linear.poisson2d(2), np.ones(4), np.zeros(4)),
      ValueError, "dense"),
     (lambda: linear.sweep_by_components(TRI_A, TRI_B, [0.0]), ValueError, "x must have"),
     (lambda: linear.poisson2d(0), ValueError, "m must be"),
     (lambda: linear.poisson2d(2.5), ValueError, "m must be"),
-    (lambda: linear.StoppingRule(maxiter=True), ValueError, "maxiter"),
+    (lambda: StoppingRule.checked(1e-8, True, maxiter_limit=MAXITER_LIMIT), ValueError,
+     "maxiter"),
 ])
 def test_bad_input_of_the_other_functions(call, error, message):
     with pytest.raises(error, match=message):
@@ -573,7 +579,7 @@ def test_sor_converges_on_spd_for_every_omega(system, omega):
 
 @HYPOTHESIS
 @given(dominant_systems(), st.sampled_from(["jacobi", "gauss_seidel"]),
-       st.sampled_from(linear.NORMS), st.booleans())
+       st.sampled_from(NORMS), st.booleans())
 def test_jacobi_and_gauss_seidel_converge_on_dominant_systems(system, method, norm, relative):
     A, b = system
     res = getattr(linear, method)(A, b, tol=1e-11, norm=norm, relative=relative,
@@ -600,12 +606,12 @@ def test_sweep_matches_single_runs(system, ws):
 @given(dominant_systems(), st.booleans())
 def test_check_matrix_keeps_values(system, sparse):
     A, _ = system
-    checked = linear.check_matrix(sp.csr_array(A) if sparse else A.tolist())
+    checked = check_matrix(sp.csr_array(A) if sparse else A.tolist())
     assert_allclose(checked.toarray() if sparse else checked, A, rtol=0, atol=0)
 
 
 @HYPOTHESIS
-@given(dominant_systems(), omegas, st.sampled_from(linear.METHODS))
+@given(dominant_systems(), omegas, st.sampled_from(METHODS))
 def test_iteration_matrix_is_p_inverse_n(system, omega, method):
     A, _ = system
     D, L = np.diag(np.diag(A)), np.tril(A, -1)
@@ -641,7 +647,7 @@ def test_young_omega_is_the_optimum_of_tridiagonal_spd(T):
     rho_j = linear.spectral_radius(linear.iteration_matrix(T, "jacobi"))
     omega = linear.young_omega(rho_j)
     best = linear.optimal_omega(T)
-    assert best.how == "young" and best.omega == omega
+    assert best.how == "young" and best.x == omega
     rho = linear.sor_spectral_radii(T, [omega, max(omega - 0.01, 0.01), min(omega + 0.01, 1.99)])
     # rho(omega*) = omega* - 1 (eigenvalues of modulus omega* - 1, so up to sqrt(eps) digits)
     assert rho[0] == pytest.approx(omega - 1, abs=1e-6)
@@ -669,8 +675,8 @@ def test_optimal_omega_beats_the_grid(system):
     if A.shape[0] > 1 and np.any(np.abs(np.diag(A)) < 1e-3):
         return
     best = linear.optimal_omega(A)
-    assert 0 < best.omega < 2
-    grid = linear.sor_spectral_radii(A, linear.OMEGA_GRID)
+    assert 0 < best.x < 2
+    grid = linear.sor_spectral_radii(A, OMEGA_GRID)
     assert best.spectral_radius <= grid.min() + 1e-12
 
 
@@ -696,13 +702,14 @@ def test_poisson2d_is_spd_with_known_jacobi_radius(m):
 
 
 @HYPOTHESIS
-@given(st.floats(1e-300, 1e300), st.integers(1, 10**7), st.sampled_from(linear.CRITERIA),
-       st.sampled_from(linear.NORMS), st.booleans())
+@given(st.floats(1e-300, 1e300), st.integers(1, 10**7), st.sampled_from(CRITERIA),
+       st.sampled_from(NORMS), st.booleans())
 def test_stopping_rule_accepts_its_domain(tol, maxiter, criterion, norm, relative):
-    rule = linear.StoppingRule(tol, maxiter, criterion, norm, relative)
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                maxiter_limit=MAXITER_LIMIT)
     assert (rule.tol, rule.maxiter) == (tol, maxiter)
     with pytest.raises(ValueError, match="tol"):
-        linear.StoppingRule(-tol, maxiter)
+        StoppingRule.checked(-tol, maxiter, maxiter_limit=MAXITER_LIMIT)
 
 
 # --- issue 23: relative stopping tests, the result contract, bounds ------------------------------
@@ -721,8 +728,8 @@ def test_the_default_test_is_relative():
 
 
 @HYPOTHESIS
-@given(dominant_systems(), st.integers(-40, 40), st.sampled_from(linear.METHODS),
-       st.sampled_from(linear.CRITERIA))
+@given(dominant_systems(), st.integers(-40, 40), st.sampled_from(METHODS),
+       st.sampled_from(CRITERIA))
 @example(system=(np.array([[-0.5]]), np.array([2.22507386e-308])), power=-3, method="sor",
          criterion="step")  # steps below the normal range: not compared, the answers checked
 def test_stationary_solvers_are_indifferent_to_scale(system, power, method, criterion):
@@ -782,8 +789,8 @@ def test_results_follow_the_contract():
     (lambda: linear.conjugate_gradient(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
     (lambda: linear.iterative_refinement(TRI_A, TRI_B, maxiter=1000), "bound on the work"),
     (lambda: linear.poisson2d(10 ** 5), "bound on the work"),
-    (lambda: linear.poisson3d(linear.POISSON3D_LIMIT + 1), "bound on the work"),
-    (lambda: linear.StoppingRule(relative=1), "relative must be True or False"),
+    (lambda: linear.poisson3d(POISSON3D_LIMIT + 1), "bound on the work"),
+    (lambda: linear.sor(TRI_A, TRI_B, 1.2, relative=1), "relative must be True or False"),
 ])
 def test_every_amount_of_work_is_bounded(call, message):
     with pytest.raises(ValueError, match=message):
@@ -796,6 +803,6 @@ def test_a_sparse_matrix_of_float16_is_accepted():
     for fmt in (sp.coo_array, sp.dia_array, sp.csr_array):
         A = fmt(TRI_A)
         A.data = A.data.astype(np.float16)
-        checked = linear.check_matrix(A)
+        checked = check_matrix(A)
         assert checked.dtype == np.float64
         assert_allclose(checked.toarray(), TRI_A, rtol=0, atol=0)

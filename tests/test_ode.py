@@ -115,8 +115,8 @@ def test_multiple_shooting_solves_a_linear_bvp_in_one_step(segments):
     f, bc, exact = sine_bvp(4.0, 0.5, -1.0)
     s = np.linspace(0.0, 1.0, 41)
     sol = multiple_shooting(f, bc, s, np.zeros((41, 2)), segments=segments)
-    assert sol.newton.iterations == 1 and sol.starts.size == segments
-    assert_allclose(sol.y[:, 0], exact(s), rtol=0, atol=1e-7)   # RK4 at h = 1/40
+    assert sol.newton.iterations == 1 and sol.segment_starts.size == segments
+    assert_allclose(sol.x[:, 0], exact(s), rtol=0, atol=1e-7)   # RK4 at h = 1/40
     assert_allclose(sol.s, s, rtol=1e-12)
 
 
@@ -134,8 +134,8 @@ def test_multiple_shooting_solves_the_discrete_rk4_problem(c, a, b, segments):
     discrete = rk4(f, [a, (b - M[0, 0] * a) / M[0, 1]], s)
     sol = multiple_shooting(f, bc, s, np.ones((33, 2)), segments=segments)
     scale = max(np.abs(discrete).max(), 1.0) / abs(M[0, 1])       # M01 ~ sin(sqrt(c))
-    assert_allclose(sol.y, discrete, rtol=0, atol=1e-12 * scale)
-    assert_allclose(bc(sol.y[0], sol.y[-1]), 0.0, rtol=0, atol=1e-10 * scale)
+    assert_allclose(sol.x, discrete, rtol=0, atol=1e-12 * scale)
+    assert_allclose(bc(sol.x[0], sol.x[-1]), 0.0, rtol=0, atol=1e-10 * scale)
 
 
 def test_multiple_shooting_tames_an_unstable_shooting_problem():
@@ -150,7 +150,7 @@ def test_multiple_shooting_tames_an_unstable_shooting_problem():
 
     sol = multiple_shooting(f, bc, s, np.zeros((401, 2)), segments=20)
     exact = np.cosh(20.0 * (s - 0.5)) / np.cosh(10.0)
-    assert_allclose(sol.y[:, 0], exact, rtol=1e-6, atol=1e-12)
+    assert_allclose(sol.x[:, 0], exact, rtol=1e-6, atol=1e-12)
 
 
 def test_multiple_shooting_reports_a_bvp_with_no_solution():
@@ -165,17 +165,17 @@ def test_multiple_shooting_reports_a_bvp_with_no_solution():
 @pytest.mark.parametrize("kwargs, match", [
     (dict(segments=0), "segments must be an integer >= 1"),
     (dict(segments=41), "segments must be at most"),
-    (dict(y_guess=np.zeros((40, 2))), "y_guess must have shape"),
-    (dict(y_guess=np.full((41, 2), np.nan)), "y_guess must be finite"),
+    (dict(seed=np.zeros((40, 2))), "seed must have shape"),
+    (dict(seed=np.full((41, 2), np.nan)), "seed must be finite"),
     (dict(tol=-1.0), "tol must be positive"),
     (dict(bc=lambda ya, yb: np.zeros(3)), "bc returned shape"),
 ])
 def test_multiple_shooting_bad_input(kwargs, match):
     f, bc, _ = sine_bvp(1.0, 0.0, 1.0)
-    args = dict(f=f, bc=bc, s=np.linspace(0.0, 1.0, 41), y_guess=np.zeros((41, 2)))
+    args = dict(fun=f, bc=bc, s=np.linspace(0.0, 1.0, 41), seed=np.zeros((41, 2)))
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
-        multiple_shooting(args.pop("f"), args.pop("bc"), args.pop("s"), args.pop("y_guess"),
+        multiple_shooting(args.pop("fun"), args.pop("bc"), args.pop("s"), args.pop("seed"),
                           **args)
 
 
@@ -209,7 +209,7 @@ def test_a_state_that_is_not_finite_is_a_named_error(f, s, match):
 
 def test_f_that_changes_shape_is_a_value_error():
     # R4: f of the right shape at s[0] and of another later
-    with pytest.raises(ValueError, match=r"f returned shape \(3,\) at s = 0.5"):
+    with pytest.raises(ValueError, match=r"fun returned shape \(3,\) at s = 0.5"):
         rk4(lambda t, y: y if t < 0.5 else np.zeros(3), [1.0, 2.0], [0.0, 0.5, 1.0])
 
 

@@ -161,8 +161,13 @@ def test_table7_has_exactly_three_equilibria_all_proven_stable(table7):
 
 def test_the_certificate_verifies_from_its_inputs(table7):
     _, data = table7
-    verified = rfr2_certified.verify_forward(rods.CoCertificate.from_json(json.dumps(data)))
-    assert verified.count == 3 and verified.complete
+    verified = rfr2_certified.verify_certificate(
+        rods.CoCertificate.from_json(json.dumps(data)), rfr2.TABLE7, rfr2.TABLE7_THETA)
+    assert verified.count == 3 and verified.complete and verified.scope == "all"
+    other = rfr2.Mechanism(origins=rfr2.TABLE7.origins, force=[0.3, -0.2])
+    with pytest.raises(certify.CertificateError, match="round 0"):
+        rfr2_certified.verify_certificate(rods.CoCertificate.from_json(json.dumps(data)),
+                                          other, rfr2.TABLE7_THETA)
 
 
 def _tampered(data, change):
@@ -181,13 +186,12 @@ def _flip(text, i):
     (lambda d: d["dims"][1].__setitem__(0, _flip(d["dims"][1][0], 3)), "round 2"),
     (lambda d: d["dims"][1].__setitem__(0, d["dims"][1][0][:-1]), "cuts"),
     (lambda d: d["dims"].pop(), "rounds"),
-    (lambda d: d["inputs"].update(force=[0.3, -0.2]), "round 0"),
-    (lambda d: d["inputs"].pop("theta"), "inputs"),
 ])
 def test_a_tampered_certificate_is_refused_early(table7, change, match):
     _, data = table7
     with pytest.raises(certify.CertificateError, match=match):
-        rfr2_certified.verify_forward(_tampered(data, change))
+        rfr2_certified.verify_certificate(_tampered(data, change), rfr2.TABLE7,
+                                          rfr2.TABLE7_THETA)
 
 
 def _drop_settled(data):
@@ -195,14 +199,27 @@ def _drop_settled(data):
     data["resolved"][last] = data["resolved"][last][1:]
 
 
+def _settle_twice(data):
+    """A settled box settled again, in the rounds and in the Krawczyk search alike: the same
+    root would be counted twice."""
+    last = max(i for i, r in enumerate(data["resolved"]) if r)
+    box = data["resolved"][last][0]
+    data["resolved"][last].append(box)
+    k = data["search"]["boxes"].index(box)
+    data["search"]["boxes"].append(box)
+    data["search"]["leaves"].append(data["search"]["leaves"][k])
+
+
 @pytest.mark.parametrize("change, match", [
     (lambda d: d.update(count=4), "4"),
-    (_drop_settled, "settled boxes"),
+    (_drop_settled, "domain"),
+    (_settle_twice, "overlap"),
 ])
 def test_a_tampered_certificate_is_refused(table7, change, match):
     _, data = table7
     with pytest.raises(certify.CertificateError, match=match):
-        rfr2_certified.verify_forward(_tampered(data, change))
+        rfr2_certified.verify_certificate(_tampered(data, change), rfr2.TABLE7,
+                                          rfr2.TABLE7_THETA)
 
 
 def test_a_certificate_that_leaves_tuples_unsettled_is_not_complete():

@@ -1,18 +1,25 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: the inputs, the searched boxes, the
-leaves with the test each passed, the root enclosures and the work done. Re-check one with
-:func:`~mechnum.certify.certificate.verify` and the residual of the same ``system`` (see each entry below).
+Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: its scope, the search
+that made it, the inputs, the searched boxes, the leaves with the test each passed, the root
+enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify.verify`, the
+residual of the same ``system`` and the chart as the domain
+(:func:`~mechnum.rods.certified.branch_boxes`; see each entry below).
 
 * ``ch3_pinned_mode{1,2,3}.json``: Chapter 3's pinned rod (``EI = L = 1``, tip ``(0.8, 0.1)``),
-  the chart of each mode searched whole (:func:`~mechnum.rods.certified.certify_pinned`): complete.
-* ``ch5_table7_modes11.json``: every equilibrium of Table 7 with modes ``(1, 1)``, the whole
+  the chart of each mode searched whole (:func:`~mechnum.rods.certified.certify_pinned`):
+  scope ``"all"``, complete.
+* ``ch5_table7_modes11.json``: Table 7's mode ``(1, 1)`` equilibria, each proven in a box around
+  the sampled one (:func:`~mechnum.mechanisms.rfr2.certify_forward` with ``around``): scope
+  ``"existence"``.
+* ``ch5_table7_all_modes11.json``: every equilibrium of Table 7 with modes ``(1, 1)``, the whole
   chart searched by co-refinement up to the a-priori bound on the rods' load
-  (:func:`~mechnum.mechanisms.rfr2.certify_forward`): a :class:`~mechnum.rods.CoCertificate`
-  with ``"scope": "all"``, re-checked by :func:`~mechnum.mechanisms.rfr2.certified.verify_forward`
-  from its inputs alone.
+  (:func:`~mechnum.mechanisms.rfr2.certify_forward` without ``around``): a
+  :class:`~mechnum.rods.CoCertificate` of scope ``"all"``, re-checked against the caller's
+  inputs by :func:`~mechnum.mechanisms.rfr2.certified.verify_certificate`.
 * ``ch6_table8_modes111.json``: Table 8's mode ``(1, 1, 1)`` equilibria, likewise
-  (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` with ``around``); Chapter 6 verifies it.
+  (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` with ``around``): scope
+  ``"existence"``; Chapter 6 verifies it.
 """
 
 import pathlib
@@ -29,7 +36,7 @@ HERE = pathlib.Path(__file__).parent
 def store(name, part, inputs):
     cert = part.certificate(inputs)
     cert.save(HERE / name)
-    print(f"{name}: {part.message} ({part.seconds:.1f} s)")
+    print(f"{name}: scope {cert.scope}, {part.message} ({part.seconds:.1f} s)")
 
 
 def main():
@@ -39,11 +46,18 @@ def main():
         store(f"ch3_pinned_mode{mode}.json", part,
               {"function": "mechnum.rods.certified.pinned_system", "EI": 1.0, "L": 1.0,
                "target": [0.8, 0.1], "mode": mode, "unknowns": ["psi", "t"]})
+    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
+    table7 = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    store("ch5_table7_modes11.json", table7.parts[0],
+          {"function": "mechnum.mechanisms.rfr2.certified.system", "mechanism": "TABLE7",
+           "theta": rfr2.TABLE7_THETA.tolist(), "modes": [1, 1],
+           "searched": "boxes around the sampled equilibria (a lower bound of the count)",
+           "around": sampled.chart.tolist(), "unknowns": ["psi1", "t1", "psi2", "t2"]})
     table7 = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA)
     cert = table7.certificate(rfr2_certified.certificate_inputs(rfr2.TABLE7,
                                                                 rfr2.TABLE7_THETA))
-    cert.save(HERE / "ch5_table7_modes11.json")
-    print(f"ch5_table7_modes11.json: {table7.message}; stable {table7.stable} "
+    cert.save(HERE / "ch5_table7_all_modes11.json")
+    print(f"ch5_table7_all_modes11.json: {table7.message}; stable {table7.stable} "
           f"({table7.seconds:.1f} s)")
     sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
     table8 = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
@@ -51,6 +65,7 @@ def main():
           {"function": "mechnum.mechanisms.pfr3.certified.system", "mechanism": "TABLE8",
            "lambdas": pfr3.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
+           "around": sampled.chart.tolist(),
            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]})
     print(f"all certificates in {time.perf_counter() - start:.0f} s")
     return 0

@@ -36,7 +36,6 @@ Examples
 [-1.414213562373, 1.414213562373]
 """
 
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import product
@@ -48,6 +47,8 @@ from mechnum import _validate
 from mechnum.errors import ConvergenceError
 from mechnum.polynomials import PolynomialSystem, bezout_bound
 from mechnum.results import Result, status_counts
+
+__all__ = ["ENDS", "HomotopyResult", "TrackResult", "solve", "track"]
 
 # Newton's corrector may take this many steps at each s: more means the predictor went too far.
 _CORRECTOR_STEPS = 3
@@ -91,15 +92,6 @@ ENDS = ("finite", "at-infinity", "lost")
 infinity, or nowhere known (the tracker lost it)."""
 
 
-def __getattr__(name):
-    if name == "STATUSES":
-        warnings.warn("mechnum.homotopy.STATUSES is deprecated: the ends of the paths are "
-                      "homotopy.ENDS (HomotopyResult.ends); status is the shared vocabulary of "
-                      "mechnum.results.STATUSES", DeprecationWarning, stacklevel=2)
-        return ENDS
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 @dataclass(frozen=True, kw_only=True)
 class TrackResult(Result):
     """One tracked path (:func:`track`).
@@ -112,7 +104,7 @@ class TrackResult(Result):
         ``"converged"`` if it reached ``s = 1``; ``"lost"`` if the step fell below
         ``1e-12`` or ``max_steps`` ran out; ``"non-finite"`` if ``x`` overflowed.
     message, nfev, njev
-        As in :class:`~mechnum.results.Result` (calls of ``homotopy``, which gives both).
+        As in :class:`~mechnum.results.Result` (calls of ``fun``, which gives both).
     iterations : int
         Steps tried, accepted and rejected.
     s : float
@@ -126,27 +118,27 @@ class TrackResult(Result):
     rejected: int
 
 
-def _checked(homotopy, x, s):
-    """``homotopy(x, s)`` checked: ``H`` and ``H_s`` of shape ``(m,)``, ``H_x`` ``(m, m)``."""
-    H, Hx, Hs = (np.asarray(v) for v in homotopy(x, s))
+def _checked(fun, x, s):
+    """``fun(x, s)`` checked: ``H`` and ``H_s`` of shape ``(m,)``, ``H_x`` ``(m, m)``."""
+    H, Hx, Hs = (np.asarray(v) for v in fun(x, s))
     m = x.shape[0]
     if H.shape != (m,) or Hx.shape != (m, m) or Hs.shape != (m,):
-        raise ValueError(f"homotopy must return H ({m},), H_x ({m}, {m}) and H_s ({m},) for x "
+        raise ValueError(f"fun must return H ({m},), H_x ({m}, {m}) and H_s ({m},) for x "
                          f"of shape ({m},), got {H.shape}, {Hx.shape}, {Hs.shape}")
     return H, Hx, Hs
 
 
-def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.01,
+def track(fun: Callable, seed: ArrayLike, *, tol: float = TOL, h0: float = 0.01,
           max_steps: int = 20000) -> TrackResult:
     """Follow a solution of ``H(x, s) = 0`` from ``s = 0`` to ``s = 1``.
 
     Parameters
     ----------
-    homotopy : callable
-        ``homotopy(x, s) -> (H, H_x, H_s)``: the value (shape ``(m,)``), its Jacobian in ``x``
-        (``(m, m)``) and its derivative in ``s`` (``(m,)``), complex.
-    x0 : array_like, shape (m,)
-        A solution at ``s = 0``, finite.
+    fun : callable
+        The homotopy, ``fun(x, s) -> (H, H_x, H_s)``: the value (shape ``(m,)``), its
+        Jacobian in ``x`` (``(m, m)``) and its derivative in ``s`` (``(m,)``), complex.
+    seed : array_like, shape (m,)
+        A solution at ``s = 0``, finite: where the path starts.
     tol : float, optional
         Newton's corrector accepts a step when its last update is below ``tol * (1 + |x|)``.
     h0 : float, optional
@@ -171,21 +163,21 @@ def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.
     >>> end.s, np.round(end.x.real, 12).tolist(), end.status
     (1.0, [2.0], 'converged')
     """
-    _validate.function(homotopy, "homotopy")
+    _validate.function(fun, "fun")
     tol = _validate.tolerance(tol)
     max_steps = _validate.maxiter(max_steps, "max_steps", maximum=MAX_STEPS_LIMIT)
     h = _validate.tolerance(h0, "h0")
-    x = np.asarray(x0)
+    x = np.asarray(seed)
     if x.dtype.kind not in "biufc" or x.ndim != 1 or x.size == 0:
-        raise ValueError(f"x0 must be a non-empty 1-D numeric array, got "
-                         f"{_validate.shown(x0)}")
+        raise ValueError(f"seed must be a non-empty 1-D numeric array, got "
+                         f"{_validate.shown(seed)}")
     x = x.astype(complex)
     if not np.all(np.isfinite(x)):
-        raise ValueError(f"x0 must be finite, got {_validate.shown(x)}")
+        raise ValueError(f"seed must be finite, got {_validate.shown(x)}")
     s, steps, rejected, successes, calls = 0.0, 0, 0, 0, 0
 
     def velocity(x, s):
-        _, Hx, Hs = _checked(homotopy, x, s)
+        _, Hx, Hs = _checked(fun, x, s)
         return -np.linalg.solve(Hx, Hs)
 
     while s < 1.0 and steps + rejected < max_steps and h >= _MIN_STEP:
@@ -200,7 +192,7 @@ def track(homotopy: Callable, x0: ArrayLike, *, tol: float = TOL, h0: float = 0.
                 calls += 4
                 y = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
                 for _ in range(_CORRECTOR_STEPS):  # corrector: Newton at the new s
-                    value, Hx, _ = _checked(homotopy, y, s + h)
+                    value, Hx, _ = _checked(fun, y, s + h)
                     calls += 1
                     dy = np.linalg.solve(Hx, -value)
                     y = y + dy
@@ -232,8 +224,7 @@ class HomotopyResult(Result):
     Attributes
     ----------
     x : ndarray of complex, shape (k, n)
-        The distinct finite solutions, polished by Newton on the system itself (also
-        :attr:`solutions`).
+        The distinct finite solutions, polished by Newton on the system itself.
     status : ndarray of str, shape (paths,)
         What became of each path, in the shared vocabulary (:data:`~mechnum.results.STATUSES`):
         ``"converged"`` (followed to ``s = 1``), ``"singular"`` (to a singular end, finished by
@@ -241,7 +232,7 @@ class HomotopyResult(Result):
     message : str
         The counts of the ends and of the solutions.
     iterations : ndarray of int, shape (paths,)
-        Accepted steps of each path (also :attr:`steps`).
+        Accepted steps of each path.
     nfev, njev : int
         Evaluations of the homotopy (each gives the values and the Jacobian).
     ends : ndarray of str, shape (paths,)
@@ -256,16 +247,6 @@ class HomotopyResult(Result):
     endpoints: np.ndarray
     multiplicity: np.ndarray
 
-    @property
-    def solutions(self) -> np.ndarray:
-        """ndarray of complex, shape (k, n): the distinct finite solutions (``x``)."""
-        return self.x
-
-    @property
-    def steps(self) -> np.ndarray:
-        """ndarray of int, shape (paths,): accepted steps of each path (``iterations``)."""
-        return self.iterations
-
     def real(self, imag_tol: float = IMAG_TOL) -> np.ndarray:
         """The solutions whose imaginary parts are all below ``imag_tol``, as real arrays;
         below ``imag_tol ** (1 / m)`` for a root of multiplicity ``m``, which round-off
@@ -279,8 +260,8 @@ class HomotopyResult(Result):
         """
         imag_tol = _validate.tolerance(imag_tol, "imag_tol")
         limit = imag_tol ** (1.0 / np.maximum(self.multiplicity, 1))
-        keep = np.all(np.abs(self.solutions.imag) <= limit[:, None], axis=1)
-        return self.solutions[keep].real
+        keep = np.all(np.abs(self.x.imag) <= limit[:, None], axis=1)
+        return self.x[keep].real
 
 
 def _start_points(degrees, chart):

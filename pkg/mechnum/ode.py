@@ -5,7 +5,7 @@ integrator of the flexible-rod study (its equations (81) to (85)). It is vectori
 may carry any leading batch shape, so many initial-value problems (many rods, many Newton
 perturbations) advance together in one sweep over the grid.
 
-:func:`multiple_shooting` solves a two-point boundary value problem ``y' = f(s, y)``,
+:func:`multiple_shooting` solves a two-point boundary value problem ``y' = fun(s, y)``,
 ``bc(y(s_0), y(s_N)) = 0``. Plain shooting guesses the missing initial values, integrates to the
 far end and corrects the guess by Newton's method; its residual depends on the guess through the
 whole interval, so it is as nonlinear as the problem (a small change at the start can move the
@@ -24,6 +24,9 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate, newton
 from mechnum.errors import NonFiniteError
+from mechnum.results import Result
+
+__all__ = ["BVPSolution", "multiple_shooting", "rk4"]
 
 _STEP = 1e-30  # complex step: f(x + i h) = f(x) + i h f'(x) + O(h^2), with no cancellation
 OUTPUT_LIMIT = 100_000_000
@@ -33,7 +36,7 @@ MAXITER_LIMIT = 1000
 problem that converges at all does so in tens."""
 
 
-def _rk4(f, y, s):
+def _rk4(fun, y, s):
     """The RK4 sweep of :func:`rk4`, without its checks of ``y0`` and ``s`` (``s`` a list of
     floats); a stage of the wrong shape raises, and a complex stage makes the states complex."""
     out = np.empty((len(s),) + y.shape, dtype=y.dtype)
@@ -41,9 +44,9 @@ def _rk4(f, y, s):
     shape = y.shape
 
     def stage(si, yi):
-        k = np.asarray(f(si, yi))
+        k = np.asarray(fun(si, yi))
         if k.shape != shape:
-            raise ValueError(f"f returned shape {k.shape} at s = {si!r}, expected {shape}")
+            raise ValueError(f"fun returned shape {k.shape} at s = {si!r}, expected {shape}")
         return k
 
     k1 = stage(s[0], y)
@@ -54,7 +57,7 @@ def _rk4(f, y, s):
         k3 = stage(s[i] + half, y + half * k2)
         k4 = stage(s[i + 1], y + h * k3)
         y = y + (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
-        if y.dtype != out.dtype:  # f returned complex values for a real state
+        if y.dtype != out.dtype:  # fun returned complex values for a real state
             out = out.astype(np.result_type(out.dtype, y.dtype))
         out[i + 1] = y
         if i + 2 < len(s):
@@ -73,23 +76,23 @@ def _nodes(s):
     return s.tolist()  # Python floats: cheaper than numpy scalars in the loop
 
 
-def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
-    """Integrate ``dy/ds = f(s, y)`` from ``y(s[0]) = y0`` by classical RK4 on the nodes ``s``.
+def rk4(fun: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
+    """Integrate ``dy/ds = fun(s, y)`` from ``y(s[0]) = y0`` by classical RK4 on the nodes ``s``.
 
     One step from ``s_i`` to ``s_{i+1}`` with ``h = s_{i+1} - s_i`` is::
 
-        k1 = f(s_i, y_i)
-        k2 = f(s_i + h/2, y_i + h/2 k1)
-        k3 = f(s_i + h/2, y_i + h/2 k2)
-        k4 = f(s_i + h, y_i + h k3)
+        k1 = fun(s_i, y_i)
+        k2 = fun(s_i + h/2, y_i + h/2 k1)
+        k3 = fun(s_i + h/2, y_i + h/2 k2)
+        k4 = fun(s_i + h, y_i + h k3)
         y_{i+1} = y_i + h/6 (k1 + 2 k2 + 2 k3 + k4)
 
-    and the global error is ``O(h**4)`` for a smooth ``f``.
+    and the global error is ``O(h**4)`` for a smooth ``fun``.
 
     Parameters
     ----------
-    f : callable
-        ``f(s, y) -> ndarray`` of ``y``'s shape; ``s`` is a float, ``y`` has shape
+    fun : callable
+        ``fun(s, y) -> ndarray`` of ``y``'s shape; ``s`` is a float, ``y`` has shape
         ``y0.shape`` (for example ``(batch, n)``: the last axis is the state, the leading
         ones a batch of independent problems). If it returns complex values for a real
         ``y0``, the states are complex from there on.
@@ -108,10 +111,10 @@ def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
     ------
     ValueError
         If ``y0`` is not numeric or not finite, ``s`` has fewer than two nodes or is not
-        strictly monotone, the output would be too large, or ``f`` returns the wrong shape.
+        strictly monotone, the output would be too large, or ``fun`` returns the wrong shape.
     NonFiniteError
-        If a state is not finite: ``f`` returned NaN or infinity, or a step overflowed (a step
-        far too large for ``f``); the message names the first node.
+        If a state is not finite: ``fun`` returned NaN or infinity, or a step overflowed (a
+        step far too large for ``fun``); the message names the first node.
 
     Examples
     --------
@@ -122,7 +125,7 @@ def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
     >>> np.round(rk4(lambda s, y: 1j * y, [1.0], [0.0, 0.1])[-1], 6)    # exp(0.1 i)
     array([0.995004+0.099833j])
     """
-    _validate.function(f, "f")
+    _validate.function(fun, "fun")
     y = np.asarray(y0)
     if y.dtype.kind not in "biufc":
         raise ValueError(f"y0 must be a real or complex numeric array, got dtype {y.dtype}")
@@ -134,35 +137,37 @@ def rk4(f: Callable, y0: ArrayLike, s: ArrayLike) -> np.ndarray:
         raise ValueError(f"rk4 would return {len(s)} x {y.size} numbers, more than "
                          f"{OUTPUT_LIMIT} (a bound on the memory)")
     with np.errstate(over="ignore", invalid="ignore"):
-        out = _rk4(f, y, s)
+        out = _rk4(fun, y, s)
     finite = np.isfinite(out.reshape(len(s), -1)).all(axis=1)
     if not finite.all():
         i = int(np.argmin(finite))
         raise NonFiniteError(f"the state is not finite at node {i} (s = {s[i]!r}), after a step "
-                             f"of h = {s[i] - s[i - 1]:.3g} from a finite one: f returned NaN "
+                             f"of h = {s[i] - s[i - 1]:.3g} from a finite one: fun returned NaN "
                              f"or infinity there, or the step overflowed")
     return out
 
 
-@dataclass(frozen=True)
-class BVPSolution:
+@dataclass(frozen=True, kw_only=True)
+class BVPSolution(Result):
     """The outcome of :func:`multiple_shooting`.
 
     Attributes
     ----------
+    x : ndarray, shape (N, n)
+        The solution ``y`` at every node.
+    status, message, iterations, nfev, njev
+        Those of the Newton iteration on the segments' initial states (``"converged"``: a
+        failure raises).
     s : ndarray, shape (N,)
         The nodes.
-    y : ndarray, shape (N, n)
-        The solution at every node.
-    starts : ndarray of int, shape (segments,)
+    segment_starts : ndarray of int, shape (segments,)
         Index in ``s`` of each segment's first node.
     newton : NewtonResult
         The Newton iteration on the segments' initial states.
     """
 
     s: np.ndarray
-    y: np.ndarray
-    starts: np.ndarray
+    segment_starts: np.ndarray
     newton: newton.NewtonResult
 
 
@@ -171,29 +176,30 @@ BVP_TOL = 1e-10
 the states are the caller's to scale to order one)."""
 
 
-def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLike, *,
+def multiple_shooting(fun: Callable, bc: Callable, s: ArrayLike, seed: ArrayLike, *,
                       segments: int = 4,
                       tol: float = BVP_TOL, maxiter: int = 50) -> "BVPSolution":
-    """Solve ``y' = f(s, y)``, ``bc(y(s[0]), y(s[-1])) = 0`` by multiple shooting with RK4.
+    """Solve ``y' = fun(s, y)``, ``bc(y(s[0]), y(s[-1])) = 0`` by multiple shooting with RK4.
 
     The nodes are cut into ``segments`` runs of (nearly) equal numbers of steps. The unknowns
     are the states ``Y_j`` at the first node of every segment; the equations are the boundary
     conditions ``bc(Y_0, phi_last(Y_last)) = 0`` and the continuity ``phi_j(Y_j) - Y_{j+1} = 0``,
     where ``phi_j`` is the RK4 sweep over segment ``j``. Damped Newton
     (:func:`mechnum.newton.solve`) solves them, with the exact Jacobian of the discrete
-    sweeps (complex step: ``f`` and ``bc`` must accept complex states, as a formula of
+    sweeps (complex step: ``fun`` and ``bc`` must accept complex states, as a formula of
     numpy's functions does). With ``segments=1`` this is plain shooting.
 
     Parameters
     ----------
-    f : callable
-        ``f(s, y) -> ndarray`` for ``y`` of shape ``(..., n)`` (a batch), as in :func:`rk4`.
+    fun : callable
+        ``fun(s, y) -> ndarray`` for ``y`` of shape ``(..., n)`` (a batch), as in :func:`rk4`.
     bc : callable
         ``bc(ya, yb) -> ndarray (n,)``, the ``n`` boundary conditions.
     s : array_like, shape (N,)
         The RK4 nodes, strictly monotone.
-    y_guess : array_like, shape (N, n)
-        A guess of the solution at every node (only the segments' first nodes are used).
+    seed : array_like, shape (N, n)
+        The initial guess of the solution at every node (only the segments' first nodes are
+        used).
     segments : int, optional
         Number of segments, ``1 <= segments <= N - 1``.
     tol, maxiter
@@ -219,12 +225,12 @@ def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLik
     >>> sol = multiple_shooting(lambda s, y: np.stack((y[..., 1], -y[..., 0]), -1),
     ...                         lambda ya, yb: np.array([ya[0], yb[0] - 1.0]),
     ...                         s, np.zeros((41, 2)), segments=4)
-    >>> bool(np.abs(sol.y[:, 0] - np.sin(s)).max() < 1e-7), sol.newton.iterations
+    >>> bool(np.abs(sol.x[:, 0] - np.sin(s)).max() < 1e-7), sol.iterations
     (True, 1)
     """
-    _validate.function(f, "f"), _validate.function(bc, "bc")
+    _validate.function(fun, "fun"), _validate.function(bc, "bc")
     nodes = _nodes(s)
-    guess = _validate.array(y_guess, "y_guess", shape=(len(nodes), None))
+    guess = _validate.array(seed, "seed", shape=(len(nodes), None))
     n = guess.shape[1]
     segments = _validate.maxiter(segments, "segments")
     if segments > len(nodes) - 1:
@@ -239,7 +245,7 @@ def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLik
         """Every segment from its start, with ``n`` complex-step copies of its state."""
         copies = Y.reshape(segments, n)[:, None, :] + 1j * _STEP * np.eye(n)
         with np.errstate(over="ignore", invalid="ignore"):      # Newton reads non-finite
-            return [_rk4(f, c, g) for c, g in zip(copies, grids)]
+            return [_rk4(fun, c, g) for c, g in zip(copies, grids)]
 
     def bc_value(ya, yb):
         out = np.asarray(bc(ya, yb))
@@ -267,9 +273,10 @@ def multiple_shooting(f: Callable, bc: Callable, s: ArrayLike, y_guess: ArrayLik
             J[(j + 1) * n:(j + 2) * n, (j + 1) * n:(j + 2) * n] -= np.eye(n)
         return np.concatenate(defects), J
 
-    x0 = guess[starts[:-1]].ravel()
-    result = newton.solve(system, x0, jac=True, tol=tol, maxiter=maxiter, criterion="residual",
-                          damping=True)
+    result = newton.solve(system, guess[starts[:-1]].ravel(), jac=True, tol=tol,
+                          maxiter=maxiter, criterion="residual", damping=True)
     ends = sweeps(result.x)
     y = np.concatenate([ends[0][:, 0].real] + [e[1:, 0].real for e in ends[1:]])
-    return BVPSolution(np.array(nodes), y, starts[:-1], result)
+    return BVPSolution(x=y, status=result.status, message=result.message,
+                       iterations=result.iterations, nfev=result.nfev, njev=result.njev,
+                       s=np.array(nodes), segment_starts=starts[:-1], newton=result)

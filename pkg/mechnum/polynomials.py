@@ -29,6 +29,9 @@ from numpy.typing import ArrayLike
 from mechnum import _validate
 from mechnum.errors import NonFiniteError
 
+__all__ = ["PolynomialSystem", "bezout_bound", "companion", "mixed_volume", "root_condition",
+           "roots", "sylvester"]
+
 MIXED_VOLUME_UNKNOWNS = 6
 """The most unknowns :func:`mixed_volume` takes: it computes ``2^n - 1`` convex hulls in ``n``
 dimensions, whose cost grows steeply with ``n`` (a polyhedral method, by mixed cells, is the tool

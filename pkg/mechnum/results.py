@@ -52,7 +52,7 @@ STATUSES = (
 )
 """The one vocabulary of ``status``, shared by every method:
 
-* ``converged``: the method's stopping test was met;
+* ``converged``: the method's stopping test was met (a direct method: it solved the problem);
 * ``maxiter``: it ran out of iterations (or steps) first;
 * ``singular``: a Jacobian (or a linear system) it had to solve was singular;
 * ``non-finite``: a residual, a Jacobian or an iterate stopped being finite;

@@ -1,11 +1,13 @@
-"""Groups of boxes that touch, found with a spatial hash (no test of all pairs).
+"""Groups of boxes that touch, found with a spatial hash, and what a set of boxes leaves.
 
 :func:`clusters` labels the connected components of a set of closed boxes: two boxes are
 joined when they overlap or touch, and a component is every box reachable through such
 joints. Each box is hashed into the cells of a grid whose cell is as wide as the widest box
 (so a box meets at most two cells per axis); only boxes that share a cell are compared.
 A search that keeps the boxes where roots may lie groups them this way and proves the roots
-in each group's hull (:func:`hulls`).
+in each group's hull (:func:`hulls`). :func:`subtract` cuts a box into the boxes that other
+boxes leave of it (interiors disjoint): what a set of boxes searched one by one, none of
+which may overlap another, still has to cover.
 
 Examples
 --------
@@ -98,3 +100,50 @@ def hulls(boxes, labels):
         group = boxes[labels == c]
         out[c, :, 0], out[c, :, 1] = group[:, :, 0].min(axis=0), group[:, :, 1].max(axis=0)
     return out
+
+
+def _interiors_meet(a, b):
+    return bool(np.all(a[:, 0] < b[:, 1]) and np.all(b[:, 0] < a[:, 1]))
+
+
+def subtract(box, others):
+    """The boxes that ``others`` leave of ``box``: disjoint interiors, their union the closure
+    of ``box`` minus the ``others`` (an empty list when they cover it).
+
+    Parameters
+    ----------
+    box : array_like, shape (n, 2)
+    others : array_like, shape (m, n, 2)
+
+    Returns
+    -------
+    list of ndarray, shape (n, 2)
+
+    Examples
+    --------
+    >>> [b.tolist() for b in subtract([[0.0, 3.0]], [[[1.0, 2.0]]])]
+    [[[0.0, 1.0]], [[2.0, 3.0]]]
+    >>> subtract([[0.0, 1.0]], [[[-1.0, 2.0]]])
+    []
+    """
+    pieces = [np.array(box, dtype=float)]
+    for other in np.asarray(others, dtype=float):
+        left = []
+        for piece in pieces:
+            if not _interiors_meet(piece, other):
+                left.append(piece)
+                continue
+            rest = piece.copy()
+            for d in range(len(rest)):
+                if rest[d, 0] < other[d, 0]:
+                    cut = rest.copy()
+                    cut[d, 1] = other[d, 0]
+                    left.append(cut)
+                    rest[d, 0] = other[d, 0]
+                if rest[d, 1] > other[d, 1]:
+                    cut = rest.copy()
+                    cut[d, 0] = other[d, 1]
+                    left.append(cut)
+                    rest[d, 1] = other[d, 1]
+        pieces = [p for p in left if np.all(p[:, 1] > p[:, 0])]
+    return pieces

@@ -20,14 +20,28 @@ Examples
 (True, 0.168014)
 """
 
+import functools
 import math
 
 import numpy as np
 from flint import acb, arb
 
 from mechnum._validate import shown
+from mechnum.certify import guard
 
 PI = arb.pi()
+
+
+def _accepts_balls(function):
+    """Let ``function`` take the guarded balls a residual is handed
+    (:class:`mechnum.certify.guard.Ball`): it computes on plain balls (it is audited: its
+    comparisons and bounds are of enclosures), and a result from guarded balls is guarded."""
+    @functools.wraps(function)
+    def call(*args):
+        if not any(isinstance(a, guard.Ball) for a in args):
+            return function(*args)
+        return guard.Ball(function(*(arb(a) if isinstance(a, arb) else a for a in args)))
+    return call
 
 
 def ball(lo, hi=None):
@@ -56,9 +70,25 @@ def ball(lo, hi=None):
     return arb(mid, rad)
 
 
+def guarded(box) -> list:
+    """The :class:`~mechnum.certify.guard.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
+    knowing its ends: what a residual is handed.
+
+    Examples
+    --------
+    >>> from mechnum.certify.guard import interval
+    >>> [interval(x) for x in guarded([[0.0, 1.0], [2.0, 2.0]])]
+    [(0.0, 1.0), (2.0, 2.0)]
+    """
+    return [guard.Ball(ball(lo, hi), box=(float(lo), float(hi))) for lo, hi in box]
+
+
 def bounds(x):
     """Floats ``(lo, hi)`` with ``lo <= x <= hi`` for every point of the ball ``x``
     (``-inf, inf`` where ``x`` is not finite)."""
+    if isinstance(x, guard.Ball):
+        raise guard.BallArithmeticError(f"bounds() of a ball {arb.str(x)}: floats are not "
+                                        f"ball arithmetic")
     if not x.is_finite():
         return -math.inf, math.inf
     return (math.nextafter(float(x.lower()), -math.inf),
@@ -117,6 +147,7 @@ def _extrema_between(lo, hi, period, phase):
     return not bool(phase + k * period > hi)
 
 
+@_accepts_balls
 def cos(x):
     """``cos`` over the ball ``x``: the endpoints' values and, where they fall inside, the
     extrema ``+1`` (at ``2 k pi``) and ``-1`` (at ``pi + 2 k pi``)."""
@@ -133,6 +164,7 @@ def cos(x):
     return out
 
 
+@_accepts_balls
 def sin(x):
     """``sin`` over the ball ``x`` (as :func:`cos` of ``x - pi / 2``)."""
     if x.rad() == 0 or x.rad() < 1e-8:
@@ -140,19 +172,23 @@ def sin(x):
     return cos(x - PI / 2)
 
 
+@_accepts_balls
 def exp(x):
     return monotone(lambda y: y.exp(), (x, 1))
 
 
+@_accepts_balls
 def expm1(x):
     return monotone(lambda y: y.expm1(), (x, 1))
 
 
+@_accepts_balls
 def sqrt(x):
     """``sqrt`` over the ball ``x``, whose negative part (rounding of a square) is cut at 0."""
     return monotone(lambda y: y.sqrt(), (span(x, 0), 1))
 
 
+@_accepts_balls
 def nonnegative(x):
     """``x`` with its negative part removed (for quantities known to be ``>= 0``)."""
     lo, hi = ends(x)
@@ -166,22 +202,26 @@ def _carlson(f, direction, args):
                     *((span(x, 0), direction) for x in args))
 
 
+@_accepts_balls
 def rf(x, y, z):
     """Carlson's ``R_F(x, y, z)`` over balls of non-negative arguments: it decreases in each
     (DLMF 19.16.1), so two evaluations enclose it."""
     return _carlson(acb.elliptic_rf, -1, (x, y, z))
 
 
+@_accepts_balls
 def rd(x, y, z):
     """Carlson's ``R_D(x, y, z) = R_J(x, y, z, z)``, decreasing in each argument."""
     return _carlson(lambda a, b, c: acb.elliptic_rj(a, b, c, c), -1, (x, y, z))
 
 
+@_accepts_balls
 def rg(x, y, z):
     """Carlson's ``R_G(x, y, z)``, increasing in each argument (DLMF 19.16.3)."""
     return _carlson(acb.elliptic_rg, 1, (x, y, z))
 
 
+@_accepts_balls
 def mul(x, y):
     """``x * y`` from the four products of the endpoints: Arb's midpoint-radius product adds
     ``|mid(x)| rad(y) + |mid(y)| rad(x)`` to the radius, which for wide balls (a force from 10
@@ -192,6 +232,7 @@ def mul(x, y):
     return hull([a * c, a * d, b * c, b * d])
 
 
+@_accepts_balls
 def meet(x, y):
     """The intersection of two balls known to hold the same number (each an enclosure of it);
     a NaN ball where they are disjoint (which a correct pair never is)."""

@@ -12,6 +12,7 @@ import numpy as np
 from flint import arb
 
 from mechnum._validate import shown
+from mechnum.certify.balls import meet
 
 
 def _entries(matrix):
@@ -39,8 +40,9 @@ def definite(hessian_ball):
     Parameters
     ----------
     hessian_ball : flint.arb_mat or sequence of sequences of arb (or floats)
-        A symmetric ``n x n`` interval matrix (entry ``(i, j)`` and ``(j, i)`` enclose the same
-        values; only the lower triangle is read).
+        A symmetric ``n x n`` interval matrix: entries ``(i, j)`` and ``(j, i)`` are two
+        enclosures of the same number, and their intersection is used (the verdict is for
+        every symmetric matrix whose entries lie in both).
 
     Returns
     -------
@@ -53,7 +55,8 @@ def definite(hessian_ball):
     Raises
     ------
     ValueError
-        If the matrix is not square.
+        If the matrix is not square, or not symmetric: entries ``(i, j)`` and ``(j, i)`` that
+        are disjoint (no symmetric matrix lies in the balls; the message names them).
 
     Examples
     --------
@@ -63,8 +66,13 @@ def definite(hessian_ball):
     False
     >>> definite([[arb(0, 1e-3), 0.0], [0.0, 1.0]]) is None
     True
+    >>> definite([[1.0, 0.0], [2.0, 1.0]])
+    Traceback (most recent call last):
+    ...
+    ValueError: a symmetric matrix is needed: entries (0, 1) = 0 and \
+(1, 0) = 2.00000000000000 are disjoint
     """
-    A = _entries(hessian_ball)
+    A = _symmetric(_entries(hessian_ball))
     n = len(A)
     if n == 0:
         return True
@@ -75,9 +83,22 @@ def definite(hessian_ball):
     return None
 
 
+def _symmetric(A):
+    """The matrix with entries ``(i, j)`` and ``(j, i)`` replaced by their intersection."""
+    S = [list(row) for row in A]
+    for i in range(len(A)):
+        for j in range(i):
+            upper, lower = A[j][i], A[i][j]
+            if upper.is_finite() and lower.is_finite() and not upper.overlaps(lower):
+                raise ValueError(f"a symmetric matrix is needed: entries ({j}, {i}) = "
+                                 f"{upper.str()} and ({i}, {j}) = {lower.str()} are disjoint")
+            S[i][j] = S[j][i] = meet(upper, lower)
+    return S
+
+
 def _pivots_positive(A):
     n = len(A)
-    S = [[A[max(i, j)][min(i, j)] for j in range(n)] for i in range(n)]    # symmetrised
+    S = [list(row) for row in A]
     for k in range(n):
         pivot = S[k][k]
         if not (pivot.is_finite() and bool(pivot > 0)):
@@ -92,11 +113,11 @@ def _pivots_positive(A):
 
 def _negative_direction(A):
     n = len(A)
-    mid = np.array([[float(A[max(i, j)][min(i, j)].mid()) for j in range(n)] for i in range(n)])
+    mid = np.array([[float(A[i][j].mid()) for j in range(n)] for i in range(n)])
     if not np.all(np.isfinite(mid)):
         return False
     x = np.linalg.eigh(mid)[1][:, 0]
     xa = [arb(float(v)) for v in x]
-    quad = sum((xa[i] * A[max(i, j)][min(i, j)] * xa[j] for i in range(n) for j in range(n)),
+    quad = sum((xa[i] * A[i][j] * xa[j] for i in range(n) for j in range(n)),
                arb(0))
     return quad.is_finite() and bool(quad < 0)

@@ -21,31 +21,31 @@ The first test of a box is cheaper: if the interval value of ``f`` over ``X`` (t
 extension, or the mean-value form ``f(y) + J(X) (X - y)`` where that is tighter) excludes 0 in one
 component, ``X`` holds no root. Every ball comes from Arb, which rounds outward: the tests are
 proofs for the functions that ``residual`` and ``jacobian`` enclose, whatever the rounding.
+
+**The box, not its balls.** A box ``X`` of floats is handed to the functions as balls
+(:func:`mechnum.certify.balls.guarded`), which contain it and, their radii rounded outward,
+poke a little beyond its faces. A function defined on a domain ``D`` (a chart that ends at
+``t = 0``) may enclose ``f`` only over the balls' part in ``D``, a set ``S`` that contains
+``X``. Every test here is sound on such an ``S``: an exclusion of ``S`` excludes ``X``, and
+Krawczyk's inclusion is tested against the faces of ``X`` itself, so ``K(S)`` in the interior
+of ``X`` (inside ``S``) proves exactly one root in ``S``, and it lies in ``X``.
 """
 
 import numpy as np
 from flint import arb, arb_mat
 
-from mechnum.certify.balls import ball, bounds
+from mechnum.certify import guard
+from mechnum.certify.balls import ball, bounds, guarded
 
 # A preconditioner Y is the inverse of the midpoint of J(X); beyond this condition number it
 # would only widen K(X), and the box is bisected instead.
 MAX_CONDITION = 1e14
-# Krawczyk is retried on a box enlarged by this fraction of its width on each side when the
-# operator contracts (||I - Y J(X)|| < CONTRACTING) but K(X) pokes out of X: the root then sits
-# on or near a face of X, where no box that ends at that face can hold it in its interior.
+# Krawczyk is retried on a box enlarged by this fraction of its width on each side (and cut
+# back to the searched box) when the operator contracts (||I - Y J(X)|| < CONTRACTING) but
+# K(X) pokes out of X: the root then sits on or near a face of X, where no box that ends at
+# that face can hold it in its interior.
 INFLATION = 0.25
 CONTRACTING = 0.5
-
-
-def values_of(residual, X):
-    """``residual(X)`` as a list of balls (numbers are converted exactly)."""
-    return [v if isinstance(v, arb) else arb(v) for v in residual(X)]
-
-
-def matrix_of(jacobian, X):
-    """``jacobian(X)`` as a list of rows of balls."""
-    return [[v if isinstance(v, arb) else arb(v) for v in row] for row in jacobian(X)]
 
 
 def _zero_excluded(values):
@@ -58,15 +58,14 @@ def residual_excludes(values):
     return _zero_excluded(values)
 
 
-def midpoint(X):
-    """Float midpoints of a box of balls, as exact balls and as floats."""
-    y = np.array([0.5 * lo + 0.5 * hi for lo, hi in (bounds(x) for x in X)])
+def midpoint(X: np.ndarray) -> tuple:
+    """The float midpoint of the float box ``X``, as exact balls and as floats."""
+    y = 0.5 * X[:, 0] + 0.5 * X[:, 1]
     return [arb(float(v)) for v in y], y
 
 
 def _matrix(rows):
-    n = len(rows)
-    return arb_mat(n, len(rows[0]), [v for row in rows for v in row])
+    return arb_mat(len(rows), len(rows[0]), [v for row in rows for v in row])
 
 
 def _vector(values):
@@ -88,7 +87,8 @@ def preconditioner(J):
 
 
 def mean_value_excludes(fy, J, X, yb):
-    """The mean-value test: some component of ``f(y) + J(X) (X - y)`` excludes 0."""
+    """The mean-value test: some component of ``f(y) + J(X) (X - y)`` excludes 0 (``X``,
+    ``yb``: balls)."""
     if not all(v.is_finite() for row in J for v in row):
         return False
     d = _vector([x - y for x, y in zip(X, yb)])
@@ -119,14 +119,14 @@ def krawczyk(fy, J, X, yb, Y):
     return [K[i, 0] for i in range(n)], norm
 
 
-def inside(K, X):
-    """Whether every ball of ``K`` lies in the interior of the ball of ``X``."""
-    return all(k.is_finite() and bool(k.lower() > x.lower()) and bool(k.upper() < x.upper())
-               for k, x in zip(K, X))
+def inside(K: list, X: np.ndarray) -> bool:
+    """Whether every ball of ``K`` lies in the interior of the float box ``X``."""
+    return all(k.is_finite() and bool(k.lower() > arb(float(lo)))
+               and bool(k.upper() < arb(float(hi))) for k, (lo, hi) in zip(K, X))
 
 
 def disjoint(K, X):
-    """Whether some component of ``K`` misses that of ``X``."""
+    """Whether some component of ``K`` misses that of the balls ``X``."""
     return any(k.is_finite() and not k.overlaps(x) for k, x in zip(K, X))
 
 
@@ -137,6 +137,7 @@ def inflate(box, fraction=INFLATION):
 
 
 def to_balls(box):
+    """The plain balls of a float box."""
     return [ball(lo, hi) for lo, hi in box]
 
 
@@ -144,54 +145,65 @@ def to_floats(values):
     return np.array([bounds(v) for v in values])
 
 
-def _linearised(residual, jacobian, X, counter):
-    """``(J, yb, fy)``: the Jacobian's enclosure over ``X``, the midpoint of ``X`` and the
-    residual's enclosure there, the two evaluations counted in ``counter``."""
-    J = matrix_of(jacobian, X)
+def residual_of(residual, X: np.ndarray, counter: dict) -> list:
+    """The residual's enclosure over the float box ``X`` (checked, counted)."""
+    counter["nfev"] += 1
+    return guard.values(residual, guarded(X), len(X))
+
+
+def excluded_by(exclude, X: np.ndarray) -> bool:
+    """The caller's own exclusion test on the float box ``X`` (checked)."""
+    return guard.decision(exclude, guarded(X))
+
+
+def linearised(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
+    """``(J, yb, fy)``: the Jacobian's enclosure over the float box ``X``, its midpoint (exact
+    balls) and the residual's enclosure there, the two evaluations counted in ``counter``."""
+    n = len(X)
+    J = guard.matrix(jacobian, guarded(X), n)
     counter["njev"] += 1
-    yb, _ = midpoint(X)
-    fy = values_of(residual, yb)
+    yb, y = midpoint(X)
+    fy = guard.values(residual, guarded(np.column_stack((y, y))), n, point=True)
     counter["nfev"] += 1
     return J, yb, fy
 
 
-def test_box(residual, jacobian, X, counter, exclude=None):
-    """Run the tests on the box of balls ``X``.
+def test_box(residual, jacobian, X: np.ndarray, counter: dict, exclude=None) -> tuple:
+    """Run the tests on the float box ``X``.
 
     Returns ``(test, J, K, value)``: ``test`` is ``"residual"``, ``"exclude"`` (the caller's
     own test), ``"mean-value"`` or ``"krawczyk-exclusion"`` (no root in ``X``), ``"krawczyk"``
-    (exactly one, in ``K``),
-    ``"contracting"`` (Krawczyk's operator contracts but ``K(X)`` is not inside ``X``: a root
-    near a face) or None (undecided); ``J`` is the Jacobian's enclosure (None when the first
-    test sufficed), ``value`` the residual's enclosure. ``counter`` (a dict with ``nfev``,
-    ``njev``) counts the evaluations.
+    (exactly one, in ``K``), ``"contracting"`` (Krawczyk's operator contracts but ``K(X)`` is
+    not inside ``X``: a root near a face) or None (undecided); ``J`` is the Jacobian's
+    enclosure (None when the first test sufficed), ``value`` the residual's enclosure.
+    ``counter`` (a dict with ``nfev``, ``njev``) counts the evaluations.
     """
-    value = values_of(residual, X)
-    counter["nfev"] += 1
+    value = residual_of(residual, X, counter)
     if residual_excludes(value):
         return "residual", None, None, value
-    if exclude is not None and exclude(X):
+    if exclude is not None and excluded_by(exclude, X):
         return "exclude", None, None, value
-    J, yb, fy = _linearised(residual, jacobian, X, counter)
-    if mean_value_excludes(fy, J, X, yb):
+    J, yb, fy = linearised(residual, jacobian, X, counter)
+    balls = to_balls(X)
+    if mean_value_excludes(fy, J, balls, yb):
         return "mean-value", J, None, value
     Y = preconditioner(J)
     if Y is None:
         return None, J, None, value
-    K, norm = krawczyk(fy, J, X, yb, Y)
-    if disjoint(K, X):
+    K, norm = krawczyk(fy, J, balls, yb, Y)
+    if disjoint(K, balls):
         return "krawczyk-exclusion", J, K, value
     if inside(K, X):
         return "krawczyk", J, K, value
     return ("contracting" if norm < CONTRACTING else None), J, K, value
 
 
-def krawczyk_test(residual, jacobian, X, counter):
-    """One Krawczyk test of the box ``X``: ``(passed, K)``, ``passed`` True when ``K(X)`` lies in
-    the interior of ``X`` (exactly one root, in ``K``)."""
-    J, yb, fy = _linearised(residual, jacobian, X, counter)
+def krawczyk_test(residual, jacobian, X: np.ndarray, counter: dict) -> tuple:
+    """One Krawczyk test of the float box ``X``: ``(passed, K)``, ``passed`` True when ``K(X)``
+    lies in the interior of ``X`` (exactly one root, in ``K``)."""
+    J, yb, fy = linearised(residual, jacobian, X, counter)
     Y = preconditioner(J)
     if Y is None:
         return False, None
-    K = krawczyk(fy, J, X, yb, Y)[0]
+    K = krawczyk(fy, J, to_balls(X), yb, Y)[0]
     return inside(K, X), K

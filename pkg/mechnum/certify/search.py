@@ -3,25 +3,35 @@
 :func:`~mechnum.certify.search.roots` takes boxes from a stack (depth first) and tests each
 (:func:`mechnum.certify.krawczyk.test_box`): a box is **excluded** (the residual's enclosure, or
 its mean-value form, or Krawczyk's operator proves it holds no root), **proven** (Krawczyk's
-operator maps it, or the box enlarged around a root near its face, into its interior: exactly
-one root), or **bisected**. The direction of the cut is the one along which the residual's
-widens most the residual's component nearest to excluding 0 (its "smear" ``|J_ij| width_j``),
-or else the widest relative to the searched box. A box narrower than ``min_width`` of the
-searched box in that direction, or any box left when ``max_boxes`` have been tested, is kept as
-**undecided**: never dropped.
+operator maps it, or the box enlarged around a root near its face and cut back to the searched
+box, into its interior: exactly one root), or **bisected**. The direction of the cut is the one
+along which the residual's component nearest to excluding 0 widens most (its "smear"
+``|J_ij| width_j``), or else the widest relative to the searched box. A box narrower than
+``min_width`` of the searched box in that direction, or any box left when ``max_boxes`` have been
+tested, is kept as **undecided**: never dropped.
+
+Every box a test runs on lies in its searched box: the functions are never asked about points
+outside the domain the caller gave (a chart that ends at ``t = 0`` is not evaluated beyond it),
+so a root proven in a box lies in the interior of its searched box, and searched boxes whose
+interiors are disjoint cannot count one root twice.
 """
 
+import operator
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
 from mechnum import _validate
+from mechnum.certify import guard
 from mechnum.certify import krawczyk as kr
-from mechnum.certify.balls import as_array
-from mechnum.certify.certificate import EXCLUSIONS, Certificate, Leaf, distinct_roots
+from mechnum.certify.balls import as_array, guarded
+from mechnum.certify.certificate import EXCLUSIONS, SCOPES, Certificate, Leaf
+from mechnum.certify.verify import distinct_roots, overlapping, sorted_roots
 from mechnum.results import Result
 
+SEARCH = "mechnum.certify.roots"
+"""The name a certificate of :func:`roots` carries in its field ``search``."""
 MAX_BOXES = 100_000
 """Default bound on the boxes tested."""
 MAX_BOXES_LIMIT = 10_000_000
@@ -42,8 +52,8 @@ class Roots(Result):
     """Every root of a system in a box, each proven, and what stayed undecided.
 
     The fields of ``mechnum.results.Result`` (``x``: the midpoints of the root
-    enclosures, ``(count, n)``; ``status``: ``"converged"`` when complete, ``"undecided"``
-    otherwise; ``iterations``: boxes tested; ``nfev``, ``njev``), and:
+    enclosures, ``(count, n)``; ``status``: ``"converged"`` when no leaf is undecided,
+    ``"undecided"`` otherwise; ``iterations``: boxes tested; ``nfev``, ``njev``), and:
 
     Attributes
     ----------
@@ -55,9 +65,14 @@ class Roots(Result):
     undecided : ndarray, shape (u, n, 2)
         Leaves that could be neither excluded nor proven (too narrow to cut, beyond
         ``max_boxes``, or a root on the searched box's face): there may be roots in them.
+    scope : str
+        What the search proves: ``"all"`` (every root in the searched boxes, when
+        ``complete``) or ``"existence"`` (the roots found exist; the boxes are not a domain
+        searched whole, such as boxes around sampled roots).
     complete : bool
-        ``undecided`` is empty: ``count`` is then the number of roots in the box, a theorem
-        (for the functions that ``residual`` and ``jacobian`` enclose).
+        ``scope`` is ``"all"`` and no leaf is undecided: ``count`` is then the number of roots
+        in the boxes, a theorem (for the functions that ``residual`` and ``jacobian``
+        enclose). Always False for ``"existence"``.
     count : int
         ``len(roots)``.
     boxes : int
@@ -73,6 +88,7 @@ class Roots(Result):
     roots: np.ndarray
     excluded: int
     undecided: np.ndarray
+    scope: str
     complete: bool
     count: int
     boxes: int
@@ -81,7 +97,7 @@ class Roots(Result):
     leaves: tuple
 
     @property
-    def undecided_fraction(self):
+    def undecided_fraction(self) -> float:
         """float: the undecided leaves' share of the searched volume (0 when complete)."""
         def volume(boxes):
             boxes = np.asarray(boxes)
@@ -91,23 +107,25 @@ class Roots(Result):
         return volume(self.undecided) / total if total > 0 else 0.0
 
     @property
-    def evaluations(self):
+    def evaluations(self) -> int:
         """int: evaluations of the residual and of the Jacobian, ``nfev + njev``."""
         return self.nfev + self.njev
 
-    def certificate(self, inputs=None):
+    def certificate(self, inputs: dict | None = None) -> Certificate:
         """The leaves with the test each passed, as a
-        :class:`~mechnum.certify.certificate.Certificate`.
+        :class:`~mechnum.certify.certificate.Certificate` of this search's ``scope``.
 
         Parameters
         ----------
         inputs : dict, optional
             What was searched, stored with the certificate (JSON-serialisable).
         """
-        return Certificate(self.searched, self.leaves, self.roots, self.complete,
-                           dict(inputs or {}),
-                           {"boxes": self.boxes, "nfev": self.nfev, "njev": self.njev,
-                            "seconds": round(self.seconds, 3)})
+        return Certificate(boxes=self.searched, leaves=self.leaves, roots=self.roots,
+                           count=self.count, scope=self.scope,
+                           complete=self.complete if self.scope == "all" else None,
+                           search=SEARCH, inputs=dict(inputs or {}),
+                           work={"boxes": self.boxes, "nfev": self.nfev, "njev": self.njev,
+                                 "seconds": round(self.seconds, 3)})
 
 
 def _direction(box, J, value, widths):
@@ -129,38 +147,73 @@ def _direction(box, J, value, widths):
     return int(np.argmax(relative))
 
 
+def _suggested(split, X):
+    """The caller's cut ``(d, value)`` of the float box ``X``, or None (checked: an index of a
+    coordinate and a finite number)."""
+    suggestion = split(guarded(X))
+    if suggestion is None:
+        return None
+    try:
+        d, cut = suggestion
+        d, cut = operator.index(d), float(cut)
+    except (TypeError, ValueError):
+        raise guard.ResidualError(f"split must return None or (coordinate, value), got "
+                                  f"{_validate.shown(suggestion)}") from None
+    if not (0 <= d < len(X) and np.isfinite(cut)):
+        raise guard.ResidualError(f"split returned coordinate {d} and value {cut!r}: a "
+                                  f"coordinate in [0, {len(X)}) and a finite value are needed")
+    return d, cut
+
+
 def _cut(X, J, value, widths, split):
     """The coordinate and the value to cut ``X`` at: the caller's ``split`` where it gives one
     inside the box (and not within a tenth of the width of a face), else the midpoint of
     :func:`_direction`'s coordinate."""
     if split is not None:
-        suggestion = split(kr.to_balls(X))
+        suggestion = _suggested(split, X)
         if suggestion is not None:
             d, cut = suggestion
             lo, hi = X[d]
             margin = 0.1 * (hi - lo)
             if lo + margin < cut < hi - margin:
-                return d, float(cut)
+                return d, cut
     d = _direction(X, J, value, widths)
     return d, 0.5 * X[d, 0] + 0.5 * X[d, 1]
 
 
+def _boxes(box):
+    boxes = _validate.array(box, "box", finite=False)
+    boxes = boxes[None] if boxes.ndim == 2 else boxes
+    if boxes.ndim != 3 or boxes.shape[-1] != 2:
+        raise ValueError(f"box must be (n, 2) or (m, n, 2), got shape {boxes.shape}")
+    if boxes.shape[1] == 0:
+        raise ValueError("box must have at least one coordinate, got shape "
+                         f"{boxes.shape}")
+    boxes = np.array([as_array(b) for b in boxes]).reshape(boxes.shape)
+    pair = overlapping(boxes)
+    if pair is not None:
+        raise ValueError(f"the searched boxes {pair[0]} and {pair[1]} overlap: a root in both "
+                         f"would be counted twice; give boxes whose interiors are disjoint")
+    return boxes
+
+
 def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, exclude=None,
-          split=None):
+          split=None, scope="all") -> Roots:
     """Every root of ``residual`` in a box, proven by interval arithmetic (branch and prune).
 
     Parameters
     ----------
     residual : callable
-        ``residual(X) -> sequence of n arb``: an enclosure of ``f`` over the box ``X`` (a list of
-        ``n`` ``flint.arb`` balls), for every point of it. It is called on boxes and on
-        points (balls of radius 0).
+        ``residual(X) -> sequence of n balls``: an enclosure of ``f`` over the box ``X``, for
+        every point of it. ``X`` is a list of ``n`` balls (:class:`mechnum.certify.guard.Ball`,
+        ``flint.arb`` that refuse to leave ball arithmetic); it is called on boxes and on
+        points (balls of radius 0), where it must be finite.
     jacobian : callable
-        ``jacobian(X) -> n sequences of n arb``: an enclosure of ``f'`` over ``X``. ``f`` must
+        ``jacobian(X) -> n sequences of n balls``: an enclosure of ``f'`` over ``X``. ``f`` must
         be continuously differentiable on every box searched.
     box : array_like, shape (n, 2) or (m, n, 2)
         The box ``[lo, hi]`` per coordinate, or ``m`` boxes searched one after the other (the
-        pieces of a domain on which ``f`` is smooth).
+        pieces of a domain on which ``f`` is smooth), whose interiors are disjoint.
     max_boxes : int, optional
         The most boxes tested, ``<= MAX_BOXES_LIMIT``; the boxes left are undecided.
     min_width : float, optional
@@ -169,24 +222,34 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
     exclude : callable, optional
         ``exclude(X) -> bool``: a test of the caller's own, True only where it proves that the
         box ``X`` holds no root (tried after the residual's enclosure;
-        :func:`~mechnum.certify.certificate.verify` needs it too).
+        :func:`~mechnum.certify.verify.verify` needs it too).
     split : callable, optional
         ``split(X) -> (d, value)`` or None: where the caller would cut the box ``X`` (for
         example at the edge of the directions that a force balance allows, so that one half is
         excluded at once); used when ``value`` lies inside the box, else the search's own
         choice.
+    scope : {"all", "existence"}, optional
+        What the boxes are: the whole domain of the question (``"all"``: a complete search
+        proves the count) or boxes around roots found otherwise (``"existence"``: the roots
+        proven exist, and nothing is said of the rest of the domain).
 
     Returns
     -------
     Roots
-        ``complete`` is True only when no box is undecided: then ``count`` is a theorem.
-        What is proven assumes only that ``residual`` and ``jacobian`` enclose ``f`` and
-        ``f'`` (Arb's outward rounding takes care of the rest).
+        ``complete`` is True only for ``scope="all"`` with no box undecided: then ``count`` is
+        a theorem. What is proven assumes only that ``residual`` and ``jacobian`` enclose
+        ``f`` and ``f'`` (Arb's outward rounding takes care of the rest).
 
     Raises
     ------
     ValueError
-        If the box is not finite, has ``lo > hi``, or an argument is out of range.
+        If a box is not finite, has ``lo > hi``, two boxes overlap, or an argument is out of
+        range.
+    mechnum.certify.guard.ResidualError
+        If a function returns the wrong length, something that is not a ball, or a residual
+        that is not finite at a point.
+    mechnum.certify.guard.BallArithmeticError
+        If a function converts a ball to a number or branches on an uncertain comparison.
 
     Examples
     --------
@@ -200,11 +263,9 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
     """
     _validate.function(residual, "residual"), _validate.function(jacobian, "jacobian")
     _validate.function(exclude, "exclude", optional=True)
-    boxes = _validate.array(box, "box", finite=False)
-    boxes = boxes[None] if boxes.ndim == 2 else boxes
-    if boxes.ndim != 3:
-        raise ValueError(f"box must be (n, 2) or (m, n, 2), got shape {boxes.shape}")
-    boxes = np.array([as_array(b) for b in boxes]).reshape(boxes.shape)
+    _validate.function(split, "split", optional=True)
+    scope = _validate.choice(scope, SCOPES, "scope")
+    boxes = _boxes(box)
     max_boxes = _validate.maxiter(max_boxes, "max_boxes", maximum=MAX_BOXES_LIMIT)
     min_width = _validate.scalar(min_width, "min_width")
     if not MIN_WIDTH_RANGE[0] <= min_width <= MIN_WIDTH_RANGE[1]:
@@ -221,7 +282,7 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
                 leaves.append(Leaf(X, "undecided", reason="max_boxes reached"))
                 continue
             tested += 1
-            leaf, J, value = _decide(residual, jacobian, X, counter, exclude)
+            leaf, J, value = _decide(residual, jacobian, X, B, counter, exclude)
             if leaf is not None:
                 leaves.append(leaf)
                 continue
@@ -233,19 +294,21 @@ def roots(residual, jacobian, box, *, max_boxes=MAX_BOXES, min_width=MIN_WIDTH, 
             left[d, 1] = right[d, 0] = cut
             stack += [right, left]
         parts.append(tuple(leaves))
-    return _result(boxes, parts, tested, counter, time.perf_counter() - start)
+    return _result(boxes, parts, scope, tested, counter, time.perf_counter() - start)
 
 
-def _decide(residual, jacobian, X, counter, exclude):
-    """The leaf that the tests make of ``X``, or None (cut it), with the Jacobian's and the
-    residual's enclosures."""
-    test, J, K, value = kr.test_box(residual, jacobian, kr.to_balls(X), counter, exclude)
+def _decide(residual, jacobian, X, B, counter, exclude):
+    """The leaf that the tests make of ``X`` (in the searched box ``B``), or None (cut it),
+    with the Jacobian's and the residual's enclosures."""
+    test, J, K, value = kr.test_box(residual, jacobian, X, counter, exclude)
     if test in EXCLUSIONS:
         return Leaf(X, test), J, value
     T = X
     if test == "contracting":
-        T = kr.inflate(X)
-        passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(T), counter)
+        T = _meet(kr.inflate(X), B)
+        if np.array_equal(T, X):
+            return None, J, value
+        passed, K = kr.krawczyk_test(residual, jacobian, T, counter)
         if not passed:
             return None, J, value
     elif test != "krawczyk":
@@ -261,7 +324,7 @@ def _tighten(residual, jacobian, E, counter):
     too (it holds the root, and one evaluation re-proves it), or ``E`` itself."""
     F, proven = E, E
     for _ in range(REFINEMENTS):
-        passed, K = kr.krawczyk_test(residual, jacobian, kr.to_balls(F), counter)
+        passed, K = kr.krawczyk_test(residual, jacobian, F, counter)
         if K is None:
             break
         if passed:
@@ -276,7 +339,7 @@ def _tighten(residual, jacobian, E, counter):
     # a margin: the box three times as wide, proven too, so that a re-check whose rounding
     # differs in the last bits (another machine's preconditioner) still passes
     wider = _meet(kr.inflate(proven, 1.0), E)
-    if kr.krawczyk_test(residual, jacobian, kr.to_balls(wider), counter)[0]:
+    if kr.krawczyk_test(residual, jacobian, wider, counter)[0]:
         return wider
     return proven
 
@@ -285,22 +348,29 @@ def _meet(a, b):
     return np.column_stack((np.maximum(a[:, 0], b[:, 0]), np.minimum(a[:, 1], b[:, 1])))
 
 
-def _result(boxes, parts, tested, counter, seconds):
+def _result(boxes, parts, scope, tested, counter, seconds):
+    found, unsure = [], []
+    for part in parts:
+        roots, doubtful = distinct_roots(part)
+        found += roots
+        unsure += [leaf.box for leaf, _ in doubtful]
     leaves = [leaf for part in parts for leaf in part]
-    found, unsure = distinct_roots(leaves, boxes)
     n = boxes.shape[1]
-    undecided = [leaf.box for leaf in leaves if leaf.test == "undecided"]
-    undecided += [leaf.box for leaf, _ in unsure]
+    found = sorted_roots(found)
+    undecided = [leaf.box for leaf in leaves if leaf.test == "undecided"] + unsure
     enclosures = np.array(found).reshape(-1, n, 2)
-    complete = not undecided
+    decided = not undecided
+    complete = decided and scope == "all"
     excluded = sum(leaf.test in EXCLUSIONS for leaf in leaves)
-    status = "converged" if complete else "undecided"
     message = (f"{len(found)} roots proven, {excluded} boxes excluded, "
                f"{len(undecided)} undecided; {tested} boxes tested")
     if complete:
         message += ": the count in the searched boxes is proven"
-    return Roots(x=enclosures.mean(axis=2), status=status, message=message, iterations=tested,
-                 nfev=counter["nfev"], njev=counter["njev"], roots=enclosures,
-                 excluded=excluded, undecided=np.array(undecided).reshape(-1, n, 2),
+    elif scope == "existence":
+        message += ": these roots exist (the boxes are not the whole domain)"
+    return Roots(x=enclosures.mean(axis=2), status="converged" if decided else "undecided",
+                 message=message, iterations=tested, nfev=counter["nfev"],
+                 njev=counter["njev"], roots=enclosures, excluded=excluded,
+                 undecided=np.array(undecided).reshape(-1, n, 2), scope=scope,
                  complete=complete, count=len(found), boxes=tested, seconds=seconds,
                  searched=boxes, leaves=tuple(parts))

@@ -9,9 +9,10 @@ round, the tuples tested, left live and dropped by each reason, and the count.
 :func:`verify` trusts none of it: from the mechanism's rods (with their a-priori bounds,
 derived again by the caller) and equations, it rebuilds the grid, re-encloses every box, cuts
 it where the certificate says (any cut is a valid one: the two halves cover the box), tests
-every tuple again and drops the live tuples inside each round's settled boxes; it then checks
-that no live tuple is left, that the Krawczyk certificate's searched boxes are exactly the
-settled ones, and re-checks that certificate (:func:`mechnum.certify.verify`). The count and
+every tuple again and drops the live tuples that each round's settled boxes cover; it then
+checks that no live tuple is left, and re-checks the Krawczyk certificate against the settled
+boxes as its domain, scope ``"all"`` (:func:`mechnum.certify.verify`: exactly those boxes
+searched, none overlapping another, every leaf's test re-run). The count and
 ``complete`` it derives must be the stored ones, and so must every round's summary: a
 certificate whose numbers differ from what its choices imply is rejected
 (:class:`mechnum.certify.CertificateError`, naming the difference).
@@ -134,6 +135,8 @@ class CoVerified:
     Attributes
     ----------
     count : int
+    scope : str
+        ``"all"``: ``complete`` speaks of every equilibrium of the domain.
     complete : bool
     roots : ndarray, shape (count, 2 r, 2)
     rounds : int
@@ -143,6 +146,7 @@ class CoVerified:
     """
 
     count: int
+    scope: str
     complete: bool
     roots: np.ndarray
     rounds: int
@@ -205,14 +209,12 @@ def verify(cert, rods, assembly, residual, jacobian, exclude=None, split=None):
     except ValueError as error:
         raise CertificateError(f"the certificate's cuts cannot be made: {error}") from error
     settled = state.resolved_hulls()
-    if settled.shape != np.shape(cert.search.boxes) or not np.array_equal(
-            settled, cert.search.boxes):
-        raise CertificateError("the Krawczyk certificate did not search the settled boxes")
-    found = certify.verify(cert.search, residual, jacobian, exclude=exclude)
+    found = certify.verify(cert.search, residual, jacobian, exclude, domain=settled,
+                           scope="all")
     complete = bool(found.complete) and not len(state.live)
     if found.count != cert.count or complete != cert.complete:
         raise CertificateError(f"the certificate proves {found.count} equilibria (complete: "
                                f"{complete}, {len(state.live)} tuples left), it says "
                                f"{cert.count} (complete: {cert.complete})")
-    return CoVerified(found.count, complete, found.roots, len(cert.dims),
+    return CoVerified(found.count, "all", complete, found.roots, len(cert.dims),
                       sum(x.evaluations for x in state.leaves), time.perf_counter() - start)

@@ -18,7 +18,8 @@ hold an equilibrium:
    (:func:`~mechnum.rods._tuples.tuple_codes`: tips, forces componentwise, in magnitude, in
    direction and as a linear system in the magnitudes, moments); only boxes of live tuples are
    ever cut;
-3. between rounds, live tuples inside boxes whose roots a Krawczyk search has counted leave the
+3. between rounds, live tuples covered by boxes whose roots a Krawczyk search counts (the
+   **settled** boxes, which never overlap, so that each root is counted in one) leave the
    rounds (:meth:`Refinement.resolve`; :mod:`mechnum.rods._cosearch` finds those boxes).
 
 **Completeness.** A tuple is dropped only when the floats of its enclosures prove that it holds
@@ -35,6 +36,7 @@ import time
 import numpy as np
 
 from mechnum import _validate
+from mechnum.certify._clusters import subtract
 from mechnum.rods._leaves import COLUMNS, Leaves
 from mechnum.rods._tuples import REASONS, leaf_codes, tuple_codes
 
@@ -167,15 +169,24 @@ class Refinement:
         self._record(dropped)
 
     def resolve(self, hull, final=False):
-        """Drop the live tuples inside the boxes ``hull`` (chart boxes whose roots Krawczyk's
-        search counts), recorded as settled after this round (``final``: after the last)."""
+        """Record the boxes ``hull`` (chart boxes whose roots Krawczyk's search counts, none
+        overlapping another settled box) as settled after this round (``final``: after the
+        last), and drop the live tuples that the settled boxes cover together."""
         hull = np.asarray(hull, dtype=float).reshape((-1,) + self._empty().shape[1:])
         if final:
             self.resolved.append(hull)
         else:
             self.resolved[-1] = np.concatenate((self.resolved[-1], hull))
-        if len(hull) and len(self.live):
-            self.live = self.live[~inside(self.boxes()[0], hull)]
+        if not (len(hull) and len(self.live)):
+            return
+        boxes, settled = self.boxes()[0], self.resolved_hulls()
+        touched = np.nonzero(_meets(boxes, hull).any(axis=1))[0]
+        if len(touched):
+            near = _meets(boxes[touched], settled)
+            covered = [not subtract(boxes[i], settled[row]) for i, row in zip(touched, near)]
+            keep = np.ones(len(self.live), dtype=bool)
+            keep[touched[np.array(covered, dtype=bool)]] = False
+            self.live = self.live[keep]
 
     def resolved_hulls(self):
         """Every settled box, in order."""
@@ -219,9 +230,8 @@ def _axes(text, count):
     return np.frombuffer(text.encode(), dtype=np.uint8) - ord("0")
 
 
-def inside(boxes, hull):
-    """Which boxes ``(n, d, 2)`` lie in one of the boxes ``hull`` ``(m, d, 2)``."""
-    out = np.zeros(len(boxes), dtype=bool)
-    for H in hull:
-        out |= np.all((boxes[..., 0] >= H[:, 0]) & (boxes[..., 1] <= H[:, 1]), axis=1)
-    return out
+def _meets(boxes, others):
+    """``(n, m)``: whether the interiors of boxes ``(n, d, 2)`` and ``others`` ``(m, d, 2)``
+    meet."""
+    return np.all((boxes[:, None, :, 0] < others[None, :, :, 1])
+                  & (others[None, :, :, 0] < boxes[:, None, :, 1]), axis=2)

@@ -20,10 +20,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechnum import _validate, certify
-from mechnum.certify._clusters import clusters, hulls
+from mechnum.certify._clusters import clusters, hulls, subtract
 from mechnum.results import Result
 from mechnum.rods._cocertificate import certificate as cocertificate
-from mechnum.rods._corefine import GRID, Refinement, inside
+from mechnum.rods._corefine import GRID, Refinement
 from mechnum.rods.certified import Certified, combine
 
 MAX_ROUNDS = 40
@@ -113,7 +113,15 @@ def _newton(system, hull):
     return None
 
 
+def _apart(U, boxes):
+    """Whether the box ``U`` overlaps none of ``boxes`` (faces may touch)."""
+    return not any(np.all(U[:, 0] < B[:, 1]) and np.all(B[:, 0] < U[:, 1]) for B in boxes)
+
+
 class _Prober:
+    """Settles clusters of live tuples by cheap Krawczyk searches (see the module); the boxes
+    it settles never overlap each other nor the ones settled before."""
+
     def __init__(self, system):
         self.system, self.boxes = system, 0
 
@@ -125,33 +133,46 @@ class _Prober:
         self.boxes += trial.boxes
         return trial.complete
 
-    def __call__(self, boxes, keys):
-        """The boxes that settle the clusters of the tuples' ``boxes`` (see the module)."""
+    def __call__(self, state):
+        """The new boxes that settle clusters of the live tuples of ``state``."""
+        boxes, keys = state.boxes()
         labels = clusters(boxes, keys)
         sizes = np.bincount(labels) if len(labels) else np.zeros(0, dtype=int)
-        ready = []
+        settled, ready = list(state.resolved_hulls()), []
         for c, H in enumerate(hulls(boxes, labels)):
-            if sizes[c] > CLUSTER_TUPLES:
-                continue
-            if self.settles(H):
-                ready.append(H)
-                continue
-            root = _newton(self.system, H)
-            if root is None:
-                continue
-            members = boxes[labels == c]
-            half = 0.5 * (members[:, :, 1] - members[:, :, 0]).max(axis=0)
-            reach = np.maximum(root - H[:, 0], H[:, 1] - root)
-            for share in SHARES:
-                side = np.maximum(share * reach, half)
-                U = np.column_stack((np.maximum(root - side, H[:, 0]),
-                                     np.minimum(root + side, H[:, 1])))
-                if self.settles(U):
-                    ready.append(U)
-                    ready += [B for B in members[~inside(members, U[None])]
-                              if self.settles(B, TUPLE_BOXES)]
-                    break
+            if sizes[c] <= CLUSTER_TUPLES:
+                ready += self._cluster(H, boxes[labels == c], settled)
         return np.array(ready).reshape((-1,) + boxes.shape[1:])
+
+    def _take(self, pieces, settled, budget):
+        """The pieces that settle, added to ``settled``."""
+        done = [p for p in pieces if self.settles(p, budget)]
+        settled += done
+        return done
+
+    def _cluster(self, H, members, settled):
+        if _apart(H, settled) and self.settles(H):
+            settled.append(H)
+            return [H]
+        root = _newton(self.system, H)
+        if root is None:
+            return []
+        out = []
+        half = 0.5 * (members[:, :, 1] - members[:, :, 0]).max(axis=0)
+        reach = np.maximum(root - H[:, 0], H[:, 1] - root)
+        for share in SHARES:
+            side = np.maximum(share * reach, half)
+            U = np.column_stack((np.maximum(root - side, H[:, 0]),
+                                 np.minimum(root + side, H[:, 1])))
+            if _apart(U, settled) and self.settles(U):
+                settled.append(U)
+                out.append(U)
+                break
+        if not out:
+            return []
+        for B in members:
+            out += self._take(subtract(B, settled), settled, TUPLE_BOXES)
+        return out
 
 
 def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
@@ -189,10 +210,15 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
     while 0 < len(state.live) <= max_live and len(state.history) <= max_rounds:
         state.step()
         if len(state.history) > MIN_ROUNDS and len(state.live) <= PROBE_LIVE:
-            state.resolve(probe(*state.boxes()))
+            state.resolve(probe(state))
     if 0 < len(state.live) <= max_live:
         boxes, keys = state.boxes()
-        state.resolve(hulls(boxes, clusters(boxes, keys)), final=True)
+        settled, last = list(state.resolved_hulls()), []
+        for H in hulls(boxes, clusters(boxes, keys)):
+            pieces = subtract(H, settled)
+            settled += pieces
+            last += pieces
+        state.resolve(np.array(last).reshape((-1,) + boxes.shape[1:]), final=True)
     return conclude(state, system, probe.boxes, max_boxes)
 
 
@@ -201,7 +227,7 @@ def conclude(state, system, probes=0, max_boxes=certify.MAX_BOXES):
     residual, jacobian, exclude, split = system
     settled = state.resolved_hulls()
     search = certify.roots(residual, jacobian, settled, max_boxes=max_boxes, exclude=exclude,
-                           split=split)
+                           split=split, scope="all")
     complete = bool(search.complete) and not len(state.live)
     rounds = len(state.history) - 1
     last = state.history[-1]

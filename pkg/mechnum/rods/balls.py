@@ -174,6 +174,9 @@ def clamped_pinned(EI, L, psi, t, mode, sign, *, jacobian=False):
         raise ValueError(f"sign must be 1 or -1 and mode an integer >= 1, got {sign!r}, "
                          f"{mode!r}")
     EI, L = arb(float(EI)), arb(float(L))
+    # plain balls from here on: this module's enclosures use ball predicates and bounds on
+    # purpose, and are tested against the closed form (mechnum.certify.guard)
+    psi, t = arb(psi), arb(t)
     psi, a, b, w, v, dv_w, spans = _chart(psi, t, sign)
     a_lo, a_hi = B.ends(a)
     sides = [s for s, possible in ((1, not bool(a_hi < 0)), (-1, not bool(a_lo > 0)))

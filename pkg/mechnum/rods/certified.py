@@ -23,6 +23,7 @@ import numpy as np
 from flint import arb
 
 from mechnum import _validate, certify
+from mechnum.certify import guard
 from mechnum.certify.search import Roots
 from mechnum.rods import balls, regular
 
@@ -63,6 +64,14 @@ class Certified(Roots):
     stable: list
     parts: tuple
 
+    def certificate(self, inputs=None):
+        """The certificate of the one search (a certificate is made per search: for several,
+        ``parts[i].certificate()``)."""
+        if len(self.parts) != 1:
+            raise ValueError(f"{len(self.parts)} searches (one per mode) make "
+                             f"{len(self.parts)} certificates: use parts[i].certificate()")
+        return self.parts[0].certificate(inputs)
+
 
 def combine(parts, solutions, stable, extra=""):
     """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
@@ -70,21 +79,26 @@ def combine(parts, solutions, stable, extra=""):
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
     undecided = np.concatenate([p.undecided for p in parts] + [np.zeros((0, n, 2))])
     searched = np.concatenate([p.searched for p in parts] + [np.zeros((0, n, 2))])
+    scopes = {p.scope for p in parts} or {"all"}
+    if len(scopes) != 1:
+        raise ValueError(f"the searches to combine must have one scope, got {sorted(scopes)}")
     complete = all(p.complete for p in parts) and not extra
     count = sum(p.count for p in parts)
     message = "; ".join(p.message for p in parts) + extra
-    return Certified(x=roots.mean(axis=2), status="converged" if complete else "undecided",
+    scope = scopes.pop()
+    decided = complete or (scope == "existence" and all(p.status == "converged" for p in parts))
+    return Certified(x=roots.mean(axis=2), status="converged" if decided else "undecided",
                      message=message, iterations=sum(p.iterations for p in parts),
                      nfev=sum(p.nfev for p in parts), njev=sum(p.njev for p in parts),
                      roots=roots, excluded=sum(p.excluded for p in parts),
-                     undecided=undecided, complete=complete, count=count,
+                     undecided=undecided, scope=scope, complete=complete, count=count,
                      boxes=sum(p.boxes for p in parts), seconds=sum(p.seconds for p in parts),
                      searched=searched,
                      leaves=sum((p.leaves for p in parts), ()), solutions=solutions,
                      stable=list(stable), parts=tuple(parts))
 
 
-def branch_boxes(n_rods):
+def branch_boxes(n_rods: int) -> np.ndarray:
     """The chart's domain for ``n_rods`` rods: one box per sign pattern of the ``t_i``."""
     out = []
     for signs in np.ndindex(*(2,) * n_rods):
@@ -100,13 +114,30 @@ AROUND = 1e-6
 ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
-def around_boxes(points, n_rods):
-    """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``."""
+def around_boxes(points, n_rods: int) -> np.ndarray:
+    """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
+    the chart and to each point's branch (the side of ``t = 0`` it lies on).
+
+    Examples
+    --------
+    >>> around_boxes([[0.0, -0.5]], 1).tolist()
+    [[[0.0, 6.283185307179586e-06], [-0.5000009991677069, -0.4999990008322931]]]
+    """
     points = _validate.array(points, "around", ndim=2)
     if points.shape[1] != 2 * n_rods:
         raise ValueError(f"around must be (k, {2 * n_rods}) chart points, got {points.shape}")
+    psi, t = points[:, 0::2], points[:, 1::2]
+    if np.any((psi < 0) | (psi > TWO_PI) | (np.abs(t) > regular.T_MAX) | (t == 0)):
+        raise ValueError(f"around must be points of the chart (0 <= psi <= 2 pi, "
+                         f"0 < |t| <= T_MAX), got {points.tolist()}")
     scale = np.tile([TWO_PI, regular.T_MAX], n_rods) * AROUND
-    return np.stack((points - scale, points + scale), axis=-1)
+    lo, hi = points - scale, points + scale
+    lo[:, 0::2], hi[:, 0::2] = np.maximum(lo[:, 0::2], 0.0), np.minimum(hi[:, 0::2], TWO_PI)
+    lo[:, 1::2] = np.where(t > 0, np.maximum(lo[:, 1::2], 0.0),
+                           np.maximum(lo[:, 1::2], -regular.T_MAX))
+    hi[:, 1::2] = np.where(t > 0, np.minimum(hi[:, 1::2], regular.T_MAX),
+                           np.minimum(hi[:, 1::2], 0.0))
+    return np.stack((lo, hi), axis=-1)
 
 
 def around_note(around):
@@ -115,11 +146,34 @@ def around_note(around):
         f"; searched around {len(around)} given points only: the count is a lower bound")
 
 
-def branch_of(X, i):
-    """The sign of ``t`` of rod ``i`` on the box of balls ``X`` (boxes lie on one side): the
-    sign of its midpoint (a ball's upper end pokes above 0 for the box ``[-0.25, 0]``, whose
-    radius Arb rounds up)."""
-    return 1 if float(X[2 * i + 1].mid()) > 0 else -1
+def _ends(x: arb) -> tuple:
+    """The float interval a ball stands for: the exact box of a ball from
+    :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
+    own bounds (rounded outward)."""
+    box = guard.interval(x)
+    return box if box is not None else certify.bounds(arb(x))
+
+
+def branch_of(X: list, i: int) -> int:
+    """The sign of ``t`` of rod ``i`` on the box of balls ``X``: the side of ``t = 0`` that the
+    box lies on, decided on the box's own float interval (:func:`_ends`), not on its ball,
+    whose radius is rounded outward past ``t = 0`` when the box ends there.
+
+    Raises
+    ------
+    ValueError
+        If the box leaves the chart (``0 <= psi <= 2 pi``, ``|t| <= T_MAX``) or holds points of
+        both branches (``t`` on both sides of 0, or the edge ``t = 0`` alone).
+    """
+    (p0, p1), (t0, t1) = _ends(X[2 * i]), _ends(X[2 * i + 1])
+    if p0 < 0.0 or p1 > TWO_PI or t0 < -regular.T_MAX or t1 > regular.T_MAX:
+        raise ValueError(f"rod {i}'s box psi in [{p0!r}, {p1!r}], t in [{t0!r}, {t1!r}] "
+                         f"leaves the chart [0, 2 pi] x [-T_MAX, T_MAX]")
+    if t0 < 0.0 < t1 or t0 == t1 == 0.0:
+        raise ValueError(f"rod {i}'s box t in [{t0!r}, {t1!r}] holds points of both branches "
+                         f"(which do not meet at t = 0): search t <= 0 and t >= 0 as separate "
+                         f"boxes (branch_boxes)")
+    return 1 if t1 > 0.0 else -1
 
 
 def pinned_system(EI, L, target, mode):
@@ -192,7 +246,7 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     parts, rows = [], []
     for mode in modes:
         f, J = pinned_system(EI, L, target, mode)
-        part = certify.roots(f, J, branch_boxes(1), max_boxes=max_boxes)
+        part = certify.roots(f, J, branch_boxes(1), max_boxes=max_boxes, scope="all")
         parts.append(part)
         for psi, t in part.x:
             rows.append((psi, float(regular.k_rel_from_t(psi, t)), mode))
@@ -224,26 +278,37 @@ def stiffness(rod):
     return [[K[0][0], off], [off, K[1][1]]]
 
 
+MEMORY = 4
+"""Boxes whose rods :func:`memoised` remembers (a box's residual, exclusion test, Jacobian,
+midpoint and cut interleave)."""
+
+
 def memoised(rods):
-    """``rods(X, jacobian)`` remembering its last answer: the residual, the exclusion test and
-    the Jacobian of one box share one evaluation of the rods (a Jacobian's evaluation also
-    serves the residual)."""
-    last = {}
+    """``rods(X, jacobian)`` remembering its last ``MEMORY`` answers: the residual, the
+    exclusion test, the cut and the Jacobian of one box share one evaluation of the rods (a
+    Jacobian's evaluation also serves the residual). The key is the balls exactly, and the
+    box each stands for."""
+    memory = {}
 
     def cached(X, jacobian):
-        key = tuple((float(x.mid()), float(x.rad())) for x in X)
-        if last.get("key") == key and (last["jacobian"] or not jacobian):
-            return last["rods"]
+        key = tuple((guard.interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
+                    for x in X)
+        known = memory.get(key)
+        if known is not None and (known[0] or not jacobian):
+            return known[1]
         out = rods(X, jacobian)
-        last.update(key=key, jacobian=jacobian, rods=out)
+        memory.pop(key, None)
+        memory[key] = (jacobian, out)
+        if len(memory) > MEMORY:
+            del memory[next(iter(memory))]
         return out
 
     return cached
 
 
-def enclosed(root):
-    """The balls of a root's enclosure ``(n, 2)``."""
-    return [certify.ball(lo, hi) for lo, hi in root]
+def enclosed(root: np.ndarray) -> list:
+    """The balls of a root's enclosure ``(n, 2)`` (knowing their float box)."""
+    return certify.balls.guarded(root)
 
 
 def verdict(reduced):
@@ -341,7 +406,7 @@ def forces_split(rods, load, X):
         if arc is None or rod.direction.rad() >= 3:
             continue
         lo, hi = (float(x) for x in balls.B.ends(rod.direction))
-        offset = lo - float(X[2 * i].lower())                  # direction = psi + angle
+        offset = lo - _ends(X[2 * i])[0]                      # direction = psi + angle
         a0, a1 = float(arc[0]), float(arc[1])
         k = np.round((0.5 * (lo + hi) - 0.5 * (a0 + a1)) / TWO_PI)
         a0, a1 = a0 + k * TWO_PI, a1 + k * TWO_PI

@@ -108,7 +108,7 @@ def shoot_pinned_multiple(EI: float, L: float, tip: ArrayLike, guess: Rod, *, se
     Z = np.column_stack((states[0] / L, states[1] / L, states[2], states[3],
                          np.broadcast_to(force, (s.size, 2))))
     sol = multiple_shooting(rhs, bc, s / L, Z, segments=segments, tol=tol, maxiter=maxiter)
-    y = sol.y
+    y = sol.x
     rod = Rod(s, y[:, 0] * L, y[:, 1] * L, y[:, 2], y[:, 3], y[0, 4:].copy())
     x = np.array([y[0, 3], *y[0, 4:]])
     batch = Rod(*(np.asarray(v)[None] for v in (rod.s, rod.x, rod.y, rod.theta, rod.m,

@@ -208,7 +208,7 @@ def reproduce() -> dict[str, float]:
         values.update({f"Table {table} H x": -TABLE1_R4 / MM, f"Table {table} H y": 0.0,
                        f"Table {table} D x": 0.0, f"Table {table} D y": 0.0})
     A, b = design_matrix(TABLE2_THETA_IN, TABLE2_THETA_OUT)
-    values["best omega"] = linear.optimal_omega(A.T @ A).omega
+    values["best omega"] = linear.optimal_omega(A.T @ A).x
     # Example 1.1.
     (x, y), cond = ill_conditioned_example(1e-6, 1e-6)
     (x2, y2), _ = ill_conditioned_example(1e-6, 2e-6)

@@ -15,8 +15,8 @@ Without ``around``, the search covers the chart's whole domain, every rod on bot
 by co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live triples
 of boxes, then Krawczyk's search of their clusters); rods beyond the chart (``q > Q_MAX``,
 forces above about ``9e4 EI / L**2``) are outside the claim (no a-priori bound of the load is
-derived for the platform). Its certificate (:func:`certificate_inputs`,
-:func:`verify_forward`) is re-checked from the mechanism's inputs alone. With ``around``
+derived for the platform). Its certificate (its inputs: :func:`certificate_inputs`) is
+re-checked against the caller's own inputs by :func:`verify_certificate`. With ``around``
 (chart points, for example the sampled ``forward_elliptic(...).chart``), it covers a small box
 around each point: each equilibrium there is then proven to exist, alone in its box, and the
 count is a lower bound.
@@ -144,6 +144,66 @@ def _reduced(rs):
     return H
 
 
+def chart() -> np.ndarray:
+    """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
+    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
+    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
+    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
+    ``"existence"``: boxes inside them).
+
+    Examples
+    --------
+    >>> chart().shape
+    (8, 6, 2)
+    """
+    return certified.branch_boxes(3)
+
+
+def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
+                       scope=None) -> certify.Verified:
+    """Re-check a certificate of this mechanism against the caller's own inputs: the system
+    of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
+
+    Parameters
+    ----------
+    certificate : mechnum.certify.Certificate or mechnum.rods.CoCertificate
+        A certificate of a search around given points, or of the whole chart; a
+        :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
+        by :func:`mechnum.rods.verify_corefined` on the rods and equations that ``mech``
+        implies, each rod's domain derived again.
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,)
+        The slider inputs (m).
+    modes : tuple of int, optional
+        The rods' buckling modes.
+    scope : {"all", "existence"}, optional
+        The scope required (None: the certificate's own).
+
+    Returns
+    -------
+    mechnum.certify.Verified or mechnum.rods.CoVerified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says for these inputs
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.verify_corefined`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:1]
+    >>> cert = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled).certificate()
+    >>> v = verify_certificate(cert, TABLE8, TABLE8_LAMBDAS)
+    >>> v.count, v.scope, v.complete
+    (1, 'existence', None)
+    """
+    if isinstance(certificate, rods.CoCertificate):
+        return _verify_corefined(certificate, mech, lambdas, modes, scope)
+    f, J, _, exclude = system(mech, lambdas, modes)
+    return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
+
+
 def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None,
                     max_live=rods.MAX_LIVE):
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
@@ -171,11 +231,11 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
         ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
-        ``stable``: True, False or None (see the module); ``complete``: the count is a theorem
-        over the chart's domain (never with ``around``, whose count is a lower bound: each
-        root is proven, alone in its box, but others may lie elsewhere; each part's
-        ``certificate()`` covers its boxes). Without ``around``, a
-        :class:`~mechnum.rods.CertifiedAll`.
+        ``stable``: True, False or None (see the module); ``scope``: ``"all"`` (the chart's
+        whole domain searched by co-refinement, a :class:`~mechnum.rods.CertifiedAll`;
+        ``complete``: the count is a theorem over it) or, with ``around``, ``"existence"``
+        (each root proven, alone in its box, but others may lie elsewhere: the count is a
+        lower bound and ``complete`` is False; ``certificate()`` says so).
 
     Examples
     --------
@@ -184,8 +244,8 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
     >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
     >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
-    >>> r.count, r.complete, r.parts[0].complete, np.round(r.solutions[0], 4).tolist()
-    (1, False, True, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
+    >>> r.count, r.scope, r.complete, np.round(r.solutions[0], 4).tolist()
+    (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
     f, J, placed, exclude = system(mech, lambdas, modes)
@@ -196,7 +256,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
         part = result.search
     else:
         part = certify.roots(f, J, certified.around_boxes(around, 3), max_boxes=max_boxes,
-                             exclude=exclude, split=exclude.split)
+                             exclude=exclude, split=exclude.split, scope="existence")
     z = part.x
     solutions = z.copy()
     if len(z):
@@ -233,7 +293,7 @@ def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
     """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
     fields, the slider inputs and the modes (JSON-ready)."""
     check_type(mech, Mechanism)
-    return {"function": "mechnum.mechanisms.pfr3.certified.verify_forward",
+    return {"function": "mechnum.mechanisms.pfr3.certified.verify_certificate",
             "origins": mech.origins.tolist(), "guide_angles": mech.guide_angles.tolist(),
             "clamp_angles": mech.clamp_angles.tolist(), "a": mech.a,
             "force": mech.force.tolist(), "moment": mech.moment, "L": mech.L, "EI": mech.EI,
@@ -243,31 +303,12 @@ def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
             "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]}
 
 
-def verify_forward(cert):
-    """Re-check a certificate of :func:`certify_forward` (whole chart) from its inputs alone
-    (as :func:`mechnum.mechanisms.rfr2.certified.verify_forward`).
-
-    Returns
-    -------
-    mechnum.rods.CoVerified
-
-    Raises
-    ------
-    mechnum.certify.CertificateError
-        If the certificate does not prove what it says, or its inputs are not a mechanism.
-    """
-    if not isinstance(cert, rods.CoCertificate):
-        raise ValueError(f"cert must be a mechnum.rods.CoCertificate, got "
-                         f"{type(cert).__name__}")
-    try:
-        data = cert.inputs
-        mech = Mechanism(data["origins"], data["guide_angles"], data["clamp_angles"],
-                         data["a"], force=data["force"], moment=data["moment"], L=data["L"],
-                         EI=data["EI"], orientation=data["orientation"])
-        lambdas, modes = data["lambdas"], data["modes"]
-        chart = chart_rods(mech, lambdas, modes)
-    except (KeyError, TypeError, ValueError) as error:
-        raise certify.CertificateError(f"the certificate's inputs are not a 3PFR: "
-                                       f"{error}") from error
+def _verify_corefined(certificate, mech, lambdas, modes, scope):
+    """:func:`verify_certificate` of a co-refinement's certificate, on the rods and equations
+    that the caller's inputs imply (the chart's whole domain)."""
+    if scope not in (None, "all"):
+        raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
+                                       f"{scope!r}")
     f, J, _, exclude = system(mech, lambdas, modes)
-    return rods.verify_corefined(cert, chart, assembly(mech), f, J, exclude)
+    return rods.verify_corefined(certificate, chart_rods(mech, lambdas, modes), assembly(mech),
+                                 f, J, exclude)

@@ -9,8 +9,8 @@ same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
 co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live pairs of
 boxes, then Krawczyk's search of their clusters), each rod's chart cut to the a-priori bound
 on its load (:func:`mechnum.rods.pair_bound`: no equilibrium has a rod beyond it); its
-certificate (:func:`certificate_inputs`, :func:`verify_forward`) is re-checked from the
-mechanism's inputs alone.
+certificate (its inputs: :func:`certificate_inputs`) is re-checked against the caller's own
+inputs by :func:`verify_certificate`.
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
 tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rods.certified`).
@@ -120,6 +120,66 @@ def tail_excluded(mech, modes=(1, 1)):
     return bool(gap < mech.L * (2.0 - 2.0 * F / R - eps) * (1 - 1e-9))
 
 
+def chart() -> np.ndarray:
+    """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
+    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
+    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
+    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
+    ``"existence"``: boxes inside them).
+
+    Examples
+    --------
+    >>> chart().shape
+    (4, 4, 2)
+    """
+    return certified.branch_boxes(2)
+
+
+def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
+                       scope=None) -> certify.Verified:
+    """Re-check a certificate of this mechanism against the caller's own inputs: the system
+    of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
+
+    Parameters
+    ----------
+    certificate : mechnum.certify.Certificate or mechnum.rods.CoCertificate
+        A certificate of a search around given points, or of the whole chart; a
+        :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
+        by :func:`mechnum.rods.verify_corefined` on the rods and equations that ``mech``
+        implies, each rod's domain derived again.
+    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    theta : array_like, shape (2,)
+        The motor angles (rad).
+    modes : tuple of int, optional
+        The rods' buckling modes.
+    scope : {"all", "existence"}, optional
+        The scope required (None: the certificate's own).
+
+    Returns
+    -------
+    mechnum.certify.Verified or mechnum.rods.CoVerified
+
+    Raises
+    ------
+    mechnum.certify.CertificateError
+        If the certificate does not prove what it says for these inputs
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.verify_corefined`).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart[:1]
+    >>> cert = certify_forward(TABLE7, TABLE7_THETA, around=sampled).certificate()
+    >>> v = verify_certificate(cert, TABLE7, TABLE7_THETA)
+    >>> v.count, v.scope, v.complete
+    (1, 'existence', None)
+    """
+    if isinstance(certificate, rods.CoCertificate):
+        return _verify_corefined(certificate, mech, theta, modes, scope)
+    f, J, _, exclude = system(mech, theta, modes)
+    return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
+
+
 def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
@@ -147,7 +207,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
         stable), False (proven unstable) or None (see the module); ``complete``: the count is
         a theorem (the chart searched whole, every rod beyond it excluded by the a-priori
         bound). Without ``around``, a :class:`~mechnum.rods.CertifiedAll`, whose
-        ``certificate(certificate_inputs(...))`` :func:`verify_forward` re-checks.
+        ``certificate(certificate_inputs(...))`` :func:`verify_certificate` re-checks.
 
     Examples
     --------
@@ -166,7 +226,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
         part = result.search
     else:
         part = certify.roots(f, J, certified.around_boxes(around, 2), max_boxes=max_boxes,
-                             exclude=exclude, split=exclude.split)
+                             exclude=exclude, split=exclude.split, scope="existence")
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
@@ -219,43 +279,23 @@ def certificate_inputs(mech, theta, modes=(1, 1)):
     """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
     fields, the motor angles and the modes (JSON-ready)."""
     check_type(mech, Mechanism)
-    return {"function": "mechnum.mechanisms.rfr2.certified.verify_forward",
+    return {"function": "mechnum.mechanisms.rfr2.certified.verify_certificate",
             "origins": mech.origins.tolist(), "force": mech.force.tolist(), "L": mech.L,
             "EI": mech.EI, "theta": _validate.array(theta, "theta", shape=(2,)).tolist(),
             "modes": _modes(modes), "unknowns": ["psi1", "t1", "psi2", "t2"]}
 
 
-def verify_forward(cert):
-    """Re-check a certificate of :func:`certify_forward` (whole chart) from its inputs alone.
-
-    The mechanism, the a-priori bound, the rods' domains and the equations are derived again
-    from ``cert.inputs`` (:func:`certificate_inputs`); nothing else stored is trusted
-    (:func:`mechnum.rods.verify_corefined`).
-
-    Returns
-    -------
-    mechnum.rods.CoVerified
-
-    Raises
-    ------
-    mechnum.certify.CertificateError
-        If the certificate does not prove what it says, or its inputs are not a mechanism.
-    """
-    if not isinstance(cert, rods.CoCertificate):
-        raise ValueError(f"cert must be a mechnum.rods.CoCertificate, got "
-                         f"{type(cert).__name__}")
-    try:
-        data = cert.inputs
-        mech = Mechanism(origins=data["origins"], force=data["force"], L=data["L"],
-                         EI=data["EI"])
-        theta, modes = data["theta"], data["modes"]
-        chart = chart_rods(mech, theta, modes)
-    except (KeyError, TypeError, ValueError) as error:
-        raise certify.CertificateError(f"the certificate's inputs are not a 2RFR: "
-                                       f"{error}") from error
+def _verify_corefined(certificate, mech, theta, modes, scope):
+    """:func:`verify_certificate` of a co-refinement's certificate: on the rods and the
+    equations that the caller's ``mech``, ``theta`` and ``modes`` imply, each rod's domain
+    derived again from the a-priori bound."""
+    if scope not in (None, "all"):
+        raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
+                                       f"{scope!r}")
+    chart_of = chart_rods(mech, theta, modes)
     f, J, _, exclude = system(mech, theta, modes)
-    verified = rods.verify_corefined(cert, chart, assembly(mech), f, J, exclude)
-    if verified.complete and not all(rod.t_max < regular.T_MAX for rod in chart) and not (
+    verified = rods.verify_corefined(certificate, chart_of, assembly(mech), f, J, exclude)
+    if verified.complete and not all(rod.t_max < regular.T_MAX for rod in chart_of) and not (
             tail_excluded(mech, modes)):
         raise certify.CertificateError("rods beyond the chart are not excluded: the count is "
                                        "not complete")

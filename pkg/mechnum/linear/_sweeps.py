@@ -16,7 +16,7 @@ each from the newest values of the others::
 * Gauss-Seidel: ``P = D - L``;
 * SOR: ``P = D / omega - L``, so ``M = (D - omega L)^{-1} ((1 - omega) D + omega U)``.
 
-The solvers never form ``M``: a :class:`~mechnum.linear.Splitting` holds ``A`` in compressed
+The solvers never form ``M``: a :class:`Splitting` holds ``A`` in compressed
 rows, and a sweep is the loop above compiled (numba) over its non-zeros, so it costs ``O(nnz)``
 for a ``scipy.sparse`` matrix as for a dense one.
 """
@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import SingularJacobianError
-from mechnum.linear.checks import _dense, _relaxation_factor, check_matrix
+from mechnum.linear._checks import _dense, _relaxation_factor, check_matrix
 
 METHODS = ("jacobi", "gauss_seidel", "sor")
 

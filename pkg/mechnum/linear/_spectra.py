@@ -15,8 +15,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from mechnum import _validate
-from mechnum.linear.checks import _dense, _relaxation_factors
-from mechnum.linear.sweeps import splitting
+from mechnum.linear._checks import _dense, _relaxation_factors
+from mechnum.linear._sweeps import splitting
+from mechnum.results import Result
 
 #: optimal_omega scans rho(M_SOR) on this grid of (0, 2) (spacing 0.005, fine enough to land in
 #: the basin of the minimum), then minimises between the neighbours of the best grid point ...
@@ -29,14 +30,21 @@ OMEGA_XTOL = 1e-10
 BLOCK_ENTRIES = 2 ** 21
 
 
-@dataclass(frozen=True)
-class OptimalOmega:
+@dataclass(frozen=True, kw_only=True)
+class OptimalOmega(Result):
     """The outcome of :func:`optimal_omega`.
 
     Attributes
     ----------
-    omega : float
-        The relaxation factor minimising the spectral radius of the SOR iteration matrix.
+    x : float
+        The relaxation factor ``omega`` minimising the spectral radius of the SOR iteration
+        matrix.
+    status : str
+        ``"converged"``: Young's formula, or the minimisation met its tolerance on ``omega``.
+    message : str
+        How it was found.
+    iterations, nfev, njev : int
+        The minimisation's iterations and spectral radii computed (zero for Young's formula).
     spectral_radius : float
         That minimal spectral radius.
     how : str
@@ -44,7 +52,6 @@ class OptimalOmega:
         minimisation of ``rho(M_SOR(omega))`` over ``(0, 2)``).
     """
 
-    omega: float
     spectral_radius: float
     how: str
 
@@ -170,7 +177,7 @@ def optimal_omega(A: ArrayLike) -> "OptimalOmega":
 
     For a symmetric positive definite tridiagonal matrix (consistently ordered, Jacobi
     eigenvalues real and below 1) Young's formula (:func:`young_omega`) is exact. Otherwise
-    ``rho(M_SOR(omega))`` is scanned on :data:`~mechnum.linear.spectra.OMEGA_GRID` and
+    ``rho(M_SOR(omega))`` is scanned on ``OMEGA_GRID`` and
     minimised between the neighbours of the best grid point.
 
     Parameters
@@ -186,17 +193,22 @@ def optimal_omega(A: ArrayLike) -> "OptimalOmega":
     --------
     >>> A = [[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]]
     >>> best = optimal_omega(A)
-    >>> round(best.omega, 6), round(best.spectral_radius, 6), best.how
+    >>> round(best.x, 6), round(best.spectral_radius, 6), best.how
     (1.171573, 0.171573, 'young')
     """
     A = _dense(A, "optimal_omega")
     if _young_applies(A):
         omega = young_omega(spectral_radius(iteration_matrix(A, "jacobi")))
-        return OptimalOmega(omega, omega - 1.0, "young")
+        return OptimalOmega(x=omega, status="converged", iterations=0, nfev=0, njev=0,
+                            message=f"Young's formula: omega = {omega:.6g}",
+                            spectral_radius=omega - 1.0, how="young")
     rho = sor_spectral_radii(A, OMEGA_GRID)
     i = int(np.argmin(rho))
     lo, hi = OMEGA_GRID[max(i - 1, 0)], OMEGA_GRID[min(i + 1, OMEGA_GRID.size - 1)]
     best = minimize_scalar(lambda w: sor_spectral_radii(A, [w])[0], bounds=(lo, hi),
                            method="bounded", options={"xatol": OMEGA_XTOL})
     omega, value = (best.x, best.fun) if best.fun <= rho[i] else (OMEGA_GRID[i], rho[i])
-    return OptimalOmega(float(omega), float(value), "numerical")
+    return OptimalOmega(x=float(omega), status="converged", iterations=int(best.nit),
+                        nfev=int(best.nfev) + OMEGA_GRID.size, njev=0,
+                        message=f"minimised over (0, 2): omega = {omega:.6g}",
+                        spectral_radius=float(value), how="numerical")

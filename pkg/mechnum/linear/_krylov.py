@@ -15,14 +15,15 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.linear.checks import check_matrix
-from mechnum.linear.stationary import (
+from mechnum.linear._checks import check_matrix
+from mechnum.linear._stationary import (
+    MAXITER_LIMIT,
     TOL,
     IterationResult,
-    StoppingRule,
     _initial_guess,
     _keeps_history,
 )
+from mechnum.results import StoppingRule
 
 #: A matrix is symmetric for conjugate gradients when ``max abs(A - A^T)`` is at most this
 #: times ``max abs(A)``: the round-off of forming a product such as ``A^T A``, with a margin.
@@ -51,7 +52,7 @@ def _check_symmetric(A):
         raise ValueError(f"conjugate gradients need a symmetric A: max |A - A^T| = {gap:.3g}")
 
 
-def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, seed: ArrayLike | None = None, *,
                        tol: float = TOL, maxiter: int | None = None,
                        keep_history: bool | None = None) -> IterationResult:
     """Solve ``A x = b`` for a symmetric positive definite ``A`` by conjugate gradients.
@@ -63,12 +64,13 @@ def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | 
     ----------
     A : array_like or scipy.sparse matrix, shape (n, n)
         Symmetric positive definite.
-    b, x0 : array_like, shape (n,)
+    b : array_like, shape (n,)
+    seed : array_like, shape (n,), optional
+        The initial guess (default zero).
     tol : float, optional
         Stop when the (recursively updated) residual ``||r_k||_2 <= tol ||b||_2``.
     maxiter : int, optional
-        Most steps (default ``10 n``; at most
-        :data:`~mechnum.linear.stationary.MAXITER_LIMIT`).
+        Most steps (default ``10 n``; at most ten million).
     keep_history : bool, optional
         As in :func:`sor`.
 
@@ -95,8 +97,9 @@ def conjugate_gradient(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | 
     A = check_matrix(A)
     b = _validate.array(b, "b", shape=(A.shape[0],))
     _check_symmetric(A)
-    rule = StoppingRule(tol, 10 * b.size if maxiter is None else maxiter, "residual", 2, True)
-    x = _initial_guess(x0, b)  # a new array: updated in place below
+    rule = StoppingRule.checked(tol, 10 * b.size if maxiter is None else maxiter, "residual", 2,
+                                True, maxiter_limit=MAXITER_LIMIT)
+    x = _initial_guess(seed, b)  # a new array: updated in place below
     keep = _keeps_history(A, keep_history)
     # b and x scaled by a power of two near |b|: exact, and it keeps the squares of the dot
     # products in range (b = 1e-162 would make b . b subnormal and alpha meaningless)

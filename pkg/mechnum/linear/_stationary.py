@@ -1,7 +1,7 @@
 """Jacobi, Gauss-Seidel and SOR: the solvers, when they stop, and a sweep over ``omega``.
 
-Each solver sweeps a :class:`~mechnum.linear.Splitting` until its
-:class:`~mechnum.linear.StoppingRule` is met. The criterion is explicit, because iteration counts
+Each solver sweeps a :class:`Splitting` until its
+:class:`~mechnum.results.StoppingRule` is met. The criterion is explicit, because iteration counts
 depend on it:
 
 * ``criterion="step"``: stop when ``||x_{k+1} - x_k|| / omega <= tol ||x_{k+1}||`` (``<= tol``
@@ -15,7 +15,7 @@ depend on it:
 Both tests are relative by default: an absolute test stops a system whose solution is small
 (``A`` scaled by ``1e12``) after one sweep, far from its solution, and never stops one whose
 solution is large. A relative test also stops once the residual is at the subnormal floor
-(:data:`~mechnum.linear.checks.SUBNORMAL_FLOOR`), below which nothing is representable.
+(``SUBNORMAL_FLOOR``, two units of the smallest subnormal), below which nothing is representable.
 
 An iteration whose residual grows beyond :data:`DIVERGENCE_GROWTH` times its start, or
 overflows, is reported as diverging (:class:`~mechnum.errors.DivergenceError`). The compiled
@@ -32,19 +32,17 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, DivergenceError
-from mechnum.linear.checks import SUBNORMAL_FLOOR, _check_system, _relaxation_factors
-from mechnum.linear.spectra import iteration_matrix, sor_spectral_radii, spectral_radius
-from mechnum.linear.sweeps import _sweep, splitting
-from mechnum.results import Result
+from mechnum.linear._checks import SUBNORMAL_FLOOR, _check_system, _relaxation_factors
+from mechnum.linear._spectra import iteration_matrix, sor_spectral_radii, spectral_radius
+from mechnum.linear._sweeps import _sweep, splitting
+from mechnum.results import Result, StoppingRule
 
-CRITERIA = ("step", "residual")
 #: Default tolerance of the stationary solvers, relative: ten digits of the solution, well above
 #: the round-off floor of a sweep (``eps`` times the condition number, for ``cond(A) < 1e5``).
 TOL = 1e-10
 #: The most sweeps (or steps) of one solve: a convergent stationary method with a spectral
 #: radius of ``1 - 1e-5`` gains ten digits in ``2.3e6`` sweeps; more is a typing slip.
 MAXITER_LIMIT = 10_000_000
-NORMS = (np.inf, 1, 2)
 #: A residual this many times larger than at the start (or than ``||b||``) means divergence: a
 #: convergent iteration can grow transiently, but not by eight orders of magnitude.
 DIVERGENCE_GROWTH = 1e8
@@ -57,49 +55,6 @@ DIAGNOSTIC_ORDER = 200
 
 _NORM_CODES = {np.inf: 0, 1: 1, 2: 2}
 _RUNNING, _CONVERGED, _DIVERGED = 0, 1, 2
-
-
-@dataclass(frozen=True)
-class StoppingRule:
-    """When an iteration stops: the options that every iterative solver of the module takes.
-
-    Attributes
-    ----------
-    tol : float
-        Tolerance of the criterion, positive.
-    maxiter : int
-        Most sweeps (or steps), at least 1.
-    criterion : {"step", "residual"}
-        Stop on the step (divided by ``omega``) or on the residual ``||b - A x_k||``.
-    norm : {inf, 1, 2}
-        The vector norm of the criterion and of the recorded norms.
-    relative : bool
-        Compare the step with ``tol ||x_{k+1}||`` (the residual with ``tol ||b||``), the default,
-        or with ``tol``.
-
-    Examples
-    --------
-    >>> StoppingRule(tol=1e-8).criterion
-    'step'
-    >>> StoppingRule(tol=-1.0)
-    Traceback (most recent call last):
-    ...
-    ValueError: tol must be positive, got -1.0
-    """
-
-    tol: float = TOL
-    maxiter: int = 10_000
-    criterion: str = "step"
-    norm: float = np.inf
-    relative: bool = True
-
-    def __post_init__(self):
-        set_ = object.__setattr__  # the dataclass is frozen: store the checked values
-        set_(self, "tol", _validate.tolerance(self.tol))
-        set_(self, "maxiter", _validate.maxiter(self.maxiter, maximum=MAXITER_LIMIT))
-        _validate.choice(self.criterion, CRITERIA, "criterion")
-        _validate.choice(self.norm, NORMS, "norm")
-        set_(self, "relative", _validate.flag(self.relative, "relative"))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -136,29 +91,35 @@ class IterationResult(Result):
     step_norms: np.ndarray
 
 
-@dataclass(frozen=True)
-class SorSweep:
-    """The outcome of :func:`sor_sweep`: one entry per relaxation factor.
+@dataclass(frozen=True, kw_only=True)
+class SorSweep(Result):
+    """The outcome of :func:`sor_sweep`: one SOR run per relaxation factor, a batch.
 
     Attributes
     ----------
+    x : ndarray, shape (k, n)
+        The last iterate of each run.
+    status : ndarray of str, shape (k,)
+        ``"converged"``, ``"maxiter"``, ``"diverged"`` or ``"non-finite"``, per run.
+    message : str
+        How many runs converged.
+    iterations : ndarray of int, shape (k,)
+        Sweeps taken by each run.
+    nfev, njev : int
+        Products with ``A`` over all the runs; zero.
     omegas : ndarray, shape (k,)
+        The relaxation factors.
     spectral_radii : ndarray, shape (k,), or None
         ``rho(M_SOR(omega))`` (None for a sparse matrix, whose iteration matrix is not formed).
-    iterations : ndarray of int, shape (k,)
-        Sweeps taken (``maxiter`` where it did not converge).
-    converged : ndarray of bool, shape (k,)
     """
 
     omegas: np.ndarray
     spectral_radii: np.ndarray | None
-    iterations: np.ndarray
-    converged: np.ndarray
 
 
-def _initial_guess(x0, b):
+def _initial_guess(seed, b):
     """The checked initial guess, a new array (zero by default)."""
-    return np.zeros(b.size) if x0 is None else _validate.array(x0, "x0", shape=b.shape)
+    return np.zeros(b.size) if seed is None else _validate.array(seed, "seed", shape=b.shape)
 
 
 def _keeps_history(A, keep_history):
@@ -268,10 +229,10 @@ def _described(rule):
     return f"residual <= {rule.tol:g}" + (" ||b||" if rule.relative else "")
 
 
-def _solve(A, b, method, omega, x0, rule, keep_history):
+def _solve(A, b, method, omega, seed, rule, keep_history):
     A, b = _check_system(A, b)
     split = splitting(A, method, omega)
-    x, keep = _initial_guess(x0, b), _keeps_history(A, keep_history)
+    x, keep = _initial_guess(seed, b), _keeps_history(A, keep_history)
     result, state = _iterate(split, b, x, rule, keep)
     if state == _CONVERGED:
         return result
@@ -284,7 +245,7 @@ def _solve(A, b, method, omega, x0, rule, keep_history):
     raise error(f"{name} {result.message}{rho}", result)
 
 
-def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, x0: ArrayLike | None = None, *,
+def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, seed: ArrayLike | None = None, *,
         tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
         norm: float = np.inf, relative: bool = True,
         keep_history: bool | None = None) -> IterationResult:
@@ -298,12 +259,13 @@ def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, x0: ArrayLike | N
     b : array_like, shape (n,)
     omega : float
         Relaxation factor in ``(0, 2)``: under-relaxation below 1, over-relaxation above.
-    x0 : array_like, shape (n,), optional
-        Initial guess (default zero).
+    seed : array_like, shape (n,), optional
+        The initial guess (default zero).
     tol, maxiter, criterion, norm, relative
-        The stopping rule (:class:`StoppingRule`): by default the step divided by ``omega`` is
-        below ``1e-10 ||x||`` (:data:`TOL`), within at most ``maxiter`` sweeps (at most
-        :data:`MAXITER_LIMIT`).
+        The stopping rule (:class:`~mechnum.results.StoppingRule`): by default the step
+        divided by ``omega`` is below ``1e-10 ||x||`` (ten digits, well above the round-off
+        floor ``eps cond(A)`` for ``cond(A) < 1e5``), within at most ``maxiter`` sweeps (at
+        most ten million: a spectral radius of ``1 - 1e-5`` gains ten digits in ``2.3e6``).
     keep_history : bool, optional
         Keep every iterate in ``history`` (default: for a dense ``A`` only).
 
@@ -320,7 +282,7 @@ def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, x0: ArrayLike | N
     RelaxationFactorError
         ``omega`` missing or outside ``(0, 2)``.
     DivergenceError
-        The residual grows beyond :data:`~mechnum.linear.stationary.DIVERGENCE_GROWTH`
+        The residual grows beyond ``DIVERGENCE_GROWTH`` (``1e8``)
         times its start, or overflows.
     ConvergenceError
         ``maxiter`` sweeps without meeting the criterion; ``result`` holds the history.
@@ -331,11 +293,12 @@ def sor(A: ArrayLike | sp.sparray, b: ArrayLike, omega: float, x0: ArrayLike | N
     >>> res.x.round(10).tolist(), res.converged
     ([0.0909090909, 0.6363636364], True)
     """
-    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
-    return _solve(A, b, "sor", omega, x0, rule, keep_history)
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                maxiter_limit=MAXITER_LIMIT)
+    return _solve(A, b, "sor", omega, seed, rule, keep_history)
 
 
-def gauss_seidel(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+def gauss_seidel(A: ArrayLike | sp.sparray, b: ArrayLike, seed: ArrayLike | None = None, *,
                  tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
                  norm: float = np.inf, relative: bool = True,
                  keep_history: bool | None = None) -> IterationResult:
@@ -347,11 +310,12 @@ def gauss_seidel(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None =
     >>> res.x.round(10).tolist()
     [0.0909090909, 0.6363636364]
     """
-    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
-    return _solve(A, b, "gauss_seidel", 1.0, x0, rule, keep_history)
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                maxiter_limit=MAXITER_LIMIT)
+    return _solve(A, b, "gauss_seidel", 1.0, seed, rule, keep_history)
 
 
-def jacobi(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None, *,
+def jacobi(A: ArrayLike | sp.sparray, b: ArrayLike, seed: ArrayLike | None = None, *,
            tol: float = TOL, maxiter: int = 10_000, criterion: str = "step",
            norm: float = np.inf, relative: bool = True,
            keep_history: bool | None = None) -> IterationResult:
@@ -363,12 +327,13 @@ def jacobi(A: ArrayLike | sp.sparray, b: ArrayLike, x0: ArrayLike | None = None,
     >>> res.x.round(10).tolist()
     [0.0909090909, 0.6363636364]
     """
-    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
-    return _solve(A, b, "jacobi", 1.0, x0, rule, keep_history)
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                maxiter_limit=MAXITER_LIMIT)
+    return _solve(A, b, "jacobi", 1.0, seed, rule, keep_history)
 
 
 def sor_sweep(A: ArrayLike | sp.sparray, b: ArrayLike, omegas: ArrayLike,
-              x0: ArrayLike | None = None, *, tol: float = TOL, maxiter: int = 100_000,
+              seed: ArrayLike | None = None, *, tol: float = TOL, maxiter: int = 100_000,
               criterion: str = "step", norm: float = np.inf,
               relative: bool = True) -> "SorSweep":
     """Run SOR for many relaxation factors: spectral radius and iteration count of each.
@@ -378,11 +343,11 @@ def sor_sweep(A: ArrayLike | sp.sparray, b: ArrayLike, omegas: ArrayLike,
 
     Parameters
     ----------
-    A, b, x0, tol, maxiter, criterion, norm, relative
+    A, b, seed, tol, maxiter, criterion, norm, relative
         As in :func:`sor`.
     omegas : array_like, shape (k,)
         Relaxation factors, each in ``(0, 2)``; at most
-        :data:`~mechnum.linear.checks.OMEGAS_LIMIT` of them.
+        ``OMEGAS_LIMIT`` (10,000) of them.
 
     Returns
     -------
@@ -396,14 +361,18 @@ def sor_sweep(A: ArrayLike | sp.sparray, b: ArrayLike, omegas: ArrayLike,
     ([37, 16, 179], [True, True, True])
     """
     A, b = _check_system(A, b)
-    rule = StoppingRule(tol, maxiter, criterion, norm, relative)
+    rule = StoppingRule.checked(tol, maxiter, criterion, norm, relative,
+                                maxiter_limit=MAXITER_LIMIT)
     omegas = _relaxation_factors(omegas)
-    x = _initial_guess(x0, b)
+    x = _initial_guess(seed, b)
     split = splitting(A, "gauss_seidel")
-    iterations, converged = np.zeros(omegas.size, int), np.zeros(omegas.size, bool)
-    for i, omega in enumerate(omegas):
-        with_omega = dataclasses.replace(split, method="sor", omega=float(omega))
-        result, _ = _iterate(with_omega, b, x, rule, False)
-        iterations[i], converged[i] = result.iterations, result.converged
+    runs = [_iterate(dataclasses.replace(split, method="sor", omega=float(omega)), b, x, rule,
+                     False)[0] for omega in omegas]
+    status = np.array([r.status for r in runs], dtype="<U10")
     radii = None if sp.issparse(A) else sor_spectral_radii(A, omegas)
-    return SorSweep(omegas, radii, iterations, converged)
+    return SorSweep(x=np.array([r.x for r in runs]).reshape(len(runs), b.size), status=status,
+                    message=f"{int(np.sum(status == 'converged'))} of {len(runs)} relaxation "
+                            f"factors converged ({_described(rule)})",
+                    iterations=np.array([r.iterations for r in runs], dtype=int),
+                    nfev=sum(r.nfev for r in runs), njev=0, omegas=omegas,
+                    spectral_radii=radii)

@@ -1,7 +1,7 @@
 """What the linear solvers accept: a finite real matrix, dense or sparse, and not singular.
 
 Every entry point of :mod:`mechnum.linear` passes its matrix through
-:func:`~mechnum.linear.check_matrix`; the functions that form an ``n x n`` matrix or its
+:func:`check_matrix`; the functions that form an ``n x n`` matrix or its
 eigenvalues take a dense one only. The stationary solvers refuse a dense matrix that is singular
 to working precision, ``cond(A) eps >= 1`` (:func:`~mechnum.linear.condition_number`), and SOR a
 relaxation factor outside ``(0, 2)``, where ``rho(M_SOR) >= |omega - 1| >= 1``.

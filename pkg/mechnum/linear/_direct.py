@@ -14,10 +14,11 @@ from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve, qr, solve_t
 
 from mechnum import _validate
 from mechnum.errors import ConvergenceError, SingularJacobianError
-from mechnum.linear.checks import SUBNORMAL_FLOOR, _check_system, _dense, condition_number
-from mechnum.linear.krylov import conjugate_gradient
-from mechnum.linear.stationary import IterationResult, StoppingRule, gauss_seidel, jacobi, sor
-from mechnum.linear.sweeps import METHODS
+from mechnum.linear._checks import SUBNORMAL_FLOOR, _check_system, _dense, condition_number
+from mechnum.linear._krylov import conjugate_gradient
+from mechnum.linear._stationary import IterationResult, gauss_seidel, jacobi, sor
+from mechnum.linear._sweeps import METHODS
+from mechnum.results import Result, StoppingRule
 
 LEAST_SQUARES_METHODS = ("qr", "svd", "cholesky", "lu") + METHODS + ("cg",)
 #: Iterative refinement gives up when a correction is not at least this much smaller than the
@@ -25,14 +26,21 @@ LEAST_SQUARES_METHODS = ("qr", "svd", "cholesky", "lu") + METHODS + ("cg",)
 REFINEMENT_CONTRACTION = 0.5
 
 
-@dataclass(frozen=True)
-class LeastSquares:
+@dataclass(frozen=True, kw_only=True)
+class LeastSquares(Result):
     """The outcome of :func:`least_squares`.
 
     Attributes
     ----------
     x : ndarray, shape (n,)
         The solution (of minimum norm, for ``method="svd"`` on a rank-deficient ``A``).
+    status : str
+        ``"converged"``: a direct method's solution, or the iterative solver's (which raises
+        when it does not converge).
+    message : str
+        The method and the rank.
+    iterations, nfev, njev : int
+        The iterative solver's (zero for a direct method).
     residuals : ndarray, shape (m,)
         ``A x - b``.
     rank : int
@@ -42,7 +50,6 @@ class LeastSquares:
         The iterative solver's result, for the iterative methods.
     """
 
-    x: np.ndarray
     residuals: np.ndarray
     rank: int
     singular_values: np.ndarray
@@ -125,7 +132,11 @@ def least_squares(A: ArrayLike, b: ArrayLike, method: str = "qr", omega: float |
         solver = (jacobi if method == "jacobi" else gauss_seidel)(A.T @ A, A.T @ b,
                                                                    **solver_options)
     x = solver.x if solver is not None else x
-    return LeastSquares(x, A @ x - b, rank, s, solver)
+    return LeastSquares(x=x, status="converged",
+                        message=f"least squares by {method}, rank {rank} of {n}",
+                        iterations=0 if solver is None else solver.iterations,
+                        nfev=0 if solver is None else solver.nfev, njev=0,
+                        residuals=A @ x - b, rank=rank, singular_values=s, solver=solver)
 
 
 #: Default tolerance of :func:`iterative_refinement`, relative: nine digits, reached from a
@@ -170,7 +181,7 @@ def iterative_refinement(A: ArrayLike, b: ArrayLike, *, factor_dtype: type = np.
         As in :func:`sor`.
     ConvergenceError
         If the corrections stop contracting (by
-        :data:`~mechnum.linear.direct.REFINEMENT_CONTRACTION`) before ``tol`` is met
+        ``REFINEMENT_CONTRACTION``, 0.5) before ``tol`` is met
         (``cond(A) * eps(factor_dtype)`` too large) or ``maxiter`` is hit.
 
     Examples
@@ -182,7 +193,7 @@ def iterative_refinement(A: ArrayLike, b: ArrayLike, *, factor_dtype: type = np.
     A, b = _check_system(_dense(A, "iterative_refinement"), b)
     if np.dtype(factor_dtype) not in (np.float32, np.float64):
         raise ValueError(f"factor_dtype must be float32 or float64, got {factor_dtype!r}")
-    rule = StoppingRule(tol, _validate.maxiter(maxiter, maximum=REFINEMENT_MAXITER))
+    rule = StoppingRule.checked(tol, maxiter, maxiter_limit=REFINEMENT_MAXITER)
     scale = 2.0 ** np.round(np.log2(np.abs(A).max()))  # exact: only the exponent changes
     lu = lu_factor((A / scale).astype(factor_dtype))
 
