@@ -131,3 +131,15 @@ def test_pair_bound_holds_every_sampled_equilibrium(seed):
 def test_pair_bound_refuses_bad_input(args, match):
     with pytest.raises(ValueError, match=match):
         rods.pair_bound(*args)
+
+
+def test_the_pinned_bound_excludes_the_tail_where_the_chart_argument_cannot():
+    """At 0.975 L the chart's tail argument (rods beyond ``q = Q_MAX`` reach no nearer than
+    0.972 L) does not exclude the tail; the a-priori bound (``Lambda <= 264``, inside the
+    chart) does. At 0.985 L neither does."""
+    near = rods.certify_pinned(1.0, 1.0, [0.975, 0.0], modes=(1,), max_boxes=50)
+    far = rods.certify_pinned(1.0, 1.0, [0.985, 0.0], modes=(1,), max_boxes=50)
+    assert "beyond the chart are not excluded" not in near.message
+    assert "beyond the chart are not excluded" in far.message
+    assert rods.chart_t_bound(rods.pinned_bound(1, 0.975, 1.0)) < regular.T_MAX
+    assert rods.chart_t_bound(rods.pinned_bound(1, 0.985, 1.0)) == regular.T_MAX

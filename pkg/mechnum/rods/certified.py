@@ -14,7 +14,11 @@ On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >
 E-integrals, each at most ``pi / 2``) and ``v b <= 1``: it lies within
 ``tail_reach(mode, Lambda) = (2 pi mode + 2) / Lambda`` times ``L`` of ``L (cos psi, sin psi)``,
 farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is reached by no
-rod of the tail.
+rod of the tail. The a-priori bound of :func:`mechnum.rods.pinned_bound` (``Lambda <= c_j L /
+(L - d)``, the same reach with ``|D| <= mode pi`` and ``v b <= 1`` used the other way round)
+is tighter wherever it confines the rods inside the chart (:func:`mechnum.rods.chart_t_bound`
+below ``T_MAX``: 34 for Chapter 3's target in mode 1, 98 in mode 3): the tail is then excluded
+by it.
 """
 
 from dataclasses import dataclass
@@ -26,6 +30,7 @@ from mechnum import _validate, certify
 from mechnum.certify import guard
 from mechnum.certify.search import Roots
 from mechnum.rods import balls, regular
+from mechnum.rods._apriori import chart_t_bound, pinned_bound
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -251,7 +256,9 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
         for psi, t in part.x:
             rows.append((psi, float(regular.k_rel_from_t(psi, t)), mode))
     reach = 1.0 - tail_reach(max(modes, default=1))
-    extra = "" if np.hypot(*target) < reach * L else (
+    bounded = all(chart_t_bound(pinned_bound(mode, float(np.hypot(*target)), L))
+                  < regular.T_MAX for mode in modes)
+    extra = "" if np.hypot(*target) < reach * L or bounded else (
         f"; the target is farther than {reach:.3f} L: rods beyond the chart are not excluded")
     solutions = np.array(rows, dtype=float).reshape(-1, 3)
     return combine(parts, solutions, [None] * len(rows), extra)
