@@ -28,7 +28,10 @@ returns), :mod:`~mechnum.certify.krawczyk` (the tests of one box),
 :mod:`~mechnum.certify.search` (:func:`~mechnum.certify.search.roots`,
 :class:`~mechnum.certify.search.Roots`), :mod:`~mechnum.certify.certificate`
 (:class:`~mechnum.certify.certificate.Certificate`), :mod:`~mechnum.certify.verify`
-(:func:`~mechnum.certify.verify.verify`) and :mod:`~mechnum.certify.definite`.
+(:func:`~mechnum.certify.verify.verify`) and :mod:`~mechnum.certify.definite`; and
+:func:`~mechnum.certify.clusters`, :func:`~mechnum.certify.hulls` and
+:func:`~mechnum.certify.subtract`, the geometry of sets of boxes that a search over several
+boxes needs (:mod:`mechnum.certify._clusters`).
 
 Examples
 --------
@@ -40,6 +43,7 @@ Examples
 (3, True, 3)
 """
 
+from mechnum.certify._clusters import clusters, hulls, subtract
 from mechnum.certify.balls import ball, bounds
 from mechnum.certify.certificate import Certificate, CertificateError, Leaf
 from mechnum.certify.definite import definite
@@ -49,4 +53,4 @@ from mechnum.certify.verify import Verified, verify
 
 __all__ = ["Ball", "BallArithmeticError", "Certificate", "CertificateError", "Leaf",
            "MAX_BOXES", "MAX_BOXES_LIMIT", "MIN_WIDTH", "ResidualError", "Roots", "Verified",
-           "ball", "bounds", "definite", "roots", "verify"]
+           "ball", "bounds", "clusters", "definite", "hulls", "roots", "subtract", "verify"]

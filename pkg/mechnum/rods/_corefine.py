@@ -36,7 +36,7 @@ import time
 import numpy as np
 
 from mechnum import _validate
-from mechnum.certify._clusters import subtract
+from mechnum.certify import subtract
 from mechnum.rods._leaves import COLUMNS, Leaves
 from mechnum.rods._tuples import REASONS, leaf_codes, tuple_codes
 

@@ -1,16 +1,18 @@
 """The co-refined search: rounds of :mod:`mechnum.rods._corefine`, then Krawczyk's proofs.
 
 :func:`corefine` runs the rounds of a :class:`~mechnum.rods._corefine.Refinement` and, after
-each (from :data:`MIN_ROUNDS` on), **probes** the live tuples of its small pose boxes: it groups
-them into clusters of touching boxes (a spatial hash, :func:`mechnum.certify._clusters.
-clusters`, by branch) and tries to settle each with a cheap Krawczyk search
-(:func:`mechnum.certify.roots`, :data:`PROBE_BOXES` boxes): of the cluster's hull; or, when
-Newton's method (in floats) finds a root in it, of boxes around that root, from half the
-cluster's reach down to its widest tuple, and then of each of the cluster's tuples outside it.
-The boxes so settled are recorded; the pose boxes whose tuples all lie in them leave the
-rounds (:meth:`~mechnum.rods._corefine.Refinement.settle`). When no pose box is left, one
-Krawczyk search of every settled box (roots in two boxes counted once) gives the count: a
-theorem when it is complete (see :mod:`mechnum.rods._corefine` for why none is missed).
+each (from :data:`MIN_ROUNDS` on, once at most :data:`PROBE_LIVE` tuples are live), **probes**
+them: it groups the live tuples into clusters of touching boxes (a spatial hash,
+:func:`mechnum.certify.clusters`, by branch) and tries to settle each cluster of at most
+:data:`CLUSTER_TUPLES` tuples with cheap Krawczyk searches (:func:`mechnum.certify.roots`,
+:data:`PROBE_BOXES` boxes each): of the cluster's hull; or, when Newton's method (in floats)
+finds a root in it, of a box around that root (from half the cluster's reach from it down to
+its widest tuple), and then of what that box and the boxes settled before leave of each of
+the cluster's tuples (:func:`mechnum.certify.subtract`, :data:`TUPLE_BOXES` boxes each). The
+settled boxes never overlap, so that each root is counted in one of them; the live tuples
+they cover leave the rounds (:meth:`~mechnum.rods._corefine.Refinement.resolve`). When no
+tuple is left, one Krawczyk search of every settled box gives the count: a theorem when it is
+complete (see :mod:`mechnum.rods._corefine` for why no equilibrium is missed).
 """
 
 import dataclasses
@@ -20,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechnum import _validate, certify
-from mechnum.certify._clusters import clusters, hulls, subtract
+from mechnum.certify import clusters, hulls, subtract
 from mechnum.results import Result
 from mechnum.rods._cocertificate import certificate as cocertificate
 from mechnum.rods._corefine import GRID, Refinement
