@@ -12,6 +12,7 @@ from mechnum import certify, rods
 from mechnum.certify._clusters import clusters, hulls
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3.model import clamps
+from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
 from mechnum.rods import _corefine, _leaves, _tuples, regular
 
@@ -92,16 +93,30 @@ def test_no_test_drops_a_tuple_that_holds_a_table7_root():
 
 def test_no_test_drops_a_triple_that_holds_a_table8_root():
     rng = np.random.default_rng(5)
-    mech = pfr3.TABLE8
-    origins = clamps(mech, pfr3.TABLE8_LAMBDAS)
-    chart = [_leaves.ChartRod(mech.EI, mech.L, 1, origins[i], mech.clamp_angles[i])
-             for i in range(3)]
-    b = mech.vertices
-    assembly = _tuples.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
-                                      for i in range(3) for j in range(i + 1, 3)),
-                                mech.force, mech.moment)
+    chart = pfr3_certified.chart_rods(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    origins = clamps(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    assert np.array_equal([rod.origin for rod in chart], origins)
+    assembly = pfr3_certified.assembly(pfr3.TABLE8)
+    assert [m[2] for m in assembly.meets] == pytest.approx([pfr3.TABLE8.a] * 3, rel=1e-12)
     D = _tuples_around(TABLE8_ROOTS, chart, 400, rng)
     assert not np.any(_tuples.tuple_codes(assembly, D))
+    for k in range(3):
+        assert not np.any(_tuples.leaf_codes(assembly, chart, k, D[:, k]))
+
+
+def test_a_corefinement_certificate_has_scope_all_only(table7):
+    _, data = table7
+    cert = rods.CoCertificate.from_json(json.dumps(data))
+    with pytest.raises(certify.CertificateError, match="'existence'"):
+        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA,
+                                          scope="existence")
+    with pytest.raises(certify.CertificateError, match="'existence'"):
+        pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
+                                          scope="existence")
+    inputs = pfr3_certified.certificate_inputs(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    again = pfr3.Mechanism(inputs["origins"], inputs["guide_angles"], inputs["clamp_angles"],
+                           inputs["a"], force=inputs["force"], moment=inputs["moment"])
+    assert np.array_equal(again.vertices, pfr3.TABLE8.vertices)
 
 
 def test_the_tests_drop_tuples_far_from_any_root():
