@@ -11,8 +11,8 @@ import pytest
 from mechnum import certify, rods
 from mechnum.certify._clusters import clusters, hulls
 from mechnum.mechanisms import pfr3, rfr2
-from mechnum.mechanisms.pfr3.model import clamps
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
+from mechnum.mechanisms.pfr3.model import clamps
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
 from mechnum.rods import _corefine, _leaves, _tuples, regular
 
