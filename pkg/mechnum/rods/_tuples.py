@@ -9,6 +9,8 @@ boxes of the rods' charts with their tips, forces, magnitudes and directions enc
 equilibrium, and why (:data:`REASONS`):
 
 * ``"tips"``: two tips' boxes cannot be ``distance`` apart;
+* ``"area"``: three tips cannot span a triangle of the platform's signed area (its distances
+  allow its mirror image too);
 * ``"force"``: the boxes of the forces cannot sum to ``F`` (componentwise);
 * ``"magnitude"``: a rod's ``R`` misses the distances from 0 to the box
   ``F - sum of the others' forces``;
@@ -41,8 +43,8 @@ import numpy as np
 
 from mechnum import _validate
 
-REASONS = ("live", "bound", "reach", "tips", "force", "magnitude", "direction", "moment",
-           "statics")
+REASONS = ("live", "bound", "reach", "tips", "area", "force", "magnitude", "direction",
+           "moment", "statics")
 """The codes of :func:`tuple_codes` and :func:`leaf_codes`, by index (0: not dropped)."""
 MARGIN = 1e-9
 """Relative margin of every test (see the module)."""
@@ -61,6 +63,9 @@ class Assembly:
         The load: the rods' forces on their tips sum to it (N).
     moment : float or None
         Their moment about the tips' centroid equals it (N m); None: not tested.
+    area : float or None
+        Three rods: the signed area of the triangle of their tips, ``cross(tip_2 - tip_1,
+        tip_3 - tip_1) / 2`` (m^2); None: not tested.
 
     Examples
     --------
@@ -71,6 +76,7 @@ class Assembly:
     meets: tuple
     force: tuple
     moment: float = None
+    area: float = None
 
     def __post_init__(self):
         meets = []
@@ -84,6 +90,8 @@ class Assembly:
         object.__setattr__(self, "force", tuple(float(x) for x in force))
         if self.moment is not None:
             object.__setattr__(self, "moment", _validate.scalar(self.moment, "moment"))
+        if self.area is not None:
+            object.__setattr__(self, "area", _validate.scalar(self.area, "area"))
 
     @property
     def rods(self):
@@ -133,6 +141,19 @@ def _tips(assembly, D):
         slack = MARGIN * (distance + _size(lo, hi))
         out |= (near > distance + slack) | (far < distance - slack)
     return out
+
+
+def _area(area, D):
+    """Three tips whose triangle cannot have the signed area ``area``."""
+    if D.shape[1] != 3:
+        return np.zeros(len(D), dtype=bool)
+    u_lo, u_hi = D[:, 1, 0:2] - D[:, 0, 2:4], D[:, 1, 2:4] - D[:, 0, 0:2]
+    v_lo, v_hi = D[:, 2, 0:2] - D[:, 0, 2:4], D[:, 2, 2:4] - D[:, 0, 0:2]
+    a = _product(u_lo[:, 0], u_hi[:, 0], v_lo[:, 1], v_hi[:, 1])
+    b = _product(u_lo[:, 1], u_hi[:, 1], v_lo[:, 0], v_hi[:, 0])
+    slack = MARGIN * (1.0 + np.abs(a[0]) + np.abs(a[1]) + np.abs(b[0]) + np.abs(b[1])
+                      + abs(area))
+    return (a[0] - b[1] > 2 * area + slack) | (a[1] - b[0] < 2 * area - slack)
 
 
 def _others(D, F, i):
@@ -344,7 +365,10 @@ def tuple_codes(assembly, D, only=None):
     D = np.asarray(D, dtype=float)
     codes = np.zeros(len(D), dtype=np.int8)
     F = np.array(assembly.force)
-    tests = [("tips", lambda X: _tips(assembly, X)), ("force", lambda X: _forces(F, X)),
+    tests = [("tips", lambda X: _tips(assembly, X))]
+    if assembly.area is not None:
+        tests.append(("area", lambda X: _area(assembly.area, X)))
+    tests += [("force", lambda X: _forces(F, X)),
              ("magnitude", lambda X: _magnitudes(F, X)),
              ("direction", lambda X: _cones(F, X) | _antiparallel(F, X))]
     if assembly.moment is not None:

@@ -280,13 +280,16 @@ def chart_rods(mech, lambdas, modes=(1, 1, 1)):
 
 
 def assembly(mech):
-    """The tips as far apart as the platform's pins, the forces summing to the load, their
-    moments about the centroid to its moment: the co-refinement's tests."""
+    """The tips as far apart as the platform's pins, spanning its triangle (not its mirror
+    image), the forces summing to the load, their moments about the centroid to its moment:
+    the co-refinement's tests."""
     check_type(mech, Mechanism)
     b = mech.vertices
+    u, v = b[1] - b[0], b[2] - b[0]
+    area = 0.5 * float(u[0] * v[1] - u[1] * v[0])
     return rods.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
                                for i in range(3) for j in range(i + 1, 3)),
-                         mech.force, mech.moment)
+                         mech.force, mech.moment, area)
 
 
 def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
