@@ -8,63 +8,91 @@ STAMP  := $(VENV)/.installed
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 NB_ENV := env -u MPLBACKEND
 
-.PHONY: book book-committed book-student downloads grade pdf test unit lint explore notebooks \
-	notebooks-other-machine html-check bench execute lab clean certify
+.PHONY: book book-committed book-student student-src downloads grade nbgrader pdf \
+	pdf-answer-key pdf-student test unit lint explore notebooks notebooks-other-machine html-check \
+	bench execute lab clean certify
 
-$(STAMP): environment.txt pkg/pyproject.toml
+$(STAMP): environment.txt pkg/pyproject.toml course/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r environment.txt
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
-book: downloads
+# reveal.js for the lectures' slides (book/_ext/slides.py), from the npm registry at the version
+# book/_ext/package-lock.json locks, installed into .venv/npm; the book's build copies what the
+# decks use into _build/html/slides, so that they load nothing from the network.
+NPM := $(VENV)/npm
+REVEAL := $(NPM)/.installed
+export MECHNUM_REVEALJS := $(CURDIR)/$(NPM)/node_modules/reveal.js
+$(REVEAL): book/_ext/package.json book/_ext/package-lock.json $(STAMP)
+	@command -v npm >/dev/null || { echo "the slides need npm (Debian: apt-get install npm)"; \
+		exit 1; }
+	rm -rf $(NPM) && mkdir -p $(NPM)
+	cp book/_ext/package.json book/_ext/package-lock.json $(NPM)/
+	npm ci --prefix $(NPM) --ignore-scripts --no-audit --no-fund --loglevel=error
+	touch $(REVEAL)
+
+book: downloads $(REVEAL)
 	$(NB_ENV) $(BIN)/jupyter-book build . -W -n --keep-going
 
 # The same book rendered from the outputs committed with the notebooks, executing nothing: what
 # `make test` builds after strict nbval has executed every notebook and checked that its outputs
 # are the committed ones. Its page "Execution statistics" shows strict nbval's measurements.
 COMMITTED_CONFIG := _build/committed_config.yml
-book-committed: downloads
+book-committed: downloads $(REVEAL)
 	$(BIN)/python .ci/book_config.py $(COMMITTED_CONFIG) execute.execute_notebooks=off
 	$(NB_ENV) $(BIN)/jupyter-book build . --config $(COMMITTED_CONFIG) -W -n --keep-going
 
 # What the page "Run the chapters yourself" serves: the package's wheel, and the chapters with
-# what they read (the registry) and cite (references.bib: the entries behind the citation keys).
+# every file they read (the registry, the certificates) and cite (references.bib), as listed in
+# .ci/chapters_zip.py.
 DOWNLOADS := _build/downloads
-CHAPTER_FILES := *.ipynb *.csv references.bib
 downloads: $(STAMP)
 	rm -rf $(DOWNLOADS) pkg/build
 	$(BIN)/python -m pip wheel --quiet --disable-pip-version-check --no-deps \
 		--wheel-dir $(DOWNLOADS) ./pkg
 	rm -rf pkg/build
-	cd book && ../$(BIN)/python -m zipfile -c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
+	$(BIN)/python .ci/chapters_zip.py book $(DOWNLOADS)/mechnum-chapters.zip
 
 # The same book without the solutions of the exercises, for a class, in _build/student/_build/html.
-# It is built from a copy of the sources without the solutions (mechnum.exercises.student), so
+# It is built from a copy of the sources without the solutions (mechnum_course.student), so
 # that the pages, their .ipynb downloads and the served zip hold none; the copy renders the
 # committed outputs (the tests have checked them) instead of executing again, except the
 # exercises' check cells, whose output is recomputed for the unfilled starters ("not yet").
 STUDENT := _build/student
 STUDENT_SRC := $(STUDENT)/src
-book-student: downloads
+STUDENT_TITLE := title+= (student edition)
+student-src: downloads
 	rm -rf $(STUDENT_SRC) && mkdir -p $(STUDENT_SRC)/$(DOWNLOADS)
-	cp -r _toc.yml book $(STUDENT_SRC)/
-	$(BIN)/python -m mechnum.exercises.student $(STUDENT_SRC)/book
-	$(BIN)/python -c "import yaml; c = yaml.safe_load(open('_config.yml')); \
-		c['title'] += ' (student edition)'; c['sphinx']['config']['hide_solutions'] = True; \
-		c['execute']['execute_notebooks'] = 'off'; \
-		yaml.safe_dump(c, open('$(STUDENT_SRC)/_config.yml', 'w'))"
+	cp -r _toc.yml CITATION.cff book $(STUDENT_SRC)/
+	mkdir -p $(STUDENT_SRC)/course && cp course/rubric.md $(STUDENT_SRC)/course/
+	$(BIN)/python -m mechnum_course.student $(STUDENT_SRC)/book
+	$(BIN)/python .ci/book_config.py $(STUDENT_SRC)/_config.yml "$(STUDENT_TITLE)" \
+		sphinx.config.hide_solutions=true execute.execute_notebooks=off \
+		"sphinx.config.printed_edition=the students' edition, every exercise without its solution"
 	cp $(DOWNLOADS)/*.whl $(STUDENT_SRC)/$(DOWNLOADS)/
-	cd $(STUDENT_SRC)/book && $(CURDIR)/$(BIN)/python -m zipfile \
-		-c ../$(DOWNLOADS)/mechnum-chapters.zip $(CHAPTER_FILES)
+	$(BIN)/python .ci/chapters_zip.py $(STUDENT_SRC)/book \
+		$(STUDENT_SRC)/$(DOWNLOADS)/mechnum-chapters.zip
+
+book-student: student-src $(REVEAL)
 	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) -W -n --keep-going
 
-# Grade a folder of student notebooks: make grade SUBMISSIONS=folder (grades.csv, feedback.csv
-# and summary.txt are written into the folder; mechnum.exercises.grading says how).
+# Grade a folder of student notebooks: make grade SUBMISSIONS=folder [OUT=folder] (grades.csv,
+# feedback/<student>.md and summary.txt, by default in SUBMISSIONS/grading). Each notebook runs
+# confined, only to extract its functions; each function is graded from its source in a fresh
+# confined process on the public and hidden cases (course/mechnum_course/grading, and the book's
+# page "Grading the exercises", which also gives the command for a container with no network).
 grade: $(STAMP)
-	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; \
-		exit 2; }
-	$(NB_ENV) $(BIN)/python -m mechnum.exercises.grading $(SUBMISSIONS)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>" \
+		"[OUT=<folder>]"; exit 2; }
+	$(NB_ENV) $(BIN)/python -m mechnum_course.grading $(SUBMISSIONS) $(if $(OUT),--out $(OUT))
+
+# The self-checked exercises as an nbgrader course in _build/nbgrader (mechnum_course.nbgrader):
+# source notebooks with solution regions and autograded tests that hold the hidden cases.
+NBGRADER := _build/nbgrader
+nbgrader: $(STAMP)
+	rm -rf $(NBGRADER)
+	$(BIN)/python -m mechnum_course.nbgrader $(NBGRADER)
 
 # The property-based tests draw the same examples on every run (tests/conftest.py), also when
 # pytest-xdist shares them out between the cores; `make explore` draws new ones, to search for
@@ -73,11 +101,11 @@ grade: $(STAMP)
 XDIST := -n auto --dist worksteal
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
-		pkg/mechnum tests
+		pkg/mechnum course/mechnum_course tests
 
 # The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
 lint: $(STAMP)
-	$(BIN)/ruff check --config pkg/pyproject.toml pkg tests bench
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg course tests bench
 
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests
@@ -99,9 +127,10 @@ notebooks-other-machine: $(STAMP)
 		$(NBVAL) -p no:cacheprovider book
 
 # The tests of the built books: offline pages, rendered TeX, the downloads run in a fresh
-# environment, the student edition hides every solution, every page in headless Chromium
-# (Debian's package chromium; without it those tests are skipped, and said so), and the
-# lectures' execution times that strict nbval measured. Each test module runs whole in one of
+# environment (every notebook of both editions' zips, with the served wheel), the student
+# edition hides every solution, every page and every slide of the lectures' decks in headless
+# Chromium, and the layout at 1280 and 390 px (Debian's package chromium; without it those tests
+# are skipped, and said so), and the lectures' execution times that strict nbval measured. Each test module runs whole in one of
 # two processes (the browser tests visit each page once; the downloads test, the longest, runs
 # beside them).
 html-check: $(STAMP)
@@ -136,26 +165,44 @@ NB ?= $(wildcard book/*.ipynb)
 execute: $(STAMP)
 	$(NB_ENV) $(BIN)/python .ci/execute_notebooks.py $(NB)
 
-# The whole book as one PDF, _build/latex/numerical-methods-for-mechanisms.pdf, on A4 paper
-# (`make pdf PAPER=letter`: US Letter), rendered from the committed outputs (strict nbval checks
-# them) without executing the chapters again, then its test, tests/test_pdf.py (not part of make
-# test).
+# The printed book, on A4 paper (`make pdf PAPER=letter`: US Letter), in two editions: the answer
+# key, the whole book with its solutions, _build/latex/numerical-methods-for-mechanisms.pdf, and
+# the students' edition, without a solution, _build/student/_build/latex/
+# numerical-methods-for-mechanisms-student.pdf (both copied into _build/pdf), built side by side;
+# both render the committed outputs (strict nbval checks them) without executing the chapters
+# again; then their test, tests/test_pdf.py (not part of make test).
 # It needs XeLaTeX and its fonts, and poppler's pdftotext for the test, from Debian's packages:
 # TEX_PACKAGES below.
 TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk \
 	fonts-freefont-otf poppler-utils
 PAPER ?= a4
 PDF_CONFIG := _build/pdf_config.yml
-pdf: downloads
+PDF_NAME := numerical-methods-for-mechanisms
+ANSWER_KEY := _build/latex/$(PDF_NAME).pdf
+STUDENT_PDF := $(STUDENT)/_build/latex/$(PDF_NAME)-student.pdf
+pdf:
 	@command -v xelatex >/dev/null && command -v latexmk >/dev/null && \
 		command -v pdftotext >/dev/null || { echo "make pdf needs XeLaTeX and poppler:" \
 		"apt-get install $(TEX_PACKAGES)"; exit 1; }
 	@case "$(PAPER)" in a4|letter) ;; *) echo "PAPER is a4 or letter, not $(PAPER)"; exit 1;; esac
-	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) sphinx.config.latex_elements.papersize=$(PAPER)paper \
-		execute.execute_notebooks=off
-	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
-	MECHNUM_PDF=_build/latex/numerical-methods-for-mechanisms.pdf MECHNUM_PDF_PAPER=$(PAPER) \
+	$(MAKE) -j2 --output-sync=target pdf-answer-key pdf-student
+	mkdir -p _build/pdf && cp $(ANSWER_KEY) $(STUDENT_PDF) _build/pdf/
+	MECHNUM_PDF=$(ANSWER_KEY) MECHNUM_STUDENT_PDF=$(STUDENT_PDF) MECHNUM_PDF_PAPER=$(PAPER) \
 		$(BIN)/pytest -rs tests/test_pdf.py
+
+pdf-answer-key: downloads
+	$(BIN)/python .ci/book_config.py $(PDF_CONFIG) \
+		sphinx.config.latex_elements.papersize=$(PAPER)paper execute.execute_notebooks=off
+	$(NB_ENV) $(BIN)/jupyter-book build . --builder pdflatex --config $(PDF_CONFIG)
+
+STUDENT_TEX := [[book/index, $(PDF_NAME)-student.tex, 'Numerical Methods for Mechanisms (student edition)', The mechnum team, manual, false]]
+pdf-student: student-src
+	$(BIN)/python .ci/book_config.py --from $(STUDENT_SRC)/_config.yml $(STUDENT)/pdf_config.yml \
+		sphinx.config.latex_elements.papersize=$(PAPER)paper \
+		"sphinx.config.latex_documents=$(STUDENT_TEX)" \
+		latex.latex_documents.targetname=$(PDF_NAME)-student.tex
+	$(NB_ENV) $(BIN)/jupyter-book build $(STUDENT_SRC) --path-output $(STUDENT) \
+		--builder pdflatex --config $(STUDENT)/pdf_config.yml
 
 # JupyterLab with jupyterlab-myst, installed once into .venv from requirements.txt, on the book.
 LAB_STAMP := $(VENV)/.lab-installed

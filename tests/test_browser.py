@@ -95,16 +95,17 @@ def browser():
 
 
 class Visit:
-    """A page opened in a fresh 1280 x 900 window, with its console errors and remote requests."""
+    """A page opened in a fresh window (1280 x 900 unless given), with its console errors and
+    remote requests."""
 
-    def __init__(self, browser, path):
-        self.context = browser.new_context(viewport={"width": 1280, "height": 900})
+    def __init__(self, browser, path, width=1280, height=900):
+        self.context = browser.new_context(viewport={"width": width, "height": height})
         self.errors, self.remote = [], []
         self.context.route("**/*", self._route)
         self.page = self.context.new_page()
         self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
         self.page.on("pageerror", lambda e: self.errors.append(str(e)))
-        self.page.goto(path.as_uri(), wait_until="load")
+        self.page.goto(path.as_uri() if isinstance(path, Path) else path, wait_until="load")
         self.page.evaluate("() => window.MathJax && MathJax.startup && MathJax.startup.promise")
 
     def _route(self, route):
@@ -257,3 +258,172 @@ def test_a_line_of_the_longest_length_fits_every_code_cell(browser):
         over += fits["over"]
     assert len(widths) >= 2, "the lectures lack a code cell in a narrower box to measure"
     assert not all(over)
+
+
+# Every slide of a deck, shown in turn: whether it is the one shown, its size and its content
+# (the speaker notes left out), its images that did not load, MathJax's errors and TeX left
+SLIDES = r"""async () => {
+    const tex = /\\[A-Za-z]{2,}|\\[()\[\]]|\$[^$\s]|[_^]\{/;
+    const frame = () => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)));
+    if (!Reveal.isReady()) await new Promise(r => Reveal.on("ready", r));
+    const found = [];
+    for (const slide of Reveal.getSlides()) {
+        const {h, v = 0} = Reveal.getIndices(slide);
+        Reveal.slide(h, v);
+        for (let k = 0; k < 30 && !slide.classList.contains("present"); k++) await frame();
+        await frame();
+        const shown = slide.cloneNode(true);
+        shown.querySelectorAll("aside.notes, mjx-container, pre").forEach(e => e.remove());
+        const box = slide.getBoundingClientRect();
+        found.push({
+            slide: `${h}/${v}`, present: slide.classList.contains("present"),
+            width: box.width, height: slide.scrollHeight,
+            text: slide.innerText.replace(/on the page/, "").trim().length,
+            broken: [...slide.querySelectorAll("img")]
+                .filter(i => !i.complete || i.naturalWidth === 0).map(i => i.src),
+            merror: slide.querySelectorAll("mjx-merror").length,
+            tex: tex.test(shown.textContent) ? shown.textContent.match(tex)[0] : null,
+        });
+    }
+    return {slides: found, height: Reveal.getConfig().height};
+}"""
+
+
+def decks():
+    return sorted((Path(BUILT).resolve() / "slides").glob("*.html")) if BUILT else []
+
+
+@pytest.mark.parametrize("path", decks(), ids=name)
+def test_every_slide_of_a_deck_renders_offline(browser, path):
+    """Each slide of each lecture's deck is shown in turn at the slides' own size: it is the
+    slide shown, it has content, its images loaded, its mathematics is typeset without a
+    MathJax error and no TeX is left, and its content fits the slide's height; the deck logs no
+    console error and requests nothing outside file://."""
+    visit = Visit(browser, path, 1280, 720)
+    try:
+        found = visit.page.evaluate(SLIDES)
+    finally:
+        visit.close()
+    slides = found["slides"]
+    assert len(slides) >= 10, f"{len(slides)} slides"
+    assert not visit.errors, f"console errors: {visit.errors}"
+    assert not visit.remote, f"requests leaving file://: {visit.remote}"
+    for slide in slides:
+        where = f"{name(path)}#/{slide['slide']}"
+        assert slide["present"] and slide["width"] > 0, f"{where} is not shown: {slide}"
+        assert slide["text"] > 0, f"{where} is empty"
+        assert not slide["broken"], f"{where}: images not loaded {slide['broken']}"
+        assert not slide["merror"] and not slide["tex"], f"{where}: TeX {slide['tex']!r}"
+        assert slide["height"] <= found["height"], \
+            f"{where}: {slide['height']} px of content on a {found['height']} px slide"
+
+
+def test_the_slide_checks_find_a_broken_slide(browser):
+    """A slide added to a deck with a missing image, bad TeX and too much content fails every
+    check that the decks pass."""
+    visit = Visit(browser, decks()[0], 1280, 720)
+    try:
+        visit.page.evaluate(r"""() => {
+            const column = document.createElement("section");
+            column.innerHTML = '<section><h2>Broken</h2><img src="missing.png">' +
+                '<div class="math">\\[\\frac{1}\\]</div>' +
+                '<p>$x_{1}$ left</p>' + '<p>line</p>'.repeat(60) + '</section>';
+            document.querySelector(".reveal .slides").appendChild(column);
+            Reveal.sync();
+            return MathJax.typesetPromise([column]);
+        }""")
+        slides = visit.page.evaluate(SLIDES)
+    finally:
+        visit.close()
+    last, height = slides["slides"][-1], slides["height"]
+    assert last["broken"] and last["merror"] and last["tex"] and last["height"] > height
+    assert not any(s["broken"] or s["merror"] or s["tex"] for s in slides["slides"][:-1])
+
+
+# The layout a reader needs at a width: the verdict column of every table of verdicts in view
+# without scrolling; every inline formula outside a table either inside its line or scrollable
+# within its own box, and not past the column; every self-check's feedback line wrapped
+LAYOUT = r"""() => {
+    const article = document.querySelector("article").getBoundingClientRect();
+    const out = {verdicts: [], formulas: [], feedback: []};
+    for (const th of document.querySelectorAll("article th")) {
+        if (th.textContent.trim() !== "verdict") continue;
+        const box = th.closest(".pst-scrollable-table-container")
+            || th.closest("table").parentElement;
+        const r = th.getBoundingClientRect(), b = box.getBoundingClientRect();
+        if (r.right > b.right + 1 || r.left < b.left - 1)
+            out.verdicts.push({right: Math.round(r.right), visible: Math.round(b.right)});
+    }
+    for (const m of document.querySelectorAll("article mjx-container:not([display='true'])")) {
+        if (m.closest("table, pre")) continue;
+        const r = m.getBoundingClientRect(), style = getComputedStyle(m);
+        const clips = ["hidden", "clip"].includes(style.overflowX) && style.display !== "inline";
+        if (r.right > article.right + 1 || (clips && m.scrollWidth > m.clientWidth + 1))
+            out.formulas.push({tex: (m.getAttribute("aria-label") || m.textContent).slice(0, 50),
+                               right: Math.round(r.right), column: Math.round(article.right)});
+    }
+    for (const pre of document.querySelectorAll("article div.cell_output pre")) {
+        if (!/^Exercise \d+\.\d+:/.test(pre.textContent)) continue;
+        if (pre.scrollWidth > pre.clientWidth + 1)
+            out.feedback.push({text: pre.textContent.slice(0, 50), width: pre.scrollWidth,
+                               column: pre.clientWidth});
+    }
+    return out;
+}"""
+WIDTHS = (1280, 390)
+"""A desktop's window and a phone's (390 CSS px, a current phone held upright)."""
+
+
+def layout_pages():
+    """The lecture and study pages and the appendix of the book, and the lecture pages of the
+    student edition (whose check cells print "not yet") when it is built."""
+    found = [p for p in pages() if name(p).startswith("book/0") or "published_values" in name(p)]
+    student = os.environ.get("MECHNUM_STUDENT_HTML")
+    if student:
+        found += [Path(student).resolve() / f"{lecture}.html" for lecture in lectures()]
+    return found
+
+
+def layout_id(path):
+    student = os.environ.get("MECHNUM_STUDENT_HTML")
+    if student and path.is_relative_to(Path(student).resolve()):
+        return "student/" + str(path.relative_to(Path(student).resolve()))
+    return name(path)
+
+
+@pytest.fixture(scope="module")
+def layout(browser):
+    """``layout(path, width)``: what :data:`LAYOUT` finds on the page in a window that wide."""
+    found = {}
+
+    def measure(path, width):
+        if (path, width) not in found:
+            visit = Visit(browser, path, width, 900)
+            try:
+                visit.page.wait_for_timeout(100)   # web_layout.js marks after MathJax
+                found[path, width] = visit.page.evaluate(LAYOUT)
+            finally:
+                visit.close()
+        return found[path, width]
+    return measure
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_the_verdict_column_is_in_view(layout, path, width):
+    hidden = layout(path, width)["verdicts"]
+    assert not hidden, f"at {width} px the verdict column needs scrolling to: {hidden}"
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_long_inline_formulas_wrap_or_scroll(layout, path, width):
+    cut = layout(path, width)["formulas"]
+    assert not cut, f"at {width} px inline formulas are cut off: {cut[:3]}"
+
+
+@pytest.mark.parametrize("width", WIDTHS)
+@pytest.mark.parametrize("path", layout_pages(), ids=layout_id)
+def test_the_feedback_of_a_self_check_wraps(layout, path, width):
+    cut = layout(path, width)["feedback"]
+    assert not cut, f"at {width} px a feedback line is cut off: {cut}"

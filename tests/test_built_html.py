@@ -140,3 +140,52 @@ def test_the_execution_page_shows_what_was_measured():
             shown = {(f"{r['wall']:.1f}", f"{r['cpu']:.1f}")
                      for _, r in measured(ROOT, f"book/{name}.ipynb")}
             assert (wall, cpu) in shown, f"{name}: {wall} s, {cpu} s measured by no run"
+
+
+def _lectures():
+    sys.path.insert(0, str(ROOT / "tests"))
+    from lecture_pages import lectures
+
+    return list(lectures())
+
+
+@needs_build
+def test_every_lecture_links_its_deck_of_slides():
+    """Seven decks, one per lecture page, each linked from the top of its lecture (before its
+    first section) and loading reveal.js and MathJax from the built book."""
+    decks = sorted(p.stem for p in (Path(BUILT) / "slides").glob("*.html"))
+    assert decks == sorted(Path(lecture).name for lecture in _lectures())
+    for lecture in _lectures():
+        page = (Path(BUILT) / f"{lecture}.html").read_text(encoding="utf-8")
+        link = re.search(r'<a class="[^"]*lecture-slides[^"]*" href="([^"]+)"', page)
+        assert link, f"{lecture} links no slides"
+        article = page[page.index("<article"):]
+        sections = [m.start() for m in re.finditer("<section", article)]
+        assert sections[0] < article.index(link.group(0)) < sections[1], "not under the title"
+        deck = (Path(BUILT) / lecture).parent / link.group(1)
+        assert deck.resolve() == (Path(BUILT) / "slides" / f"{Path(lecture).name}.html").resolve()
+        parser = Resources()
+        parser.feed(deck.read_text(encoding="utf-8"))
+        for url in parser.loaded:
+            assert (deck.parent / url).resolve().is_file(), f"{deck.name} loads {url}"
+        assert any("reveal.js" in url for url in parser.loaded)
+        assert any("mathjax" in url for url in parser.loaded)
+
+
+@needs_build
+def test_the_instructors_page_is_in_the_contents_and_numbers_exercises_as_the_book():
+    """The page for instructors is in the book's table of contents (its sidebar), and each
+    exercise of its plan of the term links to the exercise that the lecture numbers so."""
+    index = (Path(BUILT) / "book" / "index.html").read_text(encoding="utf-8")
+    assert 'href="instructors.html"' in index
+    page = (Path(BUILT) / "book" / "instructors.html").read_text(encoding="utf-8")
+    plan = page[page.index("term-plan"):]
+    plan = plan[:plan.index("</table>")]
+    links = re.findall(r'href="([\w.]+)#([\w-]+)"><span[^>]*>(\d+\.\d+)</span>', plan)
+    assert len(links) >= 7 * 3, f"{len(links)} exercises in the plan"
+    for target, label, number in links:
+        lecture = (Path(BUILT) / "book" / target).read_text(encoding="utf-8")
+        caption = re.search(rf'id="{label}">\s*<p class="admonition-title">'
+                            r'<span class="caption-number">Exercise ([\d.]+)', lecture)
+        assert caption and caption.group(1) == number, (target, label, number)
+    assert len(re.findall(r'href="\.\./slides/\w+\.html"', plan)) == len(_lectures())

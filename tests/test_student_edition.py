@@ -2,7 +2,7 @@
 and every starter is still there, no solution is, in the pages, in every ``.ipynb`` they offer
 and in the served zip.
 
-The machinery (:mod:`mechnum.exercises.student`) is tested on a small fixture chapter
+The machinery (:mod:`mechnum_course.student`) is tested on a small fixture chapter
 (``tests/fixtures/exercise_chapter.ipynb``: two implement-it-yourself exercises, a prose solution
 and a computed one) and on the real chapters. The built books are compared when both are given,
 ``MECHNUM_BUILT_HTML`` (the book) and ``MECHNUM_STUDENT_HTML`` (the student edition), as
@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from mechnum import exercises
-from mechnum.exercises.student import strip_markdown, student_notebook
+from mechnum_course.student import strip_markdown, student_notebook
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURE = ROOT / "tests" / "fixtures" / "exercise_chapter.ipynb"
@@ -94,7 +94,7 @@ def test_the_fixture_chapter():
         number = cell["metadata"]["mechnum"]["exercise"]
         namespace = {}
         exec(exercises.starter(number), {}, namespace)
-        expected = exercises.check(number, namespace[exercises.reference(number).__name__])
+        expected = exercises.check(number, namespace[exercises.EXERCISES[number].name])
         assert shown(cell) == expected.message
     assert json.loads(json.dumps(student)) == student  # still a notebook (JSON)
 
@@ -202,3 +202,176 @@ def test_the_served_zip_is_the_student_edition():
             assert path.name in names
             full = json.loads(path.read_text(encoding="utf-8"))
             assert_student_edition(full, json.loads(z.read(path.name)), f"zip/{path.name}")
+
+
+# No solution in what a student can download: the wheel, the zip, the pages, the search index.
+def solution_lines(number):
+    """The lines of the reference solution below its starter (its body), stripped."""
+    import mechnum_course
+
+    starter = exercises.starter(number).rstrip()[:-3]
+    body = mechnum_course.solution(number)[len(starter):]
+    return [line.strip() for line in body.splitlines() if len(line.strip()) > 12]
+
+
+def holds_solution(text, number, run=3):
+    """Whether ``text`` holds ``run`` consecutive lines of the solution of ``number``."""
+    lines = solution_lines(number)
+    flat = "\n".join(line.strip() for line in text.splitlines())
+    return any("\n".join(lines[k:k + run]) in flat for k in range(len(lines) - run + 1))
+
+
+def test_the_solution_text_detector_finds_a_solution():
+    import mechnum_course
+
+    for number in exercises.EXERCISES:
+        assert len(solution_lines(number)) >= 3, number
+        assert holds_solution(mechnum_course.solution(number), number)
+        assert not holds_solution(exercises.starter(number), number)
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory):
+    """The served wheel (the student edition's, when it is built), else one built here by
+    the same command as ``make downloads``."""
+    import subprocess
+    import sys
+
+    if STUDENT:
+        page = (Path(STUDENT) / "book" / "run_yourself.html").read_text(encoding="utf-8")
+        links = [link for link in re.findall(r'href="(\.\./_downloads/[^"]+)"', page)
+                 if link.endswith(".whl")]
+        assert links, "the student edition serves no wheel"
+        return (Path(STUDENT) / "book" / links[0]).resolve()
+    out = tmp_path_factory.mktemp("wheel")
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps",
+                    "--disable-pip-version-check", "--wheel-dir", str(out), str(ROOT / "pkg")],
+                   check=True)
+    return next(out.glob("mechnum-*.whl"))
+
+
+def test_the_wheel_is_the_package_and_holds_no_instructors_file(wheel):
+    """The served wheel holds exactly this repository's ``pkg/mechnum`` (so the functions
+    tested below are the wheel's), and nothing of the instructors' package."""
+    package = ROOT / "pkg"
+    with zipfile.ZipFile(wheel) as w:
+        names = [n for n in w.namelist() if not n.split("/")[0].endswith(".dist-info")]
+        assert not [n for n in w.namelist() if "mechnum_course" in n or "hidden" in n]
+        for name in names:
+            assert w.read(name) == (package / name).read_bytes(), name
+        for number in exercises.EXERCISES:
+            for name in names:
+                if name.endswith(".py"):
+                    text = w.read(name).decode("utf-8")
+                    assert not holds_solution(text, number), (name, number)
+    shipped = {str(p.relative_to(package)) for p in (package / "mechnum").rglob("*")
+               if p.is_file() and "__pycache__" not in p.parts}
+    assert shipped == set(names)
+
+
+def _candidates():
+    """Every function of the package (module level, and classes' static and class methods),
+    with the dotted name it is reached by."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import mechnum
+
+    found = {}
+    for info in pkgutil.walk_packages(mechnum.__path__, "mechnum."):
+        if info.name == "mechnum.exercises._child":  # forks and writes to file descriptors
+            continue
+        try:
+            module = importlib.import_module(info.name)
+        except Exception:  # an optional dependency missing: nothing of it is served working
+            continue
+        for name, value in vars(module).items():
+            targets = [(name, value)]
+            if inspect.isclass(value) and value.__module__ == module.__name__:
+                targets += [(f"{name}.{k}", getattr(value, k)) for k, v in vars(value).items()
+                            if isinstance(v, (staticmethod, classmethod))]
+            for label, function in targets:
+                if inspect.isfunction(function) or inspect.ismethod(function):
+                    found.setdefault(id(function), (f"{module.__name__}.{label}", function))
+    return list(found.values())
+
+
+def _takes(function, count):
+    import inspect
+
+    try:
+        parameters = inspect.signature(function).parameters.values()
+    except (TypeError, ValueError):
+        return False
+    positional = [p for p in parameters if p.kind in (p.POSITIONAL_ONLY,
+                                                       p.POSITIONAL_OR_KEYWORD)]
+    required = [p for p in positional if p.default is p.empty]
+    varargs = any(p.kind == p.VAR_POSITIONAL for p in parameters)
+    return len(required) <= count and (len(positional) >= count or varargs)
+
+
+@built
+def test_no_function_of_the_wheel_passes_a_check_but_the_packages_own_methods(wheel):
+    """Every function the served wheel holds (about 2,300 pairs of a function and a check of
+    its arity, two minutes) is run through the check with the public and the hidden cases:
+    none passes, but the package's own methods that two exercises ask a student to write
+    (``linear.sweep_by_components``, ``polynomials.companion``), which the grader fails as a
+    delegation (``mechnum_course.SOLUTIONS[n].forbidden``)."""
+    import warnings
+
+    import numpy as np
+
+    import mechnum_course
+
+    passing, tried = [], 0
+    for number, exercise in exercises.EXERCISES.items():
+        forbidden = mechnum_course.SOLUTIONS[number].forbidden
+        for dotted, function in _candidates():
+            if not _takes(function, len(exercise.parameters)):
+                continue
+            tried += 1
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                if mechnum_course.check(number, function).passed:
+                    passing.append((number, dotted))
+                    assert any(dotted.endswith(f.rpartition(".")[2]) and
+                               f.split(".")[1] in dotted for f in forbidden), (number, dotted)
+    assert tried > 1000
+    assert {n for n, _ in passing} == {"2.1", "4.1"}, passing  # the test can see a pass
+
+
+@built
+def test_no_solution_in_the_student_pages_zip_and_search_index():
+    """No page, notebook of the zip or term of the search index of the student edition holds a
+    solution: no three consecutive lines of a reference solution's body anywhere, and none of
+    the words that only the full edition's solutions use in its search index."""
+    texts = {p: p.read_text(encoding="utf-8", errors="replace")
+             for p in Path(STUDENT).rglob("*") if p.suffix in (".html", ".ipynb", ".js", ".txt")
+             and p.is_file()}
+    page = (Path(STUDENT) / "book" / "run_yourself.html").read_text(encoding="utf-8")
+    for link in re.findall(r'href="(\.\./_downloads/[^"]+\.zip)"', page):
+        with zipfile.ZipFile(Path(STUDENT) / "book" / link) as z:
+            texts.update({f"zip/{n}": z.read(n).decode("utf-8", "replace")
+                          for n in z.namelist()})
+    for number in exercises.EXERCISES:
+        for where, text in texts.items():
+            assert not holds_solution(text, number), (number, where)
+
+    def terms(root):
+        text = (Path(root) / "searchindex.js").read_text(encoding="utf-8")
+        return set(json.loads(text[text.index("(") + 1:text.rindex(")")])["terms"])
+
+    from sphinx.search.en import SearchEnglish
+    stem = SearchEnglish({}).stem
+    words = set()
+    for name in pages():
+        for solution in blocks(BUILT, name).solutions:
+            words |= {stem(w.lower()) for w in re.findall(r"[A-Za-z]{7,}", solution)}
+    shown = set()
+    for path in (Path(STUDENT) / "book").glob("*.html"):
+        html = re.sub(r"<[^>]+>", " ", path.read_text(encoding="utf-8"))
+        shown |= {stem(w.lower()) for w in re.findall(r"[A-Za-z]{7,}", html)}
+    only_in_solutions = (words - shown) & terms(BUILT)
+    assert only_in_solutions, "the full edition's index holds no solution word to look for"
+    assert not only_in_solutions & terms(STUDENT), sorted(only_in_solutions & terms(STUDENT))

@@ -16,11 +16,20 @@ The web book and the PDF are built from the same pages; this extension changes o
   cell is), in ``\\small`` type, or ``\\footnotesize`` from :data:`MANY_COLUMNS` columns on;
   it may run over several pages (a ``longtable``, unless it sits in a box such as an
   admonition), and one whose words do not fit an upright line is printed on turned pages;
-* **display formulas fit the line**: one wider than the line is scaled down to its width.
+  a heading right before a table (its section's title, a bold paragraph) stays on its page;
+* **display formulas fit the line**: one wider than the line is scaled down to its width;
+* **a first page about the edition** after the title page: which edition it is
+  (``printed_edition``: the answer key, or the students' edition), its licences, how to cite it
+  (read from ``CITATION.cff``) and where the book and its sources live;
+* **no build code**: a cell tagged ``hide-input`` or ``remove-input`` (code that builds a table
+  or a figure, folded on the web) prints its output only.
 """
 
 import re
+import subprocess
+from pathlib import Path
 
+import yaml
 from docutils import nodes
 from sphinx import addnodes
 from sphinx.transforms.post_transforms import SphinxPostTransform
@@ -152,6 +161,18 @@ def _cell_texts(table):
     return [row + [""] * (width - len(row)) for row in rows]
 
 
+def _heading_before(table):
+    """The heading right before a table: its section's title, or a paragraph of bold text
+    alone (as the appendix heads each chapter's table); None if something else comes first."""
+    previous = table.previous_sibling() if table.parent is not None else None
+    if isinstance(previous, nodes.title):
+        return previous
+    if isinstance(previous, nodes.paragraph) and previous.children and all(
+            isinstance(child, nodes.strong) for child in previous.children):
+        return previous
+    return None
+
+
 BOXES = (nodes.Admonition, nodes.sidebar, nodes.topic, nodes.footnote, nodes.table)
 """The nodes that LaTeX sets in a box, where a table can neither break across pages nor turn."""
 
@@ -192,9 +213,17 @@ class PrintedTables(SphinxPostTransform):
             turn = page == "landscape"
             parent = table.parent
             index = parent.index(table)
+            heading = _heading_before(table)
             parent.insert(index + 1, _latex("\\endgroup" + "\\end{landscape}" * turn + "\n"))
-            parent.insert(index, _latex("\\begin{landscape}" * turn + "\\begingroup" + size
-                                        + "\n"))
+            if turn and isinstance(heading, nodes.paragraph):
+                # the heading turns with its table (a turned table starts a page)
+                parent.insert(parent.index(heading), _latex("\\begin{landscape}\n"))
+                parent.insert(index + 1, _latex("\\begingroup" + size + "\n"))
+            else:
+                # no page break between a heading and its table
+                keep = "\\nopagebreak" if heading is not None and not turn else ""
+                parent.insert(index, _latex("\\begin{landscape}" * turn + keep + "\\begingroup"
+                                            + size + "\n"))
 
     @staticmethod
     def _has_own_widths(table):
@@ -267,17 +296,101 @@ def visit_math_block(self, node):
     raise nodes.SkipNode
 
 
+class NoBuildCode(SphinxPostTransform):
+    """Drop the code of the cells whose code the web book folds or hides (``hide-input``,
+    ``remove-input``): what prints is their output."""
+
+    default_priority = 400
+    formats = ("latex",)
+
+    def apply(self, **kwargs):
+        for cell in list(self.document.findall(nodes.container)):
+            tags = set(cell.get("classes", []))
+            if cell.get("nb_element") == "cell_code" and tags & {"tag_hide-input",
+                                                                 "tag_remove-input"}:
+                for part in [c for c in cell.children if isinstance(c, nodes.container)
+                             and c.get("nb_element") == "cell_code_source"]:
+                    cell.remove(part)
+
+
+def tex_escape(text):
+    """Text set as it is in LaTeX.
+
+    Examples
+    --------
+    >>> print(tex_escape("MIT & CC-BY-4.0, 100 % {x}_1"))
+    MIT \\& CC-BY-4.0, 100 \\% \\{x\\}\\_1
+    """
+    return re.sub(r"([&%$#_{}])", r"\\\1", str(text)).replace("~", r"\textasciitilde{}")
+
+
+def _commit(folder):
+    try:
+        found = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=folder,
+                               capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return found.stdout.strip() if found.returncode == 0 else None
+
+
+def front_matter(citation, edition, commit):
+    """The LaTeX of the page after the title page: the edition, the licences, the citation and
+    where the book and its sources live, from ``CITATION.cff``'s fields."""
+    authors = ", ".join(a.get("name") or " ".join(filter(None, (a.get("given-names"),
+                                                               a.get("family-names"))))
+                        for a in citation.get("authors", []))
+    year = str(citation.get("date-released", ""))[:4]
+    title, version = citation.get("title", ""), citation.get("version", "")
+    where = [f"the sources: \\url{{{citation[key]}}}" for key in ("repository-code",)
+             if citation.get(key)]
+    where += [f"the book: \\url{{{citation[key]}}}" for key in ("url",) if citation.get(key)]
+    built = f" (commit \\texttt{{{tex_escape(commit)}}})" if commit else ""
+    where.append("the web book, with every chapter as a notebook, the package's wheel and the "
+                 "lectures' slides, is built from the same repository as this PDF" + built
+                 + " by \\texttt{make book}; its page \\emph{Run the chapters yourself} serves "
+                 "the chapters and the package")
+    return "\n".join([
+        r"\clearpage\thispagestyle{empty}\begingroup\small\setlength{\parskip}{0.6em}",
+        r"\section*{About this book}",
+        f"\\textbf{{{tex_escape(title)}}}, version {tex_escape(version)}"
+        f" ({tex_escape(citation.get('date-released', ''))}), by {tex_escape(authors)}.",
+        "",
+        f"\\textbf{{This edition}}: {tex_escape(edition)}.",
+        "",
+        r"\textbf{Licences}: the text, figures and tables are licensed under the Creative "
+        r"Commons Attribution 4.0 International licence (CC BY 4.0, "
+        r"\url{https://creativecommons.org/licenses/by/4.0/}); the code (the package "
+        r"\texttt{mechnum}, the tests and the code cells) under the MIT licence. The files "
+        r"\texttt{LICENSE-TEXT.md} and \texttt{LICENSE} of the sources hold them; the studies "
+        r"the chapters discuss are not covered by them.",
+        "",
+        f"\\textbf{{How to cite it}} (\\texttt{{CITATION.cff}}): {tex_escape(authors)} "
+        f"({tex_escape(year)}). \\emph{{{tex_escape(title)}}}, version {tex_escape(version)}.",
+        "",
+        r"\textbf{Where it lives}: " + "; ".join(where) + ".",
+        r"\endgroup\clearpage", ""])
+
+
 def _add_preamble(app, config):
     elements = dict(config.latex_elements)
     elements["preamble"] = elements.get("preamble", "") + PREAMBLE
+    citation_file = Path(app.srcdir) / "CITATION.cff"
+    citation = (yaml.safe_load(citation_file.read_text(encoding="utf-8"))
+                if citation_file.is_file() else {})
+    elements["maketitle"] = (elements.get("maketitle", r"\sphinxmaketitle") + "\n"
+                             + front_matter(citation, config.printed_edition,
+                                            _commit(app.srcdir)))
     config.latex_elements = elements
 
 
 def setup(app):
     app.add_config_value("latex_exclude_docs", [], "", [list])
     app.add_config_value("latex_preface_title", "Preface", "", [str])
+    app.add_config_value("printed_edition", "the answer key, the whole book with every solution "
+                         "after its exercise", "", [str])
     app.add_post_transform(PrintedParts)
     app.add_post_transform(PrintedTables)
+    app.add_post_transform(NoBuildCode)
     app.add_node(nodes.math_block, override=True, latex=(visit_math_block, None))
     app.connect("config-inited", _add_preamble)
     return {"parallel_read_safe": True}

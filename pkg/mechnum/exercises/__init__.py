@@ -1,8 +1,9 @@
 """Self-checks for the exercises in which a student implements a piece of a chapter's method.
 
 Each exercise has a number as the book prints it (``"3.1"``), a statement, a starter (the
-signature and docstring of the function to write, with ``...`` for its body), a reference
-solution, and a check that runs the student's function on cases the student has not seen:
+signature and docstring of the function to write, with ``...`` for its body), and a check that
+runs the student's function on the exercise's public cases and compares its answers with the
+stored right ones:
 
 >>> from mechnum import exercises
 >>> sorted(exercises.CHECKS)[:3]
@@ -12,55 +13,53 @@ solution, and a check that runs the student's function on cases the student has 
 >>> result = exercises.check("3.1", rk4_step)
 >>> result.passed
 False
->>> exercises.check("3.1", exercises.reference("3.1")).passed
-True
 
-The check never raises on a wrong answer: an exception or an endless loop in the student's code
-(each case has a time limit, :data:`TIME_LIMIT`) is reported in ``result.message``, with the input
-it failed on and the likely mistake. It raises ``ValueError`` only on a malformed call (an
-unknown exercise).
+The check never raises on a wrong answer. It runs the function in a child process, one case at
+a time: an exception (``SystemExit`` and ``KeyboardInterrupt`` too), an endless loop (each case
+has a time limit, :data:`TIME_LIMIT`, after which the child is killed) or an answer of the wrong
+kind (a float where an integer is due, a complex number, an object that only pretends to be a
+number) is reported in ``result.message``, with the input it failed on and the likely mistake;
+nothing the function does reaches the check itself. It raises ``ValueError`` only on a
+malformed call (an unknown exercise).
 
-What a chapter's notebook holds for an exercise, in this order (:func:`cells` returns them):
+This package holds what a student may hold: the statements, the starters, the public cases and
+their expected answers. The reference solutions, the hidden cases a grade uses, and the grader
+are the instructors' (the book's repository, ``course/``).
 
-1. a Markdown cell with the ``{exercise}`` directive, labelled, holding :func:`statement`;
-2. the starter cell, :func:`starter`;
-3. the gated solution: ``{solution-start}``, a code cell holding :func:`solution` (which fills
-   the starter in), ``{solution-end}``;
-4. the check cell, :func:`check_code`, whose output is the verdict.
-
-The code cells carry ``{"mechnum": {"exercise": number, "role": role}}`` in their metadata,
-``role`` one of :data:`ROLES`, which the student edition and the grader read.
+What a chapter's notebook holds for an exercise, in this order: the ``{exercise}`` directive,
+labelled, holding :func:`statement`; the starter cell, :func:`starter`; in the book, the gated
+solution; the check cell, :func:`check_code`, whose output is the verdict. :func:`cells` returns
+those a student sees. The code cells carry ``{"mechnum": {"exercise": number, "role": role}}``
+in their metadata, ``role`` one of :data:`ROLES`, which the student edition and the grader read.
 """
 
-from mechnum.exercises import _ch1, _ch2, _ch3, _ch4, _ch5, _ch6, _ch7
-from mechnum.exercises._harness import TIME_LIMIT, Result, run_check
-from mechnum.exercises._harness import source as _source
-from mechnum.exercises._harness import starter as _starter
+from mechnum.exercises import _ch1, _ch2, _ch3, _ch4, _ch5, _ch6, _ch7, _data, _harness
+from mechnum.exercises._harness import TIME_LIMIT, Result
 
-__all__ = ["CHECKS", "ROLES", "TIME_LIMIT", "Result", "cells", "check", "check_code",
-           "reference", "solution", "starter", "statement"]
+__all__ = ["CHECKS", "EXERCISES", "ROLES", "TIME_LIMIT", "Result", "cells", "check",
+           "check_cases", "check_code", "starter", "statement"]
 
-_EXERCISES = (_ch1.LOOP, _ch1.NEWTON, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING,
-              _ch4.COMPANION, _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK,
-              _ch6.INDEX, _ch6.RIGID, _ch7.COEFFICIENTS, _ch7.FORCE)
+EXERCISES = {e.number: e for e in (
+    _ch1.LOOP, _ch1.NEWTON, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING, _ch4.COMPANION,
+    _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK, _ch6.INDEX, _ch6.RIGID,
+    _ch7.COEFFICIENTS, _ch7.FORCE)}
+"""Every self-checked exercise by its number: its statement, starter, public cases, the form
+of its answer, its typical mistakes and its points."""
 
-CHECKS = {exercise.number: (lambda answer, e=exercise: run_check(e, answer))
-          for exercise in _EXERCISES}
+CHECKS = {number: (lambda answer, n=number: check(n, answer)) for number in EXERCISES}
 """Each exercise's check, by its number as the book prints it: ``CHECKS["1.2"](answer)`` is
 ``check("1.2", answer)``."""
 
 ROLES = ("starter", "solution", "check")
 """The roles of an exercise's code cells, in the notebook's metadata ``mechnum.role``."""
 
-_BY_NUMBER = {exercise.number: exercise for exercise in _EXERCISES}
-
 
 def _exercise(number):
-    if not isinstance(number, str) or number not in _BY_NUMBER:
+    if not isinstance(number, str) or number not in EXERCISES:
         raise ValueError(f"no self-checked exercise {number!r}; the exercises are "
-                         f"{', '.join(_BY_NUMBER)} (numbers are strings, as the book prints "
+                         f"{', '.join(EXERCISES)} (numbers are strings, as the book prints "
                          "them)")
-    return _BY_NUMBER[number]
+    return EXERCISES[number]
 
 
 def check(number, answer):
@@ -93,21 +92,43 @@ def check(number, answer):
     >>> exercises.check("2.1", one_sor_sweep).passed
     False
     """
-    return run_check(_exercise(number), answer)
+    exercise = _exercise(number)
+    if not callable(answer):
+        return _harness.not_a_function(exercise, answer)
+    expected, mistakes, probe_mistakes = _data.public(number)
+    cases = exercise.cases()
+    outcomes = ((case, _harness.run(exercise, answer, case)) for case in cases)
+    probes = lambda: [(p, _harness.run(exercise, answer, p)) for p in exercise.probes()]  # noqa: E731
+    return _harness.judge(exercise, outcomes, expected, lambda k: mistakes[k], probes,
+                          probe_mistakes)
 
 
-def reference(number):
-    """The reference solution of exercise ``number``: the function the student writes.
+def check_cases(number, answer, cases, expected):
+    """Run the student's ``answer`` on the given ``cases`` of exercise ``number`` and compare it
+    with their ``expected`` answers (as :func:`check` does with the public ones): an nbgrader
+    test cell holds an exercise's hidden cases and their answers, and calls this.
 
     Examples
     --------
     >>> import numpy as np
     >>> from mechnum import exercises
-    >>> rk4_step = exercises.reference("3.1")
-    >>> float(rk4_step(lambda s, y: y, 0.0, np.array([1.0]), 1.0)[0])  # e = 2.718...
-    2.708333333333333
+    >>> from mechnum.exercises._harness import Case
+    >>> case = Case("y' = y from 1, h = 1", (lambda s, y: y, 0.0, np.array([1.0]), 1.0))
+    >>> exercises.check_cases("3.1", lambda f, s, y, h: y + h * f(s, y), [case],
+    ...                       [np.array([2.708333333333333])]).passed
+    False
     """
-    return _exercise(number).reference
+    exercise = _exercise(number)
+    if not callable(answer):
+        return _harness.not_a_function(exercise, answer)
+    if not isinstance(cases, (list, tuple)) or not all(isinstance(c, _harness.Case)
+                                                       for c in cases):
+        raise ValueError(f"cases must be a list of Case, got {type(cases).__name__}")
+    if not isinstance(expected, (list, tuple)) or len(cases) != len(expected):
+        raise ValueError(f"expected must be a list of one answer per case ({len(cases)}), "
+                         f"got {type(expected).__name__}")
+    outcomes = ((case, _harness.run(exercise, answer, case)) for case in cases)
+    return _harness.judge(exercise, outcomes, list(expected), lambda k: {})
 
 
 def starter(number):
@@ -121,20 +142,7 @@ def starter(number):
     >>> exercises.starter("3.1").rstrip().endswith("...")
     True
     """
-    return _starter(_exercise(number).reference)
-
-
-def solution(number):
-    """The solution cell of exercise ``number``: the reference's source, which redefines the
-    starter's function.
-
-    Examples
-    --------
-    >>> from mechnum import exercises
-    >>> exercises.solution("1.2").startswith(exercises.starter("1.2").rstrip()[:-3])
-    True
-    """
-    return _source(_exercise(number).reference)
+    return _exercise(number).starter
 
 
 def statement(number):
@@ -161,35 +169,35 @@ def check_code(number):
     return f'exercises.check("{number}", {_exercise(number).name})'
 
 
+def markdown_cell(number, source, part):
+    """A Markdown cell of exercise ``number`` (a dictionary in the notebook format)."""
+    return {"cell_type": "markdown", "id": f"ex{number.replace('.', '-')}-{part}",
+            "metadata": {}, "source": source}
+
+
+def code_cell(number, source, role):
+    """A code cell of exercise ``number`` with its role in the metadata."""
+    return {"cell_type": "code", "id": f"ex{number.replace('.', '-')}-{role}",
+            "execution_count": None, "metadata": {"mechnum": {"exercise": number, "role": role}},
+            "source": source.rstrip("\n"), "outputs": []}
+
+
 def cells(number):
-    """The cells of exercise ``number`` for a chapter's notebook, in order, as dictionaries in
-    the notebook format (``nbformat.from_dict`` accepts them): the exercise, the starter, the
-    gated solution, the check.
+    """The cells of exercise ``number`` that a student sees, in order, as dictionaries in the
+    notebook format (``nbformat.from_dict`` accepts them): the exercise, the starter, the
+    check. (The book's chapters also hold the gated solution between the starter and the
+    check: the instructors' package, ``mechnum_course.cells``, gives all of them.)
 
     Examples
     --------
     >>> from mechnum import exercises
     >>> [cell["cell_type"] for cell in exercises.cells("4.1")]
-    ['markdown', 'code', 'markdown', 'code', 'markdown', 'code']
+    ['markdown', 'code', 'code']
     >>> exercises.cells("4.1")[0]["source"].splitlines()[:2]
     ['```{exercise}', ':label: ch4-ex-companion']
     """
     exercise = _exercise(number)
-    stem = "ex" + number.replace(".", "-")  # cell ids, unique in a notebook
-
-    def markdown(text, part):
-        return {"cell_type": "markdown", "id": f"{stem}-{part}", "metadata": {}, "source": text}
-
-    def code(text, role):
-        return {"cell_type": "code", "id": f"{stem}-{role}", "execution_count": None,
-                "metadata": {"mechnum": {"exercise": number, "role": role}},
-                "source": text.rstrip("\n"), "outputs": []}
-
-    return [markdown(f"```{{exercise}}\n:label: {exercise.label}\n\n{exercise.statement}\n```",
-                     "exercise"),
-            code(starter(number), "starter"),
-            markdown(f"```{{solution-start}} {exercise.label}\n:class: dropdown\n```",
-                     "solution-start"),
-            code(solution(number), "solution"),
-            markdown("```{solution-end}\n```", "solution-end"),
-            code(check_code(number), "check")]
+    return [markdown_cell(number, f"```{{exercise}}\n:label: {exercise.label}\n\n"
+                                  f"{exercise.statement}\n```", "exercise"),
+            code_cell(number, starter(number), "starter"),
+            code_cell(number, check_code(number), "check")]

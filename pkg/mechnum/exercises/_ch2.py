@@ -3,9 +3,10 @@ Householder QR (2.2)."""
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+SOR_STARTER = '''\
 def one_sor_sweep(A, b, x, omega):
     """One SOR sweep, component by component.
 
@@ -25,13 +26,10 @@ def one_sor_sweep(A, b, x, omega):
     ndarray, shape (n,)
         The iterate after one sweep over ``i = 0, ..., n - 1``.
     """
-    x = np.array(x, dtype=float)
-    for i in range(len(b)):
-        sigma = sum(A[i, j] * x[j] for j in range(len(b)) if j != i)
-        x[i] = (1 - omega) * x[i] + omega * (b[i] - sigma) / A[i, i]
-    return x
+    ...
+'''
 
-
+LSTSQ_STARTER = '''\
 def lstsq_householder(A, b):
     """The least-squares solution of ``A x ~ b`` by Householder QR.
 
@@ -47,48 +45,8 @@ def lstsq_householder(A, b):
     ndarray, shape (n,)
         The ``x`` that minimises ``||A x - b||_2``.
     """
-    R, y = np.array(A, dtype=float), np.array(b, dtype=float)
-    m, n = R.shape
-    for k in range(n):  # I - 2 v v^T zeroes column k below row k
-        v = R[k:, k].copy()
-        v[0] += np.copysign(np.linalg.norm(v), v[0])  # no cancellation
-        v /= np.linalg.norm(v)
-        R[k:, k:] -= 2 * np.outer(v, v @ R[k:, k:])
-        y[k:] -= 2 * v * (v @ y[k:])
-    x = np.zeros(n)  # back substitution on R x = (Q^T b)[:n]
-    for i in range(n - 1, -1, -1):
-        x[i] = (y[i] - R[i, i + 1:n] @ x[i + 1:]) / R[i, i]
-    return x
-
-
-# Typical mistakes of 2.1
-def _jacobi(A, b, x, omega):
-    old, x = np.array(x, dtype=float), np.array(x, dtype=float)
-    for i in range(len(b)):
-        sigma = sum(A[i, j] * old[j] for j in range(len(b)) if j != i)
-        x[i] = (1 - omega) * old[i] + omega * (b[i] - sigma) / A[i, i]
-    return x
-
-
-def _unrelaxed_old_value(A, b, x, omega):
-    x = np.array(x, dtype=float)
-    for i in range(len(b)):
-        sigma = sum(A[i, j] * x[j] for j in range(len(b)) if j != i)
-        x[i] = omega * (b[i] - sigma) / A[i, i]
-    return x
-
-
-def _short_sweep(A, b, x, omega):
-    x = np.array(x, dtype=float)
-    for i in range(len(b) - 1):
-        sigma = sum(A[i, j] * x[j] for j in range(len(b)) if j != i)
-        x[i] = (1 - omega) * x[i] + omega * (b[i] - sigma) / A[i, i]
-    return x
-
-
-def _backward(A, b, x, omega):
-    order = np.arange(len(b))[::-1]
-    return one_sor_sweep(A[np.ix_(order, order)], b[order], x[order], omega)[np.argsort(order)]
+    ...
+'''
 
 
 def _sweep_cases():
@@ -114,34 +72,19 @@ SOR = Exercise(
         "Leave the argument `x` unchanged (work on a copy) and return the new iterate. Compare "
         "it with the matrix form of the chapter, "
         "$(D - \\omega L)^{-1}[((1 - \\omega) D + \\omega U)\\,x + \\omega b]$."),
-    reference=one_sor_sweep, cases=_sweep_cases,
+    starter=SOR_STARTER, cases=_sweep_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-12, atol=1e-13, what="x"),
     mistakes=(Mistake("a Jacobi sweep", "SOR uses the components already updated in this "
-                      "sweep (x[j] for j < i), not the old ones.", _jacobi),
+                      "sweep (x[j] for j < i), not the old ones."),
               Mistake("the relaxation without (1 - omega) x_i", "x_i becomes "
-                      "(1 - omega) x_i + omega (b_i - sigma) / a_ii.", _unrelaxed_old_value),
+                      "(1 - omega) x_i + omega (b_i - sigma) / a_ii."),
               Mistake("an off-by-one sweep", "the sweep runs over every row, i = 0 to n - 1; "
-                      "your last component is never updated.", _short_sweep),
-              Mistake("a backward sweep", "sweep from the first row to the last.", _backward)),
+                      "your last component is never updated."),
+              Mistake("a backward sweep", "sweep from the first row to the last.")),
     hint="with omega = 1 one SOR sweep is one Gauss-Seidel sweep: test that case first.")
 
 
-# Typical mistakes of 2.2
-def _normal_equations(A, b):
-    return np.linalg.solve(A.T @ A, A.T @ b)
-
-
-def _no_qt(A, b):
-    R = np.linalg.qr(A)[1]
-    return np.linalg.solve(R, b[:R.shape[0]])
-
-
-def _transposed_r(A, b):
-    Q, R = np.linalg.qr(A)
-    return np.linalg.solve(R.T, Q.T @ b)
-
-
-def _freudenstein(theta_in, linkage):
+def freudenstein(theta_in, linkage):
     """Rows (cos theta1, cos theta3, 1) and b = cos(theta1 - theta3) of a crossed four-bar."""
     r1, r2, r3, r4 = linkage
     inputs = np.asarray(theta_in)
@@ -153,12 +96,14 @@ def _freudenstein(theta_in, linkage):
     return A, np.cos(outputs - inputs)
 
 
+FINGER = (30.6, 7.0, 24.8, 7.0)  # a linkage of the chapter's size (mm)
+
+
 def _lstsq_cases():
     rng = np.random.default_rng(22)
-    finger = (30.6, 7.0, 24.8, 7.0)  # a linkage of the chapter's size (mm)
     cases = []
     for width in (1.0, 0.01):
-        A, b = _freudenstein(np.linspace(5.0, 5.0 + width, 13), finger)
+        A, b = freudenstein(np.linspace(5.0, 5.0 + width, 13), FINGER)
         cases.append(Case(f"Freudenstein's 13 x 3 matrix of a finger four-bar, exact angles "
                           f"over {width} rad", (A, b)))
     A = rng.normal(size=(9, 4))
@@ -176,14 +121,14 @@ LSTSQ = Exercise(
         "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Do not form $Q$, and do not "
         "call `np.linalg.qr` or `lstsq`. Try it on the chapter's narrow-range design, where "
         "the normal equations lose digits."),
-    reference=lstsq_householder, cases=_lstsq_cases,
+    starter=LSTSQ_STARTER, cases=_lstsq_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-7, atol=1e-10, what="x"),
     mistakes=(Mistake("the normal equations", "A^T A squares the condition number: on a narrow "
                       "range of angles (cond(A) ~ 5e5) it loses about ten digits, QR about "
-                      "five.", _normal_equations),
+                      "five."),
               Mistake("b left without its reflections", "apply every reflection to b as well "
-                      "(Q^T b), then solve R x = (Q^T b)[:n].", _no_qt),
+                      "(Q^T b), then solve R x = (Q^T b)[:n]."),
               Mistake("a transposed R", "R is upper triangular: back substitution from the "
-                      "last row up, with R, not R.T.", _transposed_r)),
+                      "last row up, with R, not R.T.")),
     hint="check that your reflections zero each column below the diagonal, and that A^T (A x "
          "- b) is near zero.")

@@ -3,9 +3,10 @@
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+RK4_STARTER = '''\
 def rk4_step(f, s, y, h):
     """One step of the classical Runge-Kutta method of order 4.
 
@@ -25,13 +26,10 @@ def rk4_step(f, s, y, h):
     ndarray
         The state at ``s + h``.
     """
-    k1 = f(s, y)
-    k2 = f(s + h / 2, y + h / 2 * k1)
-    k3 = f(s + h / 2, y + h / 2 * k2)
-    k4 = f(s + h, y + h * k3)
-    return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    ...
+'''
 
-
+SHOOTING_STARTER = '''\
 def pinned_residual(q, EI, L, target, nodes):
     """The shooting residual of a rod clamped along +x, its tip pinned.
 
@@ -53,30 +51,12 @@ def pinned_residual(q, EI, L, target, nodes):
     ndarray, shape (3,)
         ``(x(L) - x_t, y(L) - y_t, m(L))``.
     """
-    m0, nx, ny = q
-
-    def f(s, y):  # the study's (78): y = (x, y, theta, m)
-        return np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
-                         nx * np.sin(y[2]) - ny * np.cos(y[2])])
-
-    y, h = np.array([0.0, 0.0, 0.0, m0]), L / (nodes - 1)
-    for i in range(nodes - 1):
-        y = rk4_step(f, i * h, y, h)
-    return np.array([y[0] - target[0], y[1] - target[1], y[3]])
+    ...
+'''
 
 
-# Typical mistakes of 3.1: RK4 with one thing changed
-def _variant(at=(0.0, 0.5, 0.5, 1.0), start=(0.5, 0.5, 1.0), k3_from=1, weights=(1, 2, 2, 1)):
-    def step(f, s, y, h):
-        k = [f(s + at[0] * h, y)]
-        for stage in (1, 2, 3):
-            slope = k[k3_from] if stage == 2 else k[stage - 1]
-            k.append(f(s + at[stage] * h, y + start[stage - 1] * h * slope))
-        return y + h * sum(w * kk for w, kk in zip(weights, k)) / sum(weights)
-    return step
-
-
-def _rod(EI, force):
+def rod(EI, force):
+    """The right-hand side ``f(s, y)`` of the rod's equations (78), ``y = (x, y, theta, m)``."""
     nx, ny = force
     return lambda s, y: np.array([np.cos(y[2]), np.sin(y[2]), y[3] / EI,
                                   nx * np.sin(y[2]) - ny * np.cos(y[2])])
@@ -84,14 +64,14 @@ def _rod(EI, force):
 
 def _step_cases():
     return [Case("the rod's equations (EI = 1, n = (0.3, 2) N) from (0, 0, 0, 2), h = 0.1",
-                 (_rod(1.0, (0.3, 2.0)), 0.0, np.array([0.0, 0.0, 0.0, 2.0]), 0.1)),
+                 (rod(1.0, (0.3, 2.0)), 0.0, np.array([0.0, 0.0, 0.0, 2.0]), 0.1)),
             Case("y' = (y1, -y0 + cos s) at s = 0.7, h = 0.25",
                  (lambda s, y: np.array([y[1], -y[0] + np.cos(s)]), 0.7, np.array([1.0, -0.5]),
                   0.25)),
             Case("y' = s^2 y (one component) at s = 1, h = 0.3",
                  (lambda s, y: s ** 2 * y, 1.0, np.array([2.0]), 0.3)),
             Case("a stiff rod (EI = 0.2, n = (-4, 1) N) at s = 0.4, h = 0.05",
-                 (_rod(0.2, (-4.0, 1.0)), 0.4, np.array([0.3, 0.1, 0.8, -0.5]), 0.05))]
+                 (rod(0.2, (-4.0, 1.0)), 0.4, np.array([0.3, 0.1, 0.8, -0.5]), 0.05))]
 
 
 RK4 = Exercise(
@@ -103,35 +83,18 @@ RK4 = Exercise(
         "integrate the cantilever of the chapter with it and measure the order: the tip error "
         "should fall by 16 when $h$ halves. The check also uses right-hand sides that depend "
         "on $s$, which the rod's do not."),
-    reference=rk4_step, cases=_step_cases,
+    starter=RK4_STARTER, cases=_step_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-13, atol=1e-15,
                                         what="y(s + h)"),
     mistakes=(Mistake("the stages at s", "the middle stages are evaluated at s + h/2 and the "
-                      "last at s + h; an autonomous f, like the rod's, hides this mistake.",
-                      _variant(at=(0.0, 0.0, 0.0, 0.0))),
-              Mistake("equal weights", "the weights are 1, 2, 2, 1 over 6.",
-                      _variant(weights=(1, 1, 1, 1))),
+                      "last at s + h; an autonomous f, like the rod's, hides this mistake."),
+              Mistake("equal weights", "the weights are 1, 2, 2, 1 over 6."),
               Mistake("full steps in the stages", "the second and third stages start from "
-                      "y + h/2 k1 and y + h/2 k2; only the fourth takes the full h.",
-                      _variant(start=(1.0, 1.0, 1.0))),
+                      "y + h/2 k1 and y + h/2 k2; only the fourth takes the full h."),
               Mistake("k3 from k1", "the third stage starts from y + h/2 k2, the second "
-                      "stage's slope.", _variant(k3_from=0))),
+                      "stage's slope.")),
     hint="test on y' = s (exact: y + s h + h^2 / 2) and on y' = y (exact: y e^h), where RK4's "
          "error is known.")
-
-
-# Typical mistakes of 3.2
-def _moment_sign(q, EI, L, target, nodes):
-    return pinned_residual((q[0], -q[1], -q[2]), EI, L, target, nodes)
-
-
-def _target_minus_tip(q, EI, L, target, nodes):
-    r = pinned_residual(q, EI, L, target, nodes)
-    return np.array([-r[0], -r[1], r[2]])
-
-
-def _nodes_as_steps(q, EI, L, target, nodes):
-    return pinned_residual(q, EI, L, target, nodes + 1)
 
 
 def _shooting_cases():
@@ -153,14 +116,14 @@ SHOOTING = Exercise(
         "and return the residual $(x(L) - x_t,\\ y(L) - y_t,\\ m(L))$ of the thesis's pinned "
         "rod. Then drive it to zero with your `newton_study` of Chapter 1 and a "
         "forward-difference Jacobian, from the thesis's guess $(0.1, 0.1, 0.1)$."),
-    reference=pinned_residual, cases=_shooting_cases,
+    starter=SHOOTING_STARTER, cases=_shooting_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-10, atol=1e-12,
                                         what="the residual"),
     mistakes=(Mistake("a sign in m'", "m' = n_x sin(theta) - n_y cos(theta) (the chapter's "
-                      "convention: n is the force on the rod at its tip).", _moment_sign),
+                      "convention: n is the force on the rod at its tip)."),
               Mistake("target minus tip", "the residual is the tip minus the target, "
-                      "(x(L) - x_t, y(L) - y_t).", _target_minus_tip),
+                      "(x(L) - x_t, y(L) - y_t)."),
               Mistake("an off-by-one grid", "`nodes` nodes make nodes - 1 steps of "
-                      "h = L / (nodes - 1).", _nodes_as_steps)),
+                      "h = L / (nodes - 1).")),
     hint="with n = 0 the rod is an arc of curvature m0 / EI: check your tip against "
          "(EI / m0) (sin(m0 L / EI), 1 - cos(m0 L / EI)).")

@@ -5,9 +5,10 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+COMPANION_STARTER = '''\
 def companion(c):
     """The companion matrix of a polynomial: its eigenvalues are the roots.
 
@@ -22,14 +23,10 @@ def companion(c):
     ndarray, shape (n, n)
         Ones below the diagonal and ``-c_k / c_n`` in the last column.
     """
-    c = np.asarray(c, dtype=float)
-    n = len(c) - 1
-    M = np.zeros((n, n))
-    M[1:, :-1] = np.eye(n - 1)
-    M[:, -1] = -c[:-1] / c[-1]
-    return M
+    ...
+'''
 
-
+NEWTON_STEP_STARTER = '''\
 def prr3_newton_step(pose, lam, g):
     """One Newton step on the 3PRR's loop equations.
 
@@ -49,33 +46,8 @@ def prr3_newton_step(pose, lam, g):
     ndarray, shape (3,)
         The next iterate of ``F_i = |P_i - C_i|^2 - L^2 = 0``.
     """
-    x, y, psi = pose
-    angles = np.array([0.0, psi, psi + np.pi / 3])
-    arms = g.a * np.column_stack((np.cos(angles), np.sin(angles)))
-    arms[0] = 0.0  # P_1 = P
-    vertices = np.array([x, y]) + arms
-    sliders = np.array([[lam[0], 0.0], [g.B2 - lam[1], 0.0],
-                        [g.B3, g.H3 - lam[2]]])
-    u = vertices - sliders
-    F = (u ** 2).sum(axis=1) - g.L ** 2
-    n = np.column_stack((-arms[:, 1], arms[:, 0]))  # dP_i / dpsi
-    J = 2 * np.column_stack((u, (u * n).sum(axis=1)))
-    return np.asarray(pose, dtype=float) - np.linalg.solve(J, F)
-
-
-# Typical mistakes of 4.1
-def _not_divided(c):
-    return companion(np.append(c[:-1], 1.0))
-
-
-def _descending(c):
-    return companion(np.asarray(c)[::-1])
-
-
-def _sign(c):
-    M = companion(c)
-    M[:, -1] = -M[:, -1]
-    return M
+    ...
+'''
 
 
 def _companion_cases():
@@ -88,11 +60,13 @@ def _companion_cases():
 
 
 def _eigenvalues_compare(expected, got):
-    got = np.asarray(got, dtype=float)
     if got.shape != expected.shape:
         return f"the matrix has shape {got.shape}, expected {expected.shape}"
     want, have = (np.sort_complex(np.linalg.eigvals(M)) for M in (expected, got))
-    return close(want, have, rtol=1e-8, atol=1e-10, what="the sorted eigenvalues")
+    return close(want.real, have.real, rtol=1e-8, atol=1e-10,
+                 what="the real parts of the sorted eigenvalues") or close(
+        want.imag, have.imag, rtol=1e-8, atol=1e-10,
+        what="the imaginary parts of the sorted eigenvalues")
 
 
 COMPANION = Exercise(
@@ -103,37 +77,14 @@ COMPANION = Exercise(
         "`prr3.polynomial`): ones below the diagonal and $-c_k/c_n$ in the last column. Show "
         "that its characteristic polynomial is the polynomial divided by $c_n$, and compare "
         "its eigenvalues with `np.roots(c[::-1])` on the degree-8 polynomial of Table 6."),
-    reference=companion, cases=_companion_cases, compare=_eigenvalues_compare,
+    starter=COMPANION_STARTER, cases=_companion_cases, compare=_eigenvalues_compare,
+    returns=Array(),
     mistakes=(Mistake("no division by the leading coefficient", "the last column is "
-                      "-c_k / c_n: the eigenvalues are the roots only of the monic polynomial.",
-                      _not_divided),
+                      "-c_k / c_n: the eigenvalues are the roots only of the monic polynomial."),
               Mistake("the coefficients in descending order", "c[0] is the constant term; "
-                      "read in reverse, you get the reciprocals of the roots.", _descending),
-              Mistake("a sign", "the last column holds -c_k / c_n, with the minus.", _sign)),
+                      "read in reverse, you get the reciprocals of the roots."),
+              Mistake("a sign", "the last column holds -c_k / c_n, with the minus.")),
     hint="expand det(tI - M) along the last column for n = 2 by hand.")
-
-
-# Typical mistakes of 4.2
-def _transposed_jacobian(pose, lam, g):
-    F = _loop(pose, lam, g)
-    J = np.column_stack([_loop(pose + 1e-30j * e, lam, g).imag / 1e-30 for e in np.eye(3)])
-    return np.asarray(pose) - np.linalg.solve(J.T, F.real)
-
-
-def _loop(pose, lam, g):
-    x, y, psi = pose
-    P = np.array([[x, y], [x + g.a * np.cos(psi), y + g.a * np.sin(psi)],
-                  [x + g.a * np.cos(psi + np.pi / 3), y + g.a * np.sin(psi + np.pi / 3)]])
-    C = np.array([[lam[0], 0.0], [g.B2 - lam[1], 0.0], [g.B3, g.H3 - lam[2]]])
-    return ((P - C) ** 2).sum(axis=1) - g.L ** 2
-
-
-def _no_factor_two(pose, lam, g):
-    return 2 * prr3_newton_step(pose, lam, g) - np.asarray(pose)
-
-
-def _plus(pose, lam, g):
-    return 2 * np.asarray(pose) - prr3_newton_step(pose, lam, g)
 
 
 def _newton_cases():
@@ -155,13 +106,13 @@ PRR3_NEWTON = Exercise(
         "the Jacobian by hand: row $i$ is $2\\,(u_i,\\ u_i\\cdot n_i)$ with $u_i = P_i - C_i$ "
         "and $n_i = \\partial P_i/\\partial\\psi$. Iterate it from a pose near one of Table 6's "
         "and watch the residual square at each step; compare the limit with `prr3.direct`."),
-    reference=prr3_newton_step, cases=_newton_cases,
+    starter=NEWTON_STEP_STARTER, cases=_newton_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-10, atol=1e-12,
                                         what="the next pose"),
     mistakes=(Mistake("a transposed Jacobian", "row i of J holds the derivatives of F_i; solve "
-                      "J d = -F with J, not J.T.", _transposed_jacobian),
+                      "J d = -F with J, not J.T."),
               Mistake("the factor 2 of the Jacobian", "d/dx |u|^2 = 2 u_x: without the 2 the "
                       "step is twice Newton's and the iteration no longer converges "
-                      "quadratically.", _no_factor_two),
-              Mistake("a sign", "the step is pose - J^{-1} F.", _plus)),
+                      "quadratically."),
+              Mistake("a sign", "the step is pose - J^{-1} F.")),
     hint="check your Jacobian against forward differences of F, column by column.")

@@ -3,9 +3,10 @@
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, Choice, Tuple, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+TIP_STARTER = '''\
 def elliptic_tip(EI, L, psi, k_rel, mode):
     """The tip of a clamped-pinned rod from the thesis's closed form.
 
@@ -26,22 +27,10 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ndarray, shape (2,)
         The tip ``(x, y)`` in the clamp's frame (m).
     """
-    from scipy.special import ellipeinc, ellipkinc
+    ...
+'''
 
-    k_min = abs(np.cos(psi / 2))
-    k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel  # the study's (91)
-    phi1 = np.arcsin(np.cos(psi / 2) / k)  # the clamp, (41)
-    phi2 = (mode - 0.5) * np.pi  # the pinned tip, (43)
-    m = k ** 2  # scipy takes the parameter m = k^2
-    dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
-    dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
-    lam = dF / L  # (40): lambda L = F(phi2, k) - F(phi1, k)
-    dC = np.cos(phi2) - np.cos(phi1)  # then x by (45), y by (46)
-    x = -(np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC) / lam
-    y = -(np.sin(psi) * (2 * dE - dF) - 2 * k * np.cos(psi) * dC) / lam
-    return np.array([x, y])
-
-
+PIN_STARTER = '''\
 def pin_residual(tips, forces, origins, theta, load):
     """The 2RFR's pin: the tips at one point, the forces balancing the load.
 
@@ -62,13 +51,10 @@ def pin_residual(tips, forces, origins, theta, load):
     ndarray, shape (4,)
         ``(p_1 - p_2, n_1 + n_2 - F)``, in the fixed frame.
     """
-    c, s = np.cos(theta), np.sin(theta)
-    rotations = np.array([[[ci, -si], [si, ci]] for ci, si in zip(c, s)])
-    p = origins + np.einsum("ijk,ik->ij", rotations, tips)  # (103)
-    n = np.einsum("ijk,ik->ij", rotations, forces)
-    return np.concatenate((p[0] - p[1], n[0] + n[1] - load))
+    ...
+'''
 
-
+KRAWCZYK_STARTER = '''\
 def krawczyk_1d(f, df, lo, hi):
     """Krawczyk's test for a root of ``f`` in the interval ``[lo, hi]``.
 
@@ -93,46 +79,8 @@ def krawczyk_1d(f, df, lo, hi):
         ``K(X) = m - y f(m) + (1 - y f'(X)) (X - m)``, ``m`` the midpoint
         of ``X``, ``y = 2 / (d_lo + d_hi)``, rounded outwards.
     """
-    def down(v):  # below v, so below the exact value v was rounded from
-        return np.nextafter(v, -np.inf)
-
-    def up(v):
-        return np.nextafter(v, np.inf)
-
-    def times(a, b):
-        products = [a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]]
-        return down(min(products)), up(max(products))
-
-    m = lo + (hi - lo) / 2
-    d_lo, d_hi = df(lo, hi)
-    y = 2 / (d_lo + d_hi)  # near 1 / f'(m); any y != 0 is valid
-    yf = times((y, y), f(m))
-    newton = down(m - yf[1]), up(m - yf[0])
-    yd = times((y, y), (d_lo, d_hi))
-    slope = down(1 - yd[1]), up(1 - yd[0])
-    spread = times(slope, (down(lo - m), up(hi - m)))
-    K = down(newton[0] + spread[0]), up(newton[1] + spread[1])
-    if lo < K[0] and K[1] < hi:
-        return "unique", K
-    if K[1] < lo or K[0] > hi:
-        return "none", K
-    return "undecided", K
-
-
-# Typical mistakes of 5.1: the closed form with one thing changed
-def _tip_variant(parameter=lambda k: k ** 2, phi2_turns=0.5, y_sign=-1):
-    def tip(EI, L, psi, k_rel, mode):
-        from scipy.special import ellipeinc, ellipkinc
-
-        k_min = abs(np.cos(psi / 2))
-        k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel
-        phi1, phi2, m = np.arcsin(np.cos(psi / 2) / k), (mode - phi2_turns) * np.pi, parameter(k)
-        dF = ellipkinc(phi2, m) - ellipkinc(phi1, m)
-        dE = ellipeinc(phi2, m) - ellipeinc(phi1, m)
-        dC, lam = np.cos(phi2) - np.cos(phi1), dF / L
-        return -np.array([np.cos(psi) * (2 * dE - dF) + 2 * k * np.sin(psi) * dC,
-                          np.sin(psi) * (2 * dE - dF) + y_sign * 2 * k * np.cos(psi) * dC]) / lam
-    return tip
+    ...
+'''
 
 
 def _tip_cases():
@@ -153,29 +101,15 @@ ELLIPTIC = Exercise(
         "$\\lambda L = F(\\phi_2, k) - F(\\phi_1, k)$, and the tip by (45) and (46). "
         "`scipy.special.ellipkinc(phi, m)` and `ellipeinc(phi, m)` take the parameter "
         "$m = k^2$. Compare with `rods.clamped_pinned(EI, L, psi, k_rel, mode).tip`."),
-    reference=elliptic_tip, cases=_tip_cases,
+    starter=TIP_STARTER, cases=_tip_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12, what="the tip"),
     mistakes=(Mistake("the modulus for the parameter", "scipy's ellipkinc(phi, m) and "
-                      "ellipeinc(phi, m) take m = k^2, not k.", _tip_variant(lambda k: k)),
+                      "ellipeinc(phi, m) take m = k^2, not k."),
               Mistake("phi2 = mode pi", "a pinned tip carries no moment: cos(phi2) = 0, "
-                      "phi2 = (mode - 1/2) pi.", _tip_variant(phi2_turns=0.0)),
-              Mistake("a sign in y", "y = -(sin psi (2 dE - dF) - 2 k cos psi dC) / lambda.",
-                      _tip_variant(y_sign=1))),
+                      "phi2 = (mode - 1/2) pi."),
+              Mistake("a sign in y", "y = -(sin psi (2 dE - dF) - 2 k cos psi dC) / lambda.")),
     hint="a nearly straight rod in pure compression (psi = pi, k_rel = 1e-6, mode 1) carries "
          "Euler's load pi^2 EI / (4 L^2), with its tip near (L, 0).")
-
-
-# Typical mistakes of 5.2
-def _plus_load(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, origins, theta, -np.asarray(load))
-
-
-def _inverse_rotation(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, origins, -np.asarray(theta), load)
-
-
-def _no_origins(tips, forces, origins, theta, load):
-    return pin_residual(tips, forces, np.zeros((2, 2)), theta, load)
 
 
 def _pin_cases():
@@ -202,27 +136,25 @@ PIN = Exercise(
         "\\mathrm{loc}}$, and return the four equations of the pin, "
         "$(\\mathbf p_1 - \\mathbf p_2,\\ \\mathbf n_1 + \\mathbf n_2 - F)$. Evaluate it at your "
         "`elliptic_tip` rods of Table 7's solutions."),
-    reference=pin_residual, cases=_pin_cases,
+    starter=PIN_STARTER, cases=_pin_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-12, atol=1e-14,
                                         what="the residual"),
     mistakes=(Mistake("the study's sign of F", "n is the force on each rod, so the pin "
-                      "balances n1 + n2 - F = 0; the study's (104) prints + F, an erratum.",
-                      _plus_load),
+                      "balances n1 + n2 - F = 0; the study's (104) prints + F, an erratum."),
               Mistake("the inverse rotation", "Rot(theta) = [[cos, -sin], [sin, cos]] turns the "
-                      "clamp's frame into the fixed one; you used its transpose.",
-                      _inverse_rotation),
+                      "clamp's frame into the fixed one; you used its transpose."),
               Mistake("the motors left out", "p_i = O_i + Rot(theta_i) p_i,loc: add the "
-                      "motor's position.", _no_origins)),
+                      "motor's position.")),
     hint="with theta = 0 and both motors at the origin the residual is (tip1 - tip2, "
          "n1 + n2 - F).")
 
 
-def _out(values):
+def outwards(values):
     """The floats around the exact results of correctly rounded operations."""
     return np.nextafter(min(values), -np.inf), np.nextafter(max(values), np.inf)
 
 
-class _Polynomial:
+class Polynomial:
     """A polynomial with its enclosures on floats (Horner, each operation rounded outwards)."""
 
     def __init__(self, coefficients):
@@ -232,20 +164,22 @@ class _Polynomial:
     def _horner(c, lo, hi):
         value = (c[-1], c[-1])
         for a in reversed(c[:-1]):
-            product = _out([v * x for v in value for x in (lo, hi)])
-            value = _out([product[0] + a])[0], _out([product[1] + a])[1]
+            product = outwards([v * x for v in value for x in (lo, hi)])
+            value = outwards([product[0] + a])[0], outwards([product[1] + a])[1]
         return value
 
     def at(self, x):
+        """An enclosure of the polynomial at the float ``x``."""
         return self._horner(self.c, x, x)
 
     def slope(self, lo, hi):
+        """An enclosure of the derivative over ``[lo, hi]``."""
         return self._horner([k * a for k, a in enumerate(self.c)][1:], lo, hi)
 
 
 def _krawczyk_cases():
     def case(label, coefficients, lo, hi):
-        p = _Polynomial(coefficients)
+        p = Polynomial(coefficients)
         return Case(label, (p.at, p.slope, lo, hi))
     return [case("x^2 - 2 on [1.3, 1.5] (one root)", (-2, 0, 1), 1.3, 1.5),
             case("x^2 - 2 on [1.5, 2] (no root)", (-2, 0, 1), 1.5, 2.0),
@@ -259,24 +193,7 @@ def _krawczyk_compare(expected, got):
     verdict, K = got
     if verdict != expected[0]:
         return f"the verdict is {verdict!r}, expected {expected[0]!r}"
-    return close(expected[1], np.asarray(K, dtype=float), rtol=1e-12, atol=1e-15, what="K(X)")
-
-
-def _krawczyk_variant(sign=-1, centred=True, enclosed=True, overlap="undecided"):
-    def test(f, df, lo, hi):
-        m = lo + (hi - lo) / 2
-        d_lo, d_hi = df(lo, hi)
-        y = 2 / (d_lo + d_hi)
-        yf = _out([y * v for v in f(m)])
-        newton = _out([m + sign * v for v in yf])
-        slope = _out([1 - y * d for d in (d_lo, d_hi)])
-        X = _out([lo - m, hi - m]) if centred else (lo, hi)
-        spread = _out([a * b for a in slope for b in X]) if enclosed else (0.0, 0.0)
-        K = _out([newton[0] + spread[0]])[0], _out([newton[1] + spread[1]])[1]
-        if lo < K[0] and K[1] < hi:
-            return "unique", K
-        return ("none" if K[1] < lo or K[0] > hi else overlap), K
-    return test
+    return close(expected[1], K, rtol=1e-12, atol=1e-15, what="K(X)")
 
 
 KRAWCZYK = Exercise(
@@ -293,14 +210,13 @@ KRAWCZYK = Exercise(
         "$+, -, \\times, /$ are correctly rounded in IEEE arithmetic; `f(x)` returns an "
         "enclosure of $f$ at a point, for the same reason. Why can a double root never be "
         "proved unique?"),
-    reference=krawczyk_1d, cases=_krawczyk_cases, compare=_krawczyk_compare,
+    starter=KRAWCZYK_STARTER, cases=_krawczyk_cases, compare=_krawczyk_compare,
+    returns=Tuple(Choice("unique", "none", "undecided"), Array(), names=("the verdict", "K")),
     mistakes=(Mistake("the Newton point without its enclosure", "K(X) adds (1 - y f'(X))(X - "
                       "m) to the Newton point: without it nothing is proved, and two roots look "
-                      "like one.", _krawczyk_variant(enclosed=False)),
-              Mistake("a sign", "K(X) = m - y f(m) + ..., with the minus of Newton's step.",
-                      _krawczyk_variant(sign=1)),
-              Mistake("X instead of X - m", "the last factor is X - m, centred on m.",
-                      _krawczyk_variant(centred=False)),
+                      "like one."),
+              Mistake("a sign", "K(X) = m - y f(m) + ..., with the minus of Newton's step."),
+              Mistake("X instead of X - m", "the last factor is X - m, centred on m."),
               Mistake("'none' for an undecided box", "no root is proved only when K(X) misses "
-                      "X; an overlap proves nothing.", _krawczyk_variant(overlap="none"))),
+                      "X; an overlap proves nothing.")),
     hint="every root of f in X lies in K(X): check that K(X) contains sqrt(2) on [1.3, 1.5].")

@@ -3,9 +3,10 @@ equations that admit the platform but not its mirror image (6.2)."""
 
 import numpy as np
 
-from mechnum.exercises._harness import Case, Exercise, Mistake, close
+from mechnum.exercises._answers import Array, Integer, close
+from mechnum.exercises._harness import Case, Exercise, Mistake
 
-
+INDEX_STARTER = '''\
 def constrained_index(H, A):
     """The number of negative eigenvalues of ``H`` on the null space of A.
 
@@ -22,16 +23,10 @@ def constrained_index(H, A):
         The index: how many independent ways the equilibrium has to escape
         (0: stable).
     """
-    H, A = np.asarray(H, dtype=float), np.asarray(A, dtype=float)
-    if A.shape[0] == 0:
-        Z = np.eye(H.shape[0])
-    else:  # the right singular vectors beyond the rank span the null space
-        _, s, Vt = np.linalg.svd(A)
-        rank = int((s > s[0] * max(A.shape) * np.finfo(float).eps).sum())
-        Z = Vt[rank:].T
-    return int((np.linalg.eigvalsh(Z.T @ H @ Z) < 0).sum())
+    ...
+'''
 
-
+RIGID_STARTER = '''\
 def rigid_residual(pins, a):
     """Three equations: zero when the pins are the platform turned.
 
@@ -51,29 +46,11 @@ def rigid_residual(pins, a):
         ``d_1/b_1 - d_2/b_2``, and ``|d_1/b_1| - 1``. A mirror image of the
         platform is no zero.
     """
-    z = pins[:, 0] + 1j * pins[:, 1]
-    d = z - z.mean()
-    b = a / np.sqrt(3) * np.exp(1j * np.radians([-150.0, -30.0, 90.0]))
-    w = d / b  # each e^{i phi} for a turned platform
-    return np.array([(w[0] - w[1]).real, (w[0] - w[1]).imag, abs(w[0]) - 1])
+    ...
+'''
 
 
-# Typical mistakes of 6.1
-def _unconstrained(H, A):
-    return constrained_index(H, np.zeros((0, len(H))))
-
-
-def _row_space(H, A):
-    Z = np.linalg.qr(np.asarray(A, dtype=float).T)[0] if len(A) else np.eye(len(H))
-    return int((np.linalg.eigvalsh(Z.T @ H @ Z) < 0).sum())
-
-
-def _non_positive(H, A):
-    Z = np.eye(len(H)) if len(A) == 0 else np.linalg.svd(A)[2][len(A):].T
-    return int((np.linalg.eigvalsh(Z.T @ H @ Z) <= 0).sum())
-
-
-def _column(load, segments=50):
+def column(load, segments=50):
     """A clamped rod of length 1 (EI = 1) in segments, under a compressive dead load: the
     Hessian at the straight shape, and the constraint of a pinned tip (its height)."""
     h = 1.0 / segments
@@ -86,8 +63,8 @@ def _index_cases():
     rng = np.random.default_rng(61)
     M = rng.normal(size=(6, 6))
     return [Case("a column pinned at its tip (50 segments), P L^2/EI = 3",
-                 (*_column(3.0),)),
-            Case("a column pinned at its tip (50 segments), P L^2/EI = 24", (*_column(24.0),)),
+                 (*column(3.0),)),
+            Case("a column pinned at its tip (50 segments), P L^2/EI = 24", (*column(24.0),)),
             Case("a random symmetric 6 x 6 H with two constraints",
                  (M + M.T, rng.normal(size=(2, 6)))),
             Case("H = diag(0, 1, -1, 2) with no constraint", (np.diag([0.0, 1, -1, 2]),
@@ -103,35 +80,22 @@ INDEX = Exercise(
         "$A$), count the negative eigenvalues of $Z^{\\mathsf T} H Z$. A stable equilibrium "
         "has index 0. Check it on a column pinned at its tip: its index turns 1 near "
         "$PL^2/EI = 20.19$, while the same column free at its tip buckles at $\\pi^2/4$."),
-    reference=constrained_index, cases=_index_cases,
-    compare=lambda expected, got: (None if int(got) == got == expected
+    starter=INDEX_STARTER, cases=_index_cases, returns=Integer(),
+    compare=lambda expected, got: (None if got == expected
                                    else f"the index is {got}, expected {expected}"),
     mistakes=(Mistake("the constraints ignored", "count on the null space of A, Z^T H Z, not "
-                      "on H: a pinned tip forbids the escape a free tip would have.",
-                      _unconstrained),
+                      "on H: a pinned tip forbids the escape a free tip would have."),
               Mistake("the row space for the null space", "the tangent space is {v: A v = 0}, "
                       "spanned by the right singular vectors beyond the rank of A, not by the "
-                      "columns of A^T.", _row_space),
+                      "columns of A^T."),
               Mistake("zero counted as negative", "the index counts eigenvalues < 0; a zero "
-                      "eigenvalue is a neutral direction, not an escape.", _non_positive)),
+                      "eigenvalue is a neutral direction, not an escape.")),
     hint="check that A @ Z is zero and Z^T Z the identity.")
 
 
-# Typical mistakes of 6.2
-def _side_lengths(pins, a):
-    return np.array([np.hypot(*(pins[j] - pins[i])) - a for i, j in ((0, 1), (1, 2), (2, 0))])
-
-
-def _variant(beta=(-150.0, -30.0, 90.0), offsets_from=None):
-    def residual(pins, a):
-        z = pins[:, 0] + 1j * pins[:, 1]
-        w = (z - (z.mean() if offsets_from is None else z[offsets_from])) / (
-            a / np.sqrt(3) * np.exp(1j * np.radians(beta)))
-        return np.array([(w[0] - w[1]).real, (w[0] - w[1]).imag, abs(w[0]) - 1])
-    return residual
-
-
-def _platform(centre, phi, a, mirror=False):
+def platform(centre, phi, a, mirror=False):
+    """The pins of a platform of side ``a`` turned by ``phi`` about ``centre`` (or of its
+    mirror image)."""
     beta = np.radians([-150.0, -30.0, 90.0]) * (-1 if mirror else 1)
     angles = phi + beta
     return np.asarray(centre) + a / np.sqrt(3) * np.column_stack((np.cos(angles),
@@ -140,10 +104,10 @@ def _platform(centre, phi, a, mirror=False):
 
 def _rigid_cases():
     rng = np.random.default_rng(62)
-    return [Case("a platform of side 0.2 m turned by 0.7 rad", (_platform((0.1, -0.2), 0.7, 0.2),
+    return [Case("a platform of side 0.2 m turned by 0.7 rad", (platform((0.1, -0.2), 0.7, 0.2),
                                                              0.2)),
             Case("the mirror image of a platform of side 0.2 m",
-                 (_platform((0.1, -0.2), 0.7, 0.2, mirror=True), 0.2)),
+                 (platform((0.1, -0.2), 0.7, 0.2, mirror=True), 0.2)),
             Case("three random points, a = 0.5 m", (rng.normal(size=(3, 2)), 0.5))]
 
 
@@ -158,14 +122,13 @@ RIGID = Exercise(
         "$\\mathbf d_1/\\mathbf b_1 - \\mathbf d_2/\\mathbf b_2$ and "
         "$|\\mathbf d_1/\\mathbf b_1| - 1$. Evaluate it at a platform and at its mirror image, "
         "and compare with the three side lengths minus $a$, the thesis's (114)."),
-    reference=rigid_residual, cases=_rigid_cases,
+    starter=RIGID_STARTER, cases=_rigid_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-10, atol=1e-12,
                                         what="the residual"),
     mistakes=(Mistake("the side lengths", "three distances equal to a describe the platform "
                       "or its mirror image, the thesis's (114); the ratios d_i / b_i admit "
-                      "rotations only.", _side_lengths),
+                      "rotations only."),
               Mistake("the pins in clockwise order", "b_1, b_2, b_3 are at -150, -30 and 90 "
-                      "degrees: anticlockwise.", _variant(beta=(-30.0, -150.0, 90.0))),
-              Mistake("offsets from B_1", "the offsets d_i are from the pins' centroid.",
-                      _variant(offsets_from=0))),
+                      "degrees: anticlockwise."),
+              Mistake("offsets from B_1", "the offsets d_i are from the pins' centroid.")),
     hint="at a turned platform all three equations vanish; at its mirror image they do not.")

@@ -1,29 +1,29 @@
-"""How a self-check runs a student's function: cases, a time limit per case, and the feedback.
+"""How a self-check judges a student's function: its cases, the expected answers, the feedback.
 
-An :class:`Exercise` holds its reference solution, the cases the check runs (never shown to the
-student), a comparison of a student's answer with the reference's, and the typical mistakes, each
-a mistaken implementation with a hint. When an answer disagrees on a case, the check runs every
-mistaken implementation on that case too: the one the answer agrees with names the likely mistake.
+An :class:`Exercise` holds what a student may see: the statement, the starter, the public cases
+(the inputs), a comparison of an answer with the expected one, the form the answer must have
+(:mod:`mechnum.exercises._answers`), and the typical mistakes by name and hint. The expected
+answers of the public cases, and what each typical mistake returns on them, are stored data
+(``public.json``, written by the instructors' package from the reference solutions, which the
+student's package does not hold). When an answer is wrong, the mistake whose stored answer it
+matches names the likely mistake.
+
+:func:`judge` is the one place that turns what a function did into a verdict: the self-check
+(:func:`mechnum.exercises.check`, the function run in a child process of the notebook) and the
+grader (the function run in a sandbox, on the hidden cases too) both use it.
 """
 
-import ast
 import copy
-import inspect
-import signal
-import textwrap
-import threading
+import re
 from dataclasses import dataclass
 
 import numpy as np
 
+from mechnum.exercises import _answers, _child
+
 TIME_LIMIT = 2.0
 """Seconds a student's function may take on one case (the references take milliseconds): beyond
-it the check stops the function and reports an endless loop instead of hanging."""
-
-
-class TimeUp(BaseException):
-    """Raised inside a student's function when its time is up (a BaseException, so that a
-    student's ``except Exception`` cannot swallow it)."""
+it the process running it is killed and the check reports an endless loop."""
 
 
 @dataclass(frozen=True)
@@ -36,39 +36,47 @@ class Case:
 
 @dataclass(frozen=True)
 class Mistake:
-    """A typical wrong implementation, named, with the hint that a student who made it needs."""
+    """A typical wrong implementation, by name, with the hint that a student who made it needs
+    (what it returns on the public cases is stored data)."""
 
     name: str
     hint: str
-    function: object
 
 
 @dataclass(frozen=True)
 class Exercise:
     """An implement-it-yourself exercise and its self-check.
 
-    ``compare(expected, got)`` returns ``None`` when ``got`` is right, else what is wrong, in
-    words; it may raise on an answer of the wrong kind (the check reports that). ``probes()``
-    gives extra cases that only serve to tell the mistakes apart (one Newton step, say, where a
-    whole iteration diverges in a way that depends on rounding).
+    ``compare(expected, got)`` returns ``None`` when ``got`` (already converted by ``returns``,
+    a spec of :mod:`mechnum.exercises._answers`) is right, else what is wrong, in words.
+    ``probes()`` gives extra inputs that only serve to tell the mistakes apart. ``points`` is
+    what the exercise is worth in a grade.
     """
 
     number: str
     label: str
     title: str
     statement: str
-    reference: object
+    starter: str
     cases: object
     compare: object
+    returns: object
     mistakes: tuple = ()
     hint: str = ""
     time_limit: float = TIME_LIMIT
     probes: object = tuple
+    points: float = 1
 
     @property
     def name(self):
-        """The name of the function the student writes (the reference's)."""
-        return self.reference.__name__
+        """The name of the function the student writes (the starter's)."""
+        return re.match(r"def (\w+)\(", self.starter).group(1)
+
+    @property
+    def parameters(self):
+        """The names of the function's parameters, from the starter."""
+        head = re.match(r"def \w+\((.*?)\)", self.starter, re.S).group(1)
+        return tuple(p.split("=")[0].strip() for p in head.split(",") if p.strip())
 
 
 @dataclass(frozen=True)
@@ -86,157 +94,123 @@ class Result:
     __str__ = __repr__
 
 
-def call_with_limit(function, args, seconds):
-    """``function(*args)``, stopped with :class:`TimeUp` after ``seconds``.
-
-    In the main thread (a notebook's cells run there) a timer signal interrupts the function;
-    elsewhere it runs in a daemon thread that is abandoned when its time is up.
-    """
-    if threading.current_thread() is threading.main_thread() and hasattr(signal, "setitimer"):
-        def stop(signum, frame):
-            raise TimeUp
-        previous = signal.signal(signal.SIGALRM, stop)
-        signal.setitimer(signal.ITIMER_REAL, seconds)
-        try:
-            return function(*args)
-        finally:
-            signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, previous)
-    box = {}
-
-    def run():
-        try:
-            box["value"] = function(*args)
-        except BaseException as error:  # handed over to the caller's thread
-            box["error"] = error
-
-    worker = threading.Thread(target=run, daemon=True)
-    worker.start()
-    worker.join(seconds)
-    if worker.is_alive():
-        raise TimeUp
-    if "error" in box:
-        raise box["error"]
-    return box["value"]
-
-
-def _changed(before, after):
+def changed(before, after):
     """Whether an argument was modified in place (arrays compared element by element)."""
     if isinstance(before, np.ndarray):
-        return before.shape != after.shape or not np.array_equal(before, after, equal_nan=True)
+        return (not isinstance(after, np.ndarray) or before.shape != after.shape
+                or not np.array_equal(before, after, equal_nan=True))
     if isinstance(before, (list, tuple)):
-        return any(_changed(b, a) for b, a in zip(before, after))
+        return any(changed(b, a) for b, a in zip(before, after))
     return False
 
 
-def _compare(exercise, expected, got):
-    try:
-        return exercise.compare(expected, got)
-    except Exception as error:  # an answer of the wrong kind (shape, type)
-        return f"the answer has the wrong form ({type(error).__name__}: {error})"
+def run(exercise, function, case, seconds=None):
+    """What ``function`` does on ``case``, run in a child process: an Outcome."""
+    return _child.call(function, copy.deepcopy(case.args), seconds or exercise.time_limit,
+                       exercise.parameters, changed)
 
 
-def _agrees(exercise, function, args, got):
-    """Whether ``function(*args)`` gives the answer ``got``."""
+def convert(exercise, outcome):
+    """The answer an Outcome of kind ``"value"`` holds, converted (``WrongForm`` if it is not of
+    the documented kind)."""
+    return exercise.returns.convert(_answers.loads(outcome.value), "your answer")
+
+
+def _problem(exercise, outcome, expected, where):
+    """What is wrong with an outcome, in words (``None``: right), and the converted answer."""
+    name = exercise.name
+    if outcome.kind == "timeout":
+        return (f"{where}, your function ran for more than {exercise.time_limit:g} s and was "
+                "stopped: an endless loop? Every loop needs a test that ends it, and an "
+                "iteration a bound on its count."), None
+    if outcome.kind == "raised":
+        what = {"SystemExit": " (it called sys.exit, which would end the notebook's kernel)",
+                "KeyboardInterrupt": " (it was interrupted)"}.get(outcome.error, "")
+        return (f"{where}, your function raised {outcome.error}{what}: "
+                f"{outcome.message}").rstrip(": "), None
+    if outcome.kind == "died":
+        return f"{where}, {outcome.message}", None
+    if outcome.changed:
+        return (f"{where}, your function changed its argument `{outcome.changed[0]}` in place; "
+                "work on a copy."), None
     try:
-        value = call_with_limit(function, copy.deepcopy(args), 5.0)
-        return value is not None and exercise.compare(value, got) is None
+        value = _answers.loads(outcome.value)
+        if value is None:
+            return (f"{where}, `{name}` returned None: its body is still `...` (or lacks a "
+                    "`return`). Write it, then run this cell again."), None
+        got = exercise.returns.convert(value, "your answer")
+        problem = exercise.compare(expected, got)
+    except _answers.WrongForm as error:
+        return f"{where}: {error}.", None
+    except Exception as error:  # a comparison that cannot read the answer
+        return f"{where}: the answer has the wrong form ({type(error).__name__}: {error}).", None
+    return (f"{where}: {problem}." if problem else None), got
+
+
+def agrees(exercise, mistaken, got):
+    """Whether an answer equals a mistake's stored (or computed) answer."""
+    try:
+        return mistaken is not None and exercise.compare(mistaken, got) is None
     except Exception:
         return False
 
 
-def _diagnose(exercise, case, got, answer):
-    """The hint of the first mistaken implementation that gives the student's answer, on the
-    failing case or else on every probe."""
-    for mistake in exercise.mistakes:
-        if _agrees(exercise, mistake.function, case.args, got):
-            return f"Likely mistake, {mistake.name}: {mistake.hint}"
-    probes = []
-    for probe in exercise.probes():
-        try:
-            probes.append((probe, call_with_limit(answer, copy.deepcopy(probe.args), 5.0)))
-        except (Exception, TimeUp):
-            return f"Hint: {exercise.hint}"
-    for mistake in exercise.mistakes:
-        if probes and all(_agrees(exercise, mistake.function, probe.args, value)
-                          for probe, value in probes):
-            return f"Likely mistake, {mistake.name}: {mistake.hint}"
-    return f"Hint: {exercise.hint}" if exercise.hint else ""
+def judge(exercise, outcomes, expected, mistakes_on, probe_outcomes=(), probe_mistakes=(),
+          head=None, passed=None):
+    """The :class:`Result` of a function's outcomes on the cases.
 
-
-def run_check(exercise, answer):
-    """Run ``answer`` on every case of ``exercise``; the :class:`Result`. Never raises on a
-    wrong answer: an exception in the student's code is caught and reported."""
-    head = f"Exercise {exercise.number}"
-    if not callable(answer):
-        return Result(exercise.number, False,
-                      f"{head}: not yet. Pass the function itself, "
-                      f"exercises.check({exercise.number!r}, {exercise.name}), "
-                      f"not {type(answer).__name__!r}.")
-    cases = exercise.cases()
-    for case in cases:
-        expected = exercise.reference(*copy.deepcopy(case.args))
-        args = copy.deepcopy(case.args)
-        where = f"On {case.label}"
-        try:
-            got = call_with_limit(answer, args, exercise.time_limit)
-        except TimeUp:
-            return Result(exercise.number, False,
-                          f"{head}: not yet. {where}, your function ran for more "
-                          f"than {exercise.time_limit:g} s and was stopped: an endless loop? "
-                          "Every loop needs a test that ends it, and an iteration a bound on "
-                          "its count.")
-        except Exception as error:
-            return Result(exercise.number, False,
-                          f"{head}: not yet. {where}, your function raised "
-                          f"{type(error).__name__}: {error}")
-        if got is None:
-            return Result(exercise.number, False,
-                          f"{head}: not yet. {where}, `{exercise.name}` returned "
-                          "None: its body is still `...` (or lacks a `return`). Write it, then "
-                          "run this cell again.")
-        for name, before, after in zip(inspect.signature(exercise.reference).parameters,
-                                       case.args, args):
-            if _changed(before, after):
-                return Result(exercise.number, False,
-                              f"{head}: not yet. {where}, your function changed its "
-                              f"argument `{name}` in place; work on a copy.")
-        problem = _compare(exercise, expected, got)
+    Parameters
+    ----------
+    exercise : Exercise
+    outcomes : iterable of (Case, Outcome)
+        The function's outcome on each case, in order (consumed until one is wrong).
+    expected : sequence
+        The right answer of each case.
+    mistakes_on : callable
+        ``mistakes_on(k)``: ``{mistake name: its answer}`` on case ``k``.
+    probe_outcomes : callable, optional
+        Called only when a case is wrong: the function's outcomes on the probes.
+    probe_mistakes : sequence of dict
+        ``{mistake name: its answer}`` on each probe.
+    head, passed : str, optional
+        The message's beginning, and the message of a pass.
+    """
+    head = head or f"Exercise {exercise.number}"
+    count = 0
+    for k, (case, outcome) in enumerate(outcomes):
+        problem, got = _problem(exercise, outcome, expected[k], f"On {case.label}")
+        count += 1
         if problem:
-            diagnosis = _diagnose(exercise, case, got, answer)
-            return Result(exercise.number, False,
-                          f"{head}: not yet. {where}: {problem}. {diagnosis}".rstrip())
-    return Result(exercise.number, True,
-                  f"Exercise {exercise.number}: passed, all {len(cases)} cases "
+            hint = _diagnose(exercise, got, mistakes_on(k), probe_outcomes, probe_mistakes)
+            return Result(exercise.number, False, f"{head}: not yet. {problem} {hint}".rstrip())
+    return Result(exercise.number, True, passed or f"{head}: passed, all {count} cases "
                   f"({exercise.title}).")
 
 
-def source(function):
-    """The source of a reference function, as the solution cell shows it."""
-    return textwrap.dedent(inspect.getsource(function))
+def _diagnose(exercise, got, mistaken, probe_outcomes, probe_mistakes):
+    hints = {m.name: m.hint for m in exercise.mistakes}
+    if got is not None:
+        for name, answer in mistaken.items():
+            if name in hints and agrees(exercise, answer, got):
+                return f"Likely mistake, {name}: {hints[name]}"
+    if probe_mistakes and probe_outcomes:
+        answers = []
+        for _, outcome in probe_outcomes():
+            if outcome.kind != "value":
+                return f"Hint: {exercise.hint}" if exercise.hint else ""
+            try:
+                answers.append(convert(exercise, outcome))
+            except Exception:
+                return f"Hint: {exercise.hint}" if exercise.hint else ""
+        for name in hints:
+            if all(agrees(exercise, p.get(name), a) for p, a in zip(probe_mistakes, answers)):
+                return f"Likely mistake, {name}: {hints[name]}"
+    return f"Hint: {exercise.hint}" if exercise.hint else ""
 
 
-def starter(function):
-    """The starter cell of a reference function: its signature and docstring, and ``...``."""
-    text = source(function)
-    body = ast.parse(text).body[0].body
-    docstring = body[0]
-    lines = text.splitlines()[:docstring.end_lineno]
-    return "\n".join(lines) + "\n" + " " * docstring.col_offset + "...\n"
-
-
-def close(expected, got, *, rtol, atol, what):
-    """``None`` when the arrays agree within ``atol + rtol |expected|``, else the largest
-    difference in words."""
-    expected, got = np.asarray(expected), np.asarray(got)
-    if got.shape != expected.shape:
-        return f"{what} has shape {got.shape}, expected {expected.shape}"
-    if not np.all(np.isfinite(got)):
-        return f"{what} is not finite: {np.array2string(got, precision=4)}"
-    error = np.abs(got - expected)
-    if np.all(error <= atol + rtol * np.abs(expected)):
-        return None
-    worst = np.unravel_index(np.argmax(error - rtol * np.abs(expected)), error.shape)
-    at = f" at index {tuple(int(i) for i in worst)}" if expected.ndim else ""
-    return (f"{what}{at} is {float(np.real(got[worst])):.6g}, expected "
-            f"{float(np.real(expected[worst])):.6g}")
+def not_a_function(exercise, answer):
+    """The Result for an answer that is not a function."""
+    return Result(exercise.number, False,
+                  f"Exercise {exercise.number}: not yet. Pass the function itself, "
+                  f"exercises.check({exercise.number!r}, {exercise.name}), "
+                  f"not {type(answer).__name__!r}.")

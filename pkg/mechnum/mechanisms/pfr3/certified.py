@@ -166,7 +166,7 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Parameters
     ----------
-    certificate : mechnum.certify.Certificate or mechnum.rods.CoCertificate
+    certificate : ~mechnum.certify.certificate.Certificate or ~mechnum.rods.CoCertificate
         A certificate of a search around given points, or of the whole chart; a
         :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
         by :func:`mechnum.rods.verify_corefined` on the rods and equations that ``mech``
@@ -181,11 +181,11 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Returns
     -------
-    mechnum.certify.Verified or mechnum.rods.CoVerified
+    ~mechnum.certify.verify.Verified or ~mechnum.rods.CoVerified
 
     Raises
     ------
-    mechnum.certify.CertificateError
+    ~mechnum.certify.certificate.CertificateError
         If the certificate does not prove what it says for these inputs
         (:func:`mechnum.certify.verify`, :func:`mechnum.rods.verify_corefined`).
 

@@ -10,7 +10,7 @@ notebook's starter cell and the check cell (no kernel needed): "not yet", not th
 
 Run on a folder (every ``.ipynb`` and ``.md`` in it, in place)::
 
-    python -m mechnum.exercises.student book_copy/
+    python -m mechnum_course.student book_copy/
 """
 
 import ast
