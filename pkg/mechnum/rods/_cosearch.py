@@ -4,7 +4,7 @@
 each (from :data:`MIN_ROUNDS` on, once at most :data:`PROBE_LIVE` tuples are live), **probes**
 them: it groups the live tuples into clusters of touching boxes (a spatial hash,
 :func:`mechnum.certify.clusters`, by branch) and tries to settle each cluster of at most
-:data:`CLUSTER_TUPLES` tuples with cheap Krawczyk searches (:func:`mechnum.certify.roots`,
+:data:`CLUSTER_TUPLES` tuples with cheap Krawczyk searches (:func:`mechnum.certify.search.roots`,
 :data:`PROBE_BOXES` boxes each): of the cluster's hull; or, when Newton's method (in floats)
 finds a root in it, of a box around that root (from half the cluster's reach from it down to
 its widest tuple), and then of what that box and the boxes settled before leave of each of
@@ -66,7 +66,7 @@ class CoRefined(Result):
         Every equilibrium of the domain is one of ``roots``: a theorem.
     settled : ndarray, shape (m, 2 r, 2)
         The boxes searched by the final Krawczyk search.
-    search : mechnum.certify.Roots
+    search : mechnum.certify.search.Roots
         That search.
     rounds : tuple of dict
         :attr:`Refinement.history <mechnum.rods._corefine.Refinement>`: per round the tuples
@@ -189,7 +189,7 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
         How their tips meet, and the load.
     system : (callable, callable, callable or None, callable or None)
         ``residual, jacobian, exclude, split`` of the mechanism's equations in the full chart
-        ``(psi_1, t_1, ..., psi_r, t_r)`` over boxes (see :func:`mechnum.certify.roots`).
+        ``(psi_1, t_1, ..., psi_r, t_r)`` over boxes (see :func:`mechnum.certify.search.roots`).
     grid : (int, int), optional
         The first grid of each branch of each rod's chart, in ``psi`` and ``t``.
     max_rounds : int, optional

@@ -184,9 +184,10 @@ def enclose(rod, box, sign, *, mean_value=True):
 
 
 class Leaves:
-    """The boxes of one rod's chart that a search has made, with their enclosures.
+    """The boxes of one rod's chart that a search has made, with their enclosures (arrays,
+    one row per box, in the order made).
 
-    Attributes (arrays, one row per box, in the order made)
+    Attributes
     ----------
     box : ndarray, shape (n, 2, 2)
     sign : ndarray of int, shape (n,)
