@@ -3,8 +3,8 @@
 A :class:`CoCertificate` (:meth:`~mechnum.rods._cosearch.CertifiedAll.certificate`) stores what a
 co-refinement (:mod:`mechnum.rods._corefine`) **chose**: the first grid, the axis of every cut
 of every round, the boxes in which each round's clusters were settled, and the certificate of
-the final Krawczyk search of those boxes (:class:`mechnum.certify.certificate.Certificate`); with, per
-round, the tuples tested, left live and dropped by each reason, and the count.
+the final Krawczyk search of those boxes (:class:`mechnum.certify.certificate.Certificate`);
+with, per round, the tuples tested, left live and dropped by each reason, and the count.
 
 :func:`verify` trusts none of it: from the mechanism's rods (with their a-priori bounds,
 derived again by the caller) and equations, it rebuilds the grid, re-encloses every box, cuts
