@@ -66,6 +66,10 @@ class Assembly:
     area : float or None
         Three rods: the signed area of the triangle of their tips, ``cross(tip_2 - tip_1,
         tip_3 - tip_1) / 2`` (m^2); None: not tested.
+    vertices : array_like, shape (r, 2), or None
+        The pins in the platform's frame, about their centroid: then the arms of the moments,
+        ``tip_i - centroid = Rot(phi) b_i``, are enclosed from the range of ``phi`` that the
+        first two tips allow, far tighter than from the tips' boxes alone.
 
     Examples
     --------
@@ -77,6 +81,7 @@ class Assembly:
     force: tuple
     moment: float = None
     area: float = None
+    vertices: tuple = None
 
     def __post_init__(self):
         meets = []
@@ -92,6 +97,12 @@ class Assembly:
             object.__setattr__(self, "moment", _validate.scalar(self.moment, "moment"))
         if self.area is not None:
             object.__setattr__(self, "area", _validate.scalar(self.area, "area"))
+        if self.vertices is not None:
+            b = _validate.array(self.vertices, "vertices", shape=(None, 2))
+            if len(b) < 2 or np.abs(b.mean(axis=0)).max() > 1e-12 * (1 + np.abs(b).max()):
+                raise ValueError(f"vertices must be two or more pins about their centroid, "
+                                 f"got {b.tolist()}")
+            object.__setattr__(self, "vertices", tuple(map(tuple, b.tolist())))
 
     @property
     def rods(self):
@@ -275,11 +286,9 @@ def _statics(assembly, D):
     A_lo[:, 0], A_hi[:, 0], A_lo[:, 1], A_hi[:, 1] = c_lo, c_hi, s_lo, s_hi
     b = np.array(list(assembly.force) + ([assembly.moment] if rows == 3 else []))
     if rows == 3:
-        tips = D[:, :, 0:4]
+        arms_lo, arms_hi = _arms(assembly, D)
         for i in range(r):
-            others = [j for j in range(r) if j != i]
-            arm_lo = (r - 1) / r * tips[:, i, 0:2] - sum(tips[:, j, 2:4] for j in others) / r
-            arm_hi = (r - 1) / r * tips[:, i, 2:4] - sum(tips[:, j, 0:2] for j in others) / r
+            arm_lo, arm_hi = arms_lo[:, i], arms_hi[:, i]
             x = _product(arm_lo[:, 0], arm_hi[:, 0], s_lo[:, i], s_hi[:, i])   # x sin
             y = _product(arm_lo[:, 1], arm_hi[:, 1], c_lo[:, i], c_hi[:, i])   # y cos
             A_lo[:, 2, i], A_hi[:, 2, i] = x[0] - y[1], x[1] - y[0]
@@ -323,13 +332,57 @@ def moments(arm, force):
     return a[0] - b[1], a[1] - b[0], size
 
 
-def _moment(M, D):
-    """The moments of the forces about the tips' centroid cannot sum to ``M``."""
+def _turn(D, b):
+    """The range ``[lo, hi]`` of the platform's angle ``phi`` that the boxes of the first two
+    tips allow (``tip_2 - tip_1 = Rot(phi) (b_2 - b_1)``), and where it is known (the box of
+    ``tip_2 - tip_1`` away from 0). The angles of a box's corners, from libm's ``atan2``
+    (a few units of ``2**-53``), widened by ``ROUND``."""
+    lo, hi = D[:, 1, 0:2] - D[:, 0, 2:4], D[:, 1, 2:4] - D[:, 0, 0:2]
+    known = ~np.all((lo <= 0.0) & (hi >= 0.0), axis=1) & np.all(np.isfinite(lo) & np.isfinite(
+        hi), axis=1)
+    centre = np.arctan2(0.5 * (lo[:, 1] + hi[:, 1]), 0.5 * (lo[:, 0] + hi[:, 0]))
+    rel = np.stack([np.remainder(np.arctan2(y, x) - centre + np.pi, 2 * np.pi) - np.pi
+                    for x in (lo[:, 0], hi[:, 0]) for y in (lo[:, 1], hi[:, 1])])
+    base = np.arctan2(b[1][1] - b[0][1], b[1][0] - b[0][0])
+    return centre + rel.min(axis=0) - base - ROUND, centre + rel.max(axis=0) - base + ROUND, known
+
+
+ROUND = 1e-12
+"""Outward widening of angles and arms computed with libm (rad, m)."""
+
+
+def _arms(assembly, D):
+    """Boxes ``(lo, hi)``, ``(n, r, 2)`` each, of the arms ``tip_i - centroid``: from the tips'
+    boxes, and, with the platform's ``vertices``, intersected with ``Rot(phi) b_i`` over the
+    range of ``phi`` that :func:`_turn` gives."""
     r = D.shape[1]
+    lo = np.stack([(r - 1) / r * D[:, i, 0:2] - sum(D[:, j, 2:4] for j in range(r) if j != i)
+                   / r for i in range(r)], axis=1)
+    hi = np.stack([(r - 1) / r * D[:, i, 2:4] - sum(D[:, j, 0:2] for j in range(r) if j != i)
+                   / r for i in range(r)], axis=1)
+    if assembly.vertices is None or len(assembly.vertices) != r:
+        return lo, hi
+    b = np.array(assembly.vertices)
+    phi_lo, phi_hi, known = _turn(D, b)
+    length, angle = np.hypot(*b.T), np.arctan2(b[:, 1], b[:, 0])
+    a0, a1 = phi_lo[:, None] + angle, phi_hi[:, None] + angle
+    c_lo, c_hi = cos_range(a0, a1)
+    s_lo, s_hi = cos_range(a0 - np.pi / 2, a1 - np.pi / 2)
+    widen = ROUND * (1.0 + length)
+    exact_lo = np.stack((length * c_lo - widen, length * s_lo - widen), axis=-1)
+    exact_hi = np.stack((length * c_hi + widen, length * s_hi + widen), axis=-1)
+    lo = np.where(known[:, None, None], np.maximum(lo, exact_lo), lo)
+    hi = np.where(known[:, None, None], np.minimum(hi, exact_hi), hi)
+    return lo, hi
+
+
+def _moment(assembly, D):
+    """The moments of the forces about the tips' centroid cannot sum to ``M``."""
+    M, r = assembly.moment, D.shape[1]
     lo, hi, size = np.zeros(len(D)), np.zeros(len(D)), np.ones(len(D))
+    arms_lo, arms_hi = _arms(assembly, D)
     for i in range(r):
-        arm_lo = (r - 1) / r * D[:, i, 0:2] - sum(D[:, j, 2:4] for j in range(r) if j != i) / r
-        arm_hi = (r - 1) / r * D[:, i, 2:4] - sum(D[:, j, 0:2] for j in range(r) if j != i) / r
+        arm_lo, arm_hi = arms_lo[:, i], arms_hi[:, i]
         a = _product(arm_lo[:, 0], arm_hi[:, 0], D[:, i, 5], D[:, i, 7])     # x n_y
         b = _product(arm_lo[:, 1], arm_hi[:, 1], D[:, i, 4], D[:, i, 6])     # y n_x
         lo, hi = lo + a[0] - b[1], hi + a[1] - b[0]
@@ -372,7 +425,7 @@ def tuple_codes(assembly, D, only=None):
              ("magnitude", lambda X: _magnitudes(F, X)),
              ("direction", lambda X: _cones(F, X) | _antiparallel(F, X))]
     if assembly.moment is not None:
-        tests.append(("moment", lambda X: _moment(assembly.moment, X)))
+        tests.append(("moment", lambda X: _moment(assembly, X)))
     tests.append(("statics", lambda X: _statics(assembly, X)))
     live = np.arange(len(D))
     with np.errstate(invalid="ignore", over="ignore"):   # NaN and inf never drop a tuple

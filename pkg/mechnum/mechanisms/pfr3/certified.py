@@ -289,7 +289,7 @@ def assembly(mech):
     area = 0.5 * float(u[0] * v[1] - u[1] * v[0])
     return rods.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
                                for i in range(3) for j in range(i + 1, 3)),
-                         mech.force, mech.moment, area)
+                         mech.force, mech.moment, area, b)
 
 
 def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
