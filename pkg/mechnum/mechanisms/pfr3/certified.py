@@ -248,7 +248,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
-    f, J, placed, exclude = system(mech, lambdas, modes)
+    f, J, _, exclude = system(mech, lambdas, modes)
     if around is None:
         result = rods.corefine(chart_rods(mech, lambdas, modes), assembly(mech),
                                (f, J, exclude, exclude.split), max_live=max_live,
@@ -261,13 +261,44 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     solutions = z.copy()
     if len(z):
         solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
-    stable = [rods.proven_stability(
-        [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
-                           1 if root[2 * i + 1].mean() > 0 else -1) for i in range(3)],
-        _reduced(placed(certified.enclosed(root), True))) for root in part.roots]
+    stable = stability(mech, lambdas, part.roots, modes)
     if around is not None:
         return certified.combine([part], solutions, stable, certified.around_note(around))
     return rods.certified_all(result, solutions, stable)
+
+
+def stability(mech, lambdas, roots, modes=(1, 1, 1)):
+    """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
+    False (unstable) or None (a sign not proven).
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    lambdas : array_like, shape (3,)
+        Slider inputs (m).
+    roots : array_like, shape (k, 6, 2)
+        Enclosures of equilibria in the chart (for example a verified certificate's
+        ``roots``), each on one branch of each rod.
+    modes : (int, int, int), optional
+
+    Returns
+    -------
+    list of (bool or None)
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
+    >>> z = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:2]
+    >>> stability(TABLE8, TABLE8_LAMBDAS, np.stack((z - 1e-12, z + 1e-12), axis=-1))
+    [True, True]
+    """
+    modes = _modes(modes)
+    roots = _validate.array(roots, "roots", shape=(None, 6, 2))
+    placed = system(mech, lambdas, modes)[2]
+    return [rods.proven_stability(
+        [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                           1 if root[2 * i + 1].mean() > 0 else -1) for i in range(3)],
+        _reduced(placed(certified.enclosed(root), True))) for root in roots]
 
 
 def chart_rods(mech, lambdas, modes=(1, 1, 1)):

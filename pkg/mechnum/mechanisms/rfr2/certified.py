@@ -219,7 +219,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     (3, False, True)
     """
     modes = _modes(modes)
-    f, J, placed, exclude = system(mech, theta, modes)
+    f, J, _, exclude = system(mech, theta, modes)
     if around is None:
         result = rods.corefine(chart_rods(mech, theta, modes), assembly(mech),
                                (f, J, exclude, exclude.split), max_boxes=max_boxes)
@@ -230,7 +230,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
-    stable = [_stability(mech, modes, placed, root) for root in part.roots]
+    stable = stability(mech, theta, part.roots, modes)
     if around is not None:
         return certified.combine([part], solutions, stable, certified.around_note(around))
     beyond = all(rod.t_max < regular.T_MAX for rod in chart_rods(mech, theta, modes)) or (
@@ -239,14 +239,44 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
         "; rods beyond the chart (q > Q_MAX) are not excluded"))
 
 
-def _stability(mech, modes, placed, root):
-    """The proven verdict of one root's enclosure (see the module)."""
-    r1, r2 = placed(certified.enclosed(root), True)
-    K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
-    reduced = [[K1[i][j] + K2[i][j] for j in range(2)] for i in range(2)]
-    pinned = [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
-                                1 if root[2 * i + 1].mean() > 0 else -1) for i in range(2)]
-    return rods.proven_stability(pinned, reduced)
+def stability(mech, theta, roots, modes=(1, 1)):
+    """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
+    False (unstable) or None (a sign not proven).
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    theta : array_like, shape (2,)
+        Motor angles (rad).
+    roots : array_like, shape (k, 4, 2)
+        Enclosures of equilibria in the chart (for example a verified certificate's
+        ``roots``), each on one branch of each rod.
+    modes : (int, int), optional
+
+    Returns
+    -------
+    list of (bool or None)
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
+    >>> z = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart
+    >>> stability(TABLE7, TABLE7_THETA, np.stack((z - 1e-9, z + 1e-9), axis=-1))
+    [True, True, True]
+    """
+    modes = _modes(modes)
+    roots = _validate.array(roots, "roots", shape=(None, 4, 2))
+    placed = system(mech, theta, modes)[2]
+    out = []
+    for root in roots:
+        r1, r2 = placed(certified.enclosed(root), True)
+        K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
+        reduced = [[K1[i][j] + K2[i][j] for j in range(2)] for i in range(2)]
+        pinned = [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                                    1 if root[2 * i + 1].mean() > 0 else -1)
+                  for i in range(2)]
+        out.append(rods.proven_stability(pinned, reduced))
+    return out
 
 
 def chart_rods(mech, theta, modes=(1, 1)):
