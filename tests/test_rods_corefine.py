@@ -260,3 +260,35 @@ def test_a_certificate_that_leaves_tuples_unsettled_is_not_complete():
 def test_a_malformed_certificate_is_refused(text):
     with pytest.raises(certify.CertificateError):
         rods.CoCertificate.from_json(text)
+
+
+CHART = rfr2_certified.chart_rods(rfr2.TABLE7, rfr2.TABLE7_THETA)
+ASSEMBLY = rfr2_certified.assembly(rfr2.TABLE7)
+SYSTEM = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: rods.corefine("ab", ASSEMBLY, SYSTEM), "rods"),
+    (lambda: rods.corefine(CHART[:1], ASSEMBLY, SYSTEM), "assembly"),
+    (lambda: rods.corefine(CHART, None, SYSTEM), "assembly"),
+    (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM[:2]), "system"),
+    (lambda: rods.corefine(CHART, ASSEMBLY, (None, None, None, None)), "residual"),
+    (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, max_rounds=10**9), "max_rounds"),
+    (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, max_live=0), "max_live"),
+    (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, grid=(0, 4)), "grid"),
+    (lambda: rods.verify_corefined("a", CHART, ASSEMBLY, *SYSTEM), "CoCertificate"),
+    (lambda: rods.ChartRod(1.0, -1.0, 1, (0.0, 0.0), 0.0), "L"),
+    (lambda: rods.ChartRod(1.0, 1.0, 0, (0.0, 0.0), 0.0), "mode"),
+    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, np.nan), 0.0), "origin"),
+    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, t_max=2.0), "t_max"),
+    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, lam_max=-1.0), "lam_max"),
+    (lambda: rods.Assembly([], (0.0, 0.0)), "meet"),
+    (lambda: rods.Assembly(((0, 0, 0.0),), (0.0, 0.0)), "meet"),
+    (lambda: rods.Assembly(((0, 1, -1.0),), (0.0, 0.0)), "distance"),
+    (lambda: certify.hulls(np.zeros((2, 1, 2)), [0, -1]), "labels"),
+    (lambda: certify.clusters(np.zeros((2, 1, 2)), keys=[0]), "keys"),
+    (lambda: certify.subtract([[1.0, 0.0]], np.zeros((0, 1, 2))), "lo <= hi"),
+])
+def test_bad_input_is_refused(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()

@@ -20,6 +20,8 @@ import itertools
 
 import numpy as np
 
+from mechnum import _validate
+
 MAX_DIMENSIONS = 12
 """The most axes a box may have (each box meets up to ``2**n`` cells)."""
 
@@ -52,13 +54,13 @@ def clusters(boxes, keys=None):
         If ``boxes`` is not ``(m, n, 2)`` with ``lo <= hi``, ``n`` above
         :data:`MAX_DIMENSIONS`, or ``keys`` does not match.
     """
-    boxes = np.asarray(boxes, dtype=float)
+    boxes = _validate.array(boxes, "boxes")
     if boxes.ndim != 3 or boxes.shape[2] != 2 or boxes.shape[1] > MAX_DIMENSIONS or np.any(
             ~(boxes[..., 0] <= boxes[..., 1])):
         raise ValueError(f"boxes must be (m, n <= {MAX_DIMENSIONS}, 2) with lo <= hi, got "
                          f"shape {boxes.shape}")
     m = len(boxes)
-    keys = np.zeros(m, dtype=int) if keys is None else np.asarray(keys)
+    keys = np.zeros(m, dtype=int) if keys is None else _validate.array(keys, "keys").astype(int)
     if keys.shape != (m,):
         raise ValueError(f"keys must have shape ({m},), got {keys.shape}")
     if m == 0:
@@ -92,8 +94,18 @@ def clusters(boxes, keys=None):
 
 
 def hulls(boxes, labels):
-    """The smallest box holding each group's boxes, shape ``(groups, n, 2)``."""
-    boxes, labels = np.asarray(boxes, dtype=float), np.asarray(labels)
+    """The smallest box holding each group's boxes, shape ``(groups, n, 2)``.
+
+    Raises
+    ------
+    ValueError
+        If ``boxes`` is not ``(m, n, 2)`` or ``labels`` not ``m`` integers ``0, 1, ...``.
+    """
+    boxes = _validate.array(boxes, "boxes", ndim=3)
+    labels = _validate.array(labels, "labels", ndim=1)
+    if len(labels) != len(boxes) or np.any(labels < 0) or np.any(labels != np.round(labels)):
+        raise ValueError(f"labels must be {len(boxes)} integers >= 0, got {labels.tolist()}")
+    labels = labels.astype(int)
     count = int(labels.max()) + 1 if len(labels) else 0
     out = np.empty((count, boxes.shape[1] if boxes.ndim == 3 else 0, 2))
     for c in range(count):
@@ -126,8 +138,14 @@ def subtract(box, others):
     >>> subtract([[0.0, 1.0]], [[[-1.0, 2.0]]])
     []
     """
-    pieces = [np.array(box, dtype=float)]
-    for other in np.asarray(others, dtype=float):
+    box = _validate.array(box, "box", ndim=2)
+    others = _validate.array(others, "others", ndim=3)
+    if box.shape[1:] != (2,) or others.shape[1:] != box.shape or np.any(
+            box[:, 0] > box[:, 1]) or np.any(others[..., 0] > others[..., 1]):
+        raise ValueError(f"box must be (n, 2) and others (m, n, 2), with lo <= hi, got shapes "
+                         f"{box.shape} and {others.shape}")
+    pieces = [box]
+    for other in others:
         left = []
         for piece in pieces:
             if not _interiors_meet(piece, other):

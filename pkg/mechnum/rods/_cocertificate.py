@@ -26,7 +26,7 @@ import numpy as np
 
 from mechnum import certify
 from mechnum.certify import CertificateError
-from mechnum.rods._corefine import Refinement
+from mechnum.rods._corefine import Refinement, checked
 
 FORMAT = "mechnum-corefinement-1"
 SCOPES = ("all",)
@@ -189,6 +189,7 @@ def verify(cert, rods, assembly, residual, jacobian, exclude=None, split=None):
     """
     if not isinstance(cert, CoCertificate):
         raise ValueError(f"cert must be a CoCertificate, got {type(cert).__name__}")
+    rods, assembly, _ = checked(rods, assembly, (residual, jacobian, exclude, split))
     start = time.perf_counter()
     if len(cert.rounds) != len(cert.dims) + 1 or len(cert.resolved) not in (
             len(cert.dims) + 1, len(cert.dims) + 2):

@@ -37,8 +37,8 @@ import numpy as np
 
 from mechnum import _validate
 from mechnum.certify import subtract
-from mechnum.rods._leaves import COLUMNS, Leaves
-from mechnum.rods._tuples import REASONS, leaf_codes, tuple_codes
+from mechnum.rods._leaves import COLUMNS, ChartRod, Leaves
+from mechnum.rods._tuples import REASONS, Assembly, leaf_codes, tuple_codes
 
 GRID = (16, 4)
 """The first grid of each branch of each rod's chart: cells in ``psi`` and in ``t``."""
@@ -215,6 +215,33 @@ class Refinement:
                              "seconds": round(time.perf_counter() - self.start, 3),
                              "volume": self.volume(),
                              "dropped": {k: v for k, v in dropped.items() if v}})
+
+
+def checked(rods, assembly, system=None):
+    """The inputs of :func:`corefine` (and of the verifier), checked: rods, assembly and, if
+    given, the four functions of the system.
+
+    Raises
+    ------
+    ValueError
+        If ``rods`` is not a sequence of :class:`~mechnum.rods._leaves.ChartRod`, one per rod of
+        ``assembly`` (an :class:`~mechnum.rods._tuples.Assembly`), or ``system`` not
+        ``(residual, jacobian, exclude or None, split or None)``.
+    """
+    if isinstance(rods, (str, bytes)) or not hasattr(rods, "__len__") or not all(
+            isinstance(rod, ChartRod) for rod in rods):
+        raise ValueError(f"rods must be a sequence of ChartRod, got {_validate.shown(rods)}")
+    if not isinstance(assembly, Assembly) or assembly.rods != len(rods):
+        raise ValueError(f"assembly must be an Assembly of the {len(rods)} rods, got "
+                         f"{_validate.shown(assembly)}")
+    if system is not None:
+        if not isinstance(system, (tuple, list)) or len(system) != 4:
+            raise ValueError(f"system must be (residual, jacobian, exclude, split), got "
+                             f"{_validate.shown(system)}")
+        for name, f in zip(("residual", "jacobian", "exclude", "split"), system):
+            _validate.function(f, name, optional=name in ("exclude", "split"))
+        system = tuple(system)
+    return list(rods), assembly, system
 
 
 def _count(dropped, codes):

@@ -25,7 +25,7 @@ from mechnum import _validate, certify
 from mechnum.certify import clusters, hulls, subtract
 from mechnum.results import Result
 from mechnum.rods._cocertificate import certificate as cocertificate
-from mechnum.rods._corefine import GRID, Refinement
+from mechnum.rods._corefine import GRID, Refinement, checked
 from mechnum.rods.certified import Certified, combine
 
 MAX_ROUNDS = 40
@@ -207,6 +207,7 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
     """
     max_rounds = _validate.maxiter(max_rounds, "max_rounds", maximum=200)
     max_live = _validate.maxiter(max_live, "max_live", maximum=50_000_000)
+    rods, assembly, system = checked(rods, assembly, system)
     state = Refinement(rods, assembly, grid)
     probe = _Prober(system)
     while 0 < len(state.live) <= max_live and len(state.history) <= max_rounds:

@@ -40,9 +40,10 @@ every sign is proven, None elsewhere. :func:`proven_stability` combines the rods
 indices with the reduced Hessian of a mechanism (its index adds to theirs) into a verdict.
 """
 
+import numpy as np
 from flint import arb
 
-from mechnum import certify
+from mechnum import _validate, certify
 from mechnum.certify.balls import ball
 from mechnum.rods import balls, regular
 from mechnum.rods.certified import stiffness
@@ -57,8 +58,13 @@ def _chart(psi, t, sign):
 
 
 def _rod(EI, L, box, mode, sign):
-    if sign not in (1, -1):
-        raise ValueError(f"sign must be 1 or -1, got {sign!r}")
+    EI = _validate.scalar(EI, "EI", positive=True)
+    L = _validate.scalar(L, "L", positive=True)
+    box = _validate.array(box, "box", shape=(2, 2))
+    if isinstance(mode, bool) or not isinstance(mode, (int, np.integer)) or mode < 1:
+        raise ValueError(f"mode must be an integer >= 1, got {_validate.shown(mode)}")
+    if isinstance(sign, bool) or not isinstance(sign, (int, np.integer)) or sign not in (1, -1):
+        raise ValueError(f"sign must be 1 or -1, got {_validate.shown(sign)}")
     psi, t = ball(*box[0]), ball(*box[1])
     if not (bool(psi > 0) and bool(psi < 2 * arb.pi()) and bool(sign * t > 0)
             and bool(sign * t <= regular.T_MAX)):
@@ -79,8 +85,8 @@ def margin(EI, L, box, mode, sign):
     """
     psi, t, rod = _rod(EI, L, box, mode, sign)
     a, b, v, p = _chart(psi, t, sign)
-    lam = (rod.R * arb(L) ** 2 / arb(EI)).sqrt()
-    along = (rod.tip[0] * psi.cos() + rod.tip[1] * psi.sin()) / arb(L)
+    lam = (rod.R * arb(float(L)) ** 2 / arb(float(EI))).sqrt()
+    along = (rod.tip[0] * psi.cos() + rod.tip[1] * psi.sin()) / arb(float(L))
     D = lam * (1 - along) / 2
     return sign * a + v * (D - p * lam)
 
@@ -170,6 +176,14 @@ def proven_stability(pinned, reduced):
     >>> proven_stability([0, None], [[arb(-1.0), arb(0.0)], [arb(0.0), arb(1.0)]])
     False
     """
+    try:
+        pinned = list(pinned)
+    except TypeError:
+        raise ValueError(f"pinned must be a sequence of indices (int >= 0 or None), got "
+                         f"{_validate.shown(pinned)}") from None
+    if not all(i is None or (isinstance(i, (int, np.integer)) and not isinstance(i, bool)
+                             and i >= 0) for i in pinned):
+        raise ValueError(f"pinned must be indices (int >= 0) or None, got {pinned!r}")
     definite = certify.definite(reduced)
     if definite is False or any(i is not None and i > 0 for i in pinned):
         return False

@@ -85,11 +85,20 @@ class Assembly:
 
     def __post_init__(self):
         meets = []
-        for meet in self.meets:
-            if len(meet) != 3 or int(meet[0]) == int(meet[1]) or min(meet[:2]) < 0:
-                raise ValueError(f"a meet is (i, j, distance) with i != j, got {meet!r}")
-            meets.append((int(meet[0]), int(meet[1]),
-                          _validate.scalar(meet[2], "distance", nonnegative=True)))
+        try:
+            given = list(self.meets)
+        except TypeError:
+            raise ValueError(f"meets must be a sequence of (i, j, distance), got "
+                             f"{_validate.shown(self.meets)}") from None
+        for meet in given:
+            ends = _validate.array(meet, "meet", shape=(3,))
+            if np.any(ends[:2] != np.round(ends[:2])) or ends[0] == ends[1] or min(ends[:2]) < 0:
+                raise ValueError(f"a meet is (i, j, distance) with rods i != j, got "
+                                 f"{_validate.shown(meet)}")
+            meets.append((int(ends[0]), int(ends[1]),
+                          _validate.scalar(ends[2], "distance", nonnegative=True)))
+        if not meets:
+            raise ValueError("an assembly needs one meet or more")
         object.__setattr__(self, "meets", tuple(meets))
         force = _validate.array(self.force, "force", shape=(2,))
         object.__setattr__(self, "force", tuple(float(x) for x in force))
