@@ -22,8 +22,9 @@ residual of the same ``system`` and the chart as the domain
   ``"existence"``; Chapter 6 verifies it. With ``MECHNUM_CERTIFY_FULL=1`` the whole chart is
   searched by co-refinement too (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward`
   without ``around``, its rounds printed: live triples, boxes, time, the live share of the
-  domain), and ``ch6_table8_all_modes111.json`` stored if the search is complete: on this
-  2-core machine it is not within an hour (the note of issue 36 gives the figures).
+  domain), and ``ch6_table8_all_modes111.json`` stored if the search is complete: on a 2-core
+  machine it is not (the live triples grow to 8.9 million by round 6, after 300 s of CPU, and
+  the default bound on them, ``rods.MAX_LIVE``, stops it there).
 """
 
 import os
