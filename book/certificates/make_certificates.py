@@ -22,9 +22,9 @@ residual of the same ``system`` and the chart as the domain
   ``"existence"``; Chapter 6 verifies it. With ``MECHNUM_CERTIFY_FULL=1`` the whole chart is
   searched by co-refinement too (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward`
   without ``around``, its rounds printed: live triples, boxes, time, the live share of the
-  domain), and ``ch6_table8_all_modes111.json`` stored if the search is complete: on a 2-core
-  machine it is not (the live triples grow to 8.9 million by round 6, after 300 s of CPU, and
-  the default bound on them, ``rods.MAX_LIVE``, stops it there).
+  domain), and ``ch6_table8_all_modes111.json`` stored if the search is complete. It is not:
+  the default bound on the live triples (``rods.MAX_LIVE``, 2 million) stops it after round 2
+  (2.9 million); allowed 6 million, it reaches 8.9 million in round 6, after 300 s of CPU.
 """
 
 import os
