@@ -10,7 +10,7 @@ NB_ENV := env -u MPLBACKEND
 
 .PHONY: book book-committed book-student student-src downloads grade nbgrader pdf \
 	pdf-answer-key pdf-student test unit lint explore notebooks notebooks-other-machine html-check \
-	bench execute lab clean certify
+	bench execute lab clean certify mutate mutate-check
 
 $(STAMP): environment.txt pkg/pyproject.toml course/pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -154,6 +154,20 @@ test: $(STAMP)
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/pytest bench -o python_files='bench_*.py' --benchmark-only \
 		--benchmark-columns=min,median,max,rounds
+
+# Mutation testing of the methods layer with mutmut (bench/mutation/mutate.py: the modules are
+# listed in bench/mutation/modules.toml, the equivalent mutants with their reasons in
+# equivalents.toml): each module's mutants against its own tests, then the report
+# bench/mutation.md, which bench/mutation/test_report.py checks against the modules as they are.
+# Hours on two cores, so not part of `make test`; `make mutate MODULES="newton ode"` runs some.
+# `make mutate-check` checks the committed report alone (every module run, each at 90 % or more).
+MODULES ?=
+mutate: $(STAMP)
+	nice -n 5 $(BIN)/python bench/mutation/mutate.py run $(MODULES)
+	$(MAKE) mutate-check
+
+mutate-check: $(STAMP)
+	$(BIN)/pytest -q bench/mutation/test_report.py
 
 # Recompute every stored certificate (interval proofs of equilibria) into book/certificates/.
 certify: $(STAMP)

@@ -28,6 +28,7 @@ def test_follow_reports_a_sign_change_of_the_determinant_as_a_branch_jump():
     trace = assembly.follow(_quadratic, _slope, np.array([[0.0], [0.5], [1.5], [2.0]]),
                             np.array([1.0]), tol=1e-12)
     assert trace.status.tolist() == ["converged", "converged", "branch-jump", "branch-jump"]
+    # the path's Newton (tol 1e-12 on the residual, quadratic) lands on x = 1 - p to round-off
     np.testing.assert_allclose(trace.x[:2, 0], [1.0, 0.5], rtol=1e-12)
     assert trace.nfev > 0 and trace.njev > 0
 
@@ -83,6 +84,8 @@ def test_workspace_edge_finds_the_fold():
         trace, np.zeros(2), np.array([1.0]), directions=5, step=0.1, reach=2.0, levels=4)
     radius = np.hypot(*edge.T)
     assert (status == "converged").all() and nfev > 0
+    # the rays stop within the last bisection's step (0.1 / 4^4) inside the unit circle; 1e-12
+    # allows for the rounding of the radius
     assert ((radius > 1.0 - 0.1 / 4 ** 4 - 1e-12) & (radius <= 1.0)).all()
     with pytest.raises(ValueError, match="bound on the work"):
         assembly.workspace_edge(trace, np.zeros(2), np.array([1.0]), directions=5, step=1e-5,
@@ -93,7 +96,11 @@ def test_zero_crossings_lie_on_the_grid_lines():
     g = np.linspace(-1.0, 1.0, 21)
     X, Y = np.meshgrid(g, g, indexing="ij")
     points = assembly.zero_crossings(g, g, X + 2 * Y - 0.33)
+    # the crossings are interpolated linearly along grid lines of a linear function: exact up to
+    # round-off
     np.testing.assert_allclose(points[:, 0] + 2 * points[:, 1], 0.33, rtol=1e-12)
+    # a crossing lies on a grid line (a multiple of 0.1 in one coordinate) up to the rounding of the
+    # grid (linspace) and of the division by 0.1
     on_lines = np.isclose(np.remainder(points / 0.1 + 0.5, 1.0) - 0.5, 0.0, atol=1e-9)
     assert on_lines.any(axis=1).all() and len(points) > 10
 

@@ -90,6 +90,8 @@ def test_the_equilibria_and_their_stability_are_the_roots_and_the_minima():
     for i, a in enumerate(at.axes[0]):
         for j, b in enumerate(at.axes[1]):
             x = np.sort(at.chart[i, j, :at.counts[i, j], 0])
+            # the cusp's equilibria are polished roots of x^3 - a x - b with |x| of order one:
+            # residual round-off
             assert np.abs(x ** 3 - a * x - b).max() < 1e-12
             order = np.argsort(at.chart[i, j, :at.counts[i, j], 0])
             assert np.array_equal(at.stable[i, j, :at.counts[i, j]][order], 3 * x ** 2 - a > 0)
@@ -144,6 +146,9 @@ def test_the_2rfr_atlas_holds_equilibria(rfr2_atlas):
     for i_, j_ in zip(i, j):
         for k in range(at.counts[i_, j_]):
             s = at.state(i_, j_, k)
+            # the atlas's equilibria come from Newton stopped at STEP_TOL = 1e-10 on the
+            # relative step, after a quadratic last step: residuals of an O(1) system far below
+            # 1e-9
             assert np.abs(rfr2.residual(rfr2.TABLE7, s.inputs, s.chart)).max() < 1e-9
     with pytest.raises(ValueError, match="has 3 equilibria, no equilibrium 5"):
         at.state(*np.argwhere(at.counts == 3)[0], 5)
@@ -156,6 +161,8 @@ def test_the_atlas_draws_its_map_folds_and_a_trajectory(rfr2_atlas):
     segments = artists["folds"].get_segments()
     assert len(segments) == len(rfr2_atlas.folds) > 0
     assert artists["map"].get_array().size == rfr2_atlas.counts.size
+    # the trajectory drawn in degrees is np.degrees of the path: numpy's allclose default (rtol
+    # 1e-5) is far above that conversion's round-off
     assert np.allclose(artists["trajectory"].get_xdata(), np.degrees(path[:, 0]))
     assert ax.get_xlabel() == "theta1 (deg)"
     with pytest.raises(ValueError, match="trajectory must have shape"):
@@ -191,7 +198,11 @@ def test_the_3pfr_plane_and_its_atlas():
     at = pfr3.atlas(pfr3.TABLE8, grid, executor=1)
     eq = pfr3.forward_elliptic(pfr3.TABLE8, grid[2, 0], rng=0)
     assert (at.counts[2, 0], at.stable_counts[2, 0]) == (len(eq.chart), eq.stable.sum())
+    # the plane's coordinates of grid points built from multiples of 0.002: round-off, within
+    # numpy's default rtol 1e-5
     assert np.allclose(at.coordinates(grid[2, 0]), [0.004, 0.0])
+    # unit directions recovered from the grid's first row and column: round-off, within numpy's
+    # default
     assert np.allclose(at.directions, [[1, 0, 0], [0, 0, 1]])
 
 

@@ -1,10 +1,15 @@
 """Bad input, tried on every public function of :mod:`mechnum` (sampled evidence, not proof).
 
-A function's baseline is its first call in its docstring example. Each argument in turn gets the
-bad values of :func:`families`, and the batches are emptied; every call runs under an alarm,
-warnings as errors, and is ``ok`` (an error raised by a ``raise`` of mechnum, or an empty result
-for an empty batch), ``raw`` (any other exception), ``hang`` (> 2 s, or 5 baselines), ``silent``
-(NaN or inf in a result that says it converged) or ``accepted`` (a finite result, perhaps right).
+A function's baseline is its first call in its docstring example; for a function whose docstring
+shows no call, the call of :data:`EXPLICIT`, or else its first call made by the package itself
+while :data:`CALLS` and the docstring examples of :data:`CALLERS` run (the building blocks of
+``rods.assembly``). Each argument in turn gets the bad values of :func:`families`, and
+the batches are emptied; every call runs under an alarm, warnings as errors, and is ``ok`` (an
+error raised by a ``raise`` of mechnum, or an empty result for an empty batch), ``raw`` (any other
+exception), ``hang`` (> 2 s, or 5 baselines), ``silent`` (NaN or inf in a result that says it
+converged; or, for the same numbers handed over as float32, read-only or non-contiguous arrays, a
+result other than the float64 one), ``slow`` (scaled numbers that run a solver to its documented
+bound: :func:`scaled`) or ``accepted`` (a finite result, perhaps right).
 ``python tests/test_bad_input.py [-v] [name ...]`` prints the tally.
 """
 import contextlib
@@ -40,16 +45,119 @@ LIMIT, PACKAGE, BAD = 2.0, mechnum.__path__[0], ("raw", "hang", "silent")  # LIM
 # Arguments that set an amount of work: -1, 0, a fraction and 10**9 (which a bound must refuse).
 WORK = {"nodes", "segments", "n_psi", "n_k", "n_starts", "check", "maxiter", "max_boxes",
         "steps", "max_steps", "halvings", "directions", "levels", "divisions", "count", "m",
-        "samples", "frames", "n"}
+        "samples", "frames", "n", "executor"}
 # Batches (and those documented as shape (..., n)): emptied, they must give an empty result.
 BATCH = {"inputs", "thetas", "points", "seeds", "params", "theta_in", "theta_out", "psi", "k_rel"}
 NOT_BATCHES = {"mechanisms.finger.synthesize"}  # a fit of at least 3 angle pairs
 # Arguments handed on untouched to the caller's own function (its business, not mechnum's).
 PASSED_ON = {("plotting.animate", "mech"), ("plotting.animate", "states")}
 OTHERS = (hacksaw.STUDY, prr3.EXAMPLES["Table 5"][0])  # "another mechanism"
-# Files other engineers are rewriting now: their findings are expected failures (xfail). None
-# at present: every finding of the harness is asserted.
-ELSEWHERE = ()
+# Files other engineers are rewriting now: their findings are expected failures (xfail). The
+# building blocks of rods.assembly (first tried by this harness now: no checks at their doors)
+# and rods.growing are being rewritten for speed and for the public API.
+ELSEWHERE = ("mechnum.rods.assembly.drivers", "mechnum.rods.assembly.atlas",
+             "mechnum.rods.assembly.results", "mechnum.rods.assembly.drawing",
+             "mechnum.rods.growing")
+# The functions whose docstrings call them in no example, or too slowly for the harness (the
+# atlases: a 3 x 3 grid runs 20 s), called here on small cases (source text, evaluated lazily);
+# their baselines may take 30 LIMIT (the 3PFR's smallest atlas, 1 x 2 points, runs two full
+# searches of 1000 starts: 7 s).
+EXPLICIT = {  # name: "(args), {kwargs}"
+    "mechanisms.rfr2.atlas": "(rfr2.TABLE7, np.radians([36.0]), np.radians([56.0, 58.0])),"
+                             " {'executor': 1}",
+    "mechanisms.pfr3.atlas": "(pfr3.TABLE8, [[[0.0, 0.0, 0.0], [0.0, 0.002, 0.0]]]),"
+                             " {'executor': 1}",
+    "mechanisms.pfr3.forward": "(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),"
+                               " {'n_starts': 100, 'check': 1, 'rng': 0}",
+    "mechanisms.rfr2.Mechanism": "(), {'origins': rfr2.TABLE7.origins}",
+    "mechanisms.pfr3.Mechanism": "(pfr3.TABLE8.origins, pfr3.TABLE8.guide_angles,"
+                                 " pfr3.TABLE8.clamp_angles, pfr3.TABLE8.a), {}",
+}
+# The open findings of the scaled families (subnormal, 1e-300, 1e300), first tried now: numpy's
+# overflow and invalid-value warnings leak (a RuntimeWarning, raised as an error here) where
+# these functions square, divide or multiply scaled numbers without scaling first, and a few
+# return NaN as if converged. Each is an expected failure until fixed (strict: a function fixed
+# must leave the list); any other bad outcome of these functions fails as usual.
+SCALED_OPEN = frozenset((
+    'mechanisms.finger.lengths_from_coefficients',
+    'mechanisms.finger.linkage_from_coefficients',
+    'certify.roots',
+    'continuation.pseudo_arclength',
+    'continuation.solve_path',
+    'linear.conjugate_gradient',
+    'linear.gauss_seidel',
+    'linear.iterative_refinement',
+    'linear.jacobi',
+    'linear.least_squares',
+    'linear.sor',
+    'linear.sor_sweep',
+    'linear.sweep_by_components',
+    'mechanisms.actuator.forward',
+    'mechanisms.actuator.positions',
+    'mechanisms.actuator.stroke_kinematics',
+    'mechanisms.finger.synthesize',
+    'mechanisms.hacksaw.solve_simultaneous',
+    'mechanisms.pfr3.chart_from_thesis',
+    'mechanisms.pfr3.crossings',
+    'mechanisms.pfr3.forward_path',
+    'mechanisms.pfr3.index',
+    'mechanisms.pfr3.inverse_map',
+    'mechanisms.pfr3.inverse_path',
+    'mechanisms.pfr3.jacobians',
+    'mechanisms.pfr3.orientation',
+    'mechanisms.pfr3.recover_inputs',
+    'mechanisms.pfr3.resolutions',
+    'mechanisms.pfr3.second_variation',
+    'mechanisms.pfr3.shapes',
+    'mechanisms.pfr3.shooting_guess',
+    'mechanisms.pfr3.stability',
+    'mechanisms.pfr3.strain',
+    'mechanisms.pfr3.thesis_residual',
+    'mechanisms.pfr3.verify',
+    'mechanisms.pfr3.within_study_reach',
+    'mechanisms.pfr3.workspace',
+    'mechanisms.rfr2.chart_from_thesis',
+    'mechanisms.rfr2.crossings',
+    'mechanisms.rfr2.eigenvalues',
+    'mechanisms.rfr2.forward_map',
+    'mechanisms.rfr2.forward_path',
+    'mechanisms.rfr2.index',
+    'mechanisms.rfr2.inverse',
+    'mechanisms.rfr2.inverse_path',
+    'mechanisms.rfr2.jacobians',
+    'mechanisms.rfr2.recover_inputs',
+    'mechanisms.rfr2.residual',
+    'mechanisms.rfr2.rods',
+    'mechanisms.rfr2.shapes',
+    'mechanisms.rfr2.shooting_guess',
+    'mechanisms.rfr2.stability',
+    'mechanisms.rfr2.strain',
+    'mechanisms.rfr2.thesis_from_chart',
+    'mechanisms.rfr2.verify',
+    'mechanisms.rfr2.workspace',
+    'newton.broyden',
+    'newton.fd_jacobian',
+    'newton.solve',
+    'newton.solve_batch',
+    'polynomials.root_condition',
+    'rods.assembly.chart_from_clamps',
+    'rods.assembly.peak_moment',
+    'rods.clamped_pinned',
+    'rods.k_rel_for_force',
+    'rods.regular.clamped_pinned_regular',
+    'rods.regular.closed_form',
+    'rods.regular.k_rel_from_t',
+    'rods.regular.shape',
+    'rods.regular.t_from_k_rel',
+))
+# What calls the building blocks of rods.assembly (which no docstring example calls): these
+# statements, then the docstring examples of these functions, each chosen for one block (the
+# whole modules' examples would take minutes).
+CALLS = ("rfr2.atlas(rfr2.TABLE7, np.radians([36.0]), np.radians([56.0, 58.0]), executor=1)"
+         ".draw(plt.subplots()[1])",)
+CALLERS = ("rfr2.forward_elliptic", "rfr2.forward_path", "rfr2.forward_map", "rfr2.jacobians",
+           "rfr2.singular_points", "rfr2.workspace", "rfr2.forward_shooting", "rfr2.draw",
+           "rfr2.stability", "rfr2.verify")
 
 
 def public_functions():
@@ -122,7 +230,64 @@ def families(name, value, default):
     out |= {"str": "a", "nan": np.full(arr.shape, np.nan), "inf": np.full(arr.shape, np.inf),
             "complex": arr + 1j,
             "wrong shape": np.ones(arr.shape[:-1] + (arr.shape[-1] + 1,) if arr.ndim else (3,))}
-    return out | ({"negative": -1.0} if arr.ndim == 0 and float(arr) >= 0 else {})
+    out |= ({"negative": -1.0} if arr.ndim == 0 and float(arr) >= 0 else {})
+    return out | ({} if name in WORK else extreme(arr))
+
+
+class Same:
+    """The same numbers as ``twin`` (a float64, writable, C-contiguous array), handed over as
+    ``value``: the result must be the twin's."""
+
+    def __init__(self, value, twin):
+        self.value, self.twin = value, twin
+
+
+def extreme(arr):
+    """The families beyond the first ones: the numbers scaled to subnormal, 1e-300 and 1e300
+    (zeros replaced by the scale), and the same numbers as float32, read-only or non-contiguous
+    arrays (:class:`Same`)."""
+    if arr.size == 0:
+        return {}
+    out = {}
+    with np.errstate(over="ignore", under="ignore"):
+        for family, scale in (("subnormal", 1e-310), ("1e-300", 1e-300), ("1e300", 1e300)):
+            out[family] = np.where(arr == 0, scale, arr * scale)
+    single = arr.astype(np.float32)
+    if np.all(np.isfinite(single)):
+        out["float32"] = Same(single, single.astype(float))
+    if arr.ndim:
+        frozen = arr.copy()
+        frozen.flags.writeable = False
+        strided = np.repeat(arr[..., None], 2, axis=-1)[..., 0]  # every other number of a copy
+        out |= {"read-only": Same(frozen, arr.copy()), "non-contiguous": Same(strided, arr.copy())}
+    return out
+
+
+def differs(a, b, depth=0):
+    """Whether two results differ by more than round-off. An array met in another memory layout
+    may take another loop (numpy's strided or BLAS path), which changes the last bits; rtol
+    1e-9 keeps seven digits of margin over round-off, and float32 arithmetic (7 digits) or a
+    wrong answer is far beyond it. Objects that are not numbers (figures, artists) compare
+    equal."""
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return type(a) is not type(b) or depth < 3 and any(
+            differs(getattr(a, f.name), getattr(b, f.name), depth + 1)
+            for f in dataclasses.fields(a))
+    if isinstance(a, dict):
+        return not isinstance(b, dict) or a.keys() != b.keys() or depth < 3 and any(
+            differs(a[k], b[k], depth + 1) for k in a)
+    if isinstance(a, (list, tuple)):
+        return not isinstance(b, (list, tuple)) or len(a) != len(b) or depth < 3 and any(
+            differs(x, y, depth + 1) for x, y in zip(a, b))
+    if isinstance(a, (np.ndarray, np.generic, float, int, complex, str)):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.shape != b.shape or a.dtype.kind != b.dtype.kind:
+            return True
+        if a.dtype.kind not in "fc":
+            return not np.array_equal(a, b)
+        scale = np.abs(b[np.isfinite(b)]).max(initial=0.0)
+        return not np.allclose(a, b, rtol=1e-9, atol=1e-9 * scale, equal_nan=True)
+    return False
 
 
 def trailing(obj, name):
@@ -186,8 +351,13 @@ def call(obj, arguments, limit):
         plt.close("all")
 
 
-def classify(value, error, family):
-    """``(outcome, detail)`` of one call: ``ok``, ``raw``, ``hang``, ``silent`` or ``accepted``."""
+def classify(value, error, family, twin=None):
+    """``(outcome, detail)`` of one call: ``ok``, ``raw``, ``hang``, ``silent`` or ``accepted``;
+    ``twin``, a ``(value, error)`` the call must reproduce (the same numbers in float64)."""
+    if twin is not None and error is None and twin[1] is None:
+        if differs(value, twin[0]):
+            return "silent", f"{family}: not the result of the same numbers in float64"
+        return "accepted", "the result of the same numbers in float64"
     if isinstance(error, TimeoutError):
         return "hang", "no answer in time"
     if error is not None:
@@ -201,18 +371,108 @@ def classify(value, error, family):
     return ("ok" if family == "empty batch" else "accepted"), type(value).__name__
 
 
+def _names():
+    """What the sources of :data:`EXPLICIT` and :data:`REPRODUCERS` name."""
+    names = {m.split(".")[-1]: importlib.import_module(f"mechnum.{m}") for m in (
+        "certify", "continuation", "homotopy", "ode", "plotting", "published", "rods",
+        "mechanisms.rfr2", "mechanisms.pfr3")}
+    return names | dict(np=np, plt=plt, prr3=prr3)
+
+
+def _functions_of(obj):
+    """The modules of mechnum that hold ``obj`` under its name (where a caller finds it)."""
+    return [m for m in list(sys.modules.values()) if m and m.__name__.startswith("mechnum")
+            and vars(m).get(obj.__name__) is obj]
+
+
+_RECORDED = {}
+
+
+def recorded(name):
+    """The first call of public function ``name`` that the package makes itself, while
+    :data:`CALLS` and the docstring examples of :data:`CALLERS` run (recorded once for every
+    function that has no baseline of its own), or None."""
+    if not _RECORDED:
+        targets = {n: f for n, f in FUNCTIONS.items() if n.startswith("rods.assembly.")
+                   and inspect.isfunction(f) and n not in EXPLICIT and baseline(f) is None}
+        _RECORDED.update(dict.fromkeys(targets))
+        patched = []
+
+        def recorder(n, f):
+            def record(*args, **kwargs):
+                _RECORDED[n] = _RECORDED[n] or (args, kwargs)
+                return f(*args, **kwargs)
+            return record
+
+        for n, f in targets.items():
+            for home in _functions_of(f):
+                patched.append((home, f.__name__, f))
+                setattr(home, f.__name__, recorder(n, f))
+        try:
+            with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                for source in CALLS:
+                    eval(source, _names())
+                for caller in CALLERS:
+                    where, _, attribute = f"mechnum.mechanisms.{caller}".rpartition(".")
+                    obj = getattr(importlib.import_module(where), attribute)
+                    module = sys.modules[obj.__module__]
+                    for test in doctest.DocTestFinder(recurse=False).find(
+                            obj, module=module, globs=vars(module).copy()):
+                        for example in test.examples:
+                            try:
+                                exec(compile(example.source, "<example>", "exec"), test.globs)
+                            except Exception:  # noqa: BLE001 (an example showing an error)
+                                pass
+                    plt.close("all")
+                    if all(_RECORDED.values()):
+                        break
+        finally:
+            for home, attribute, f in patched:
+                setattr(home, attribute, f)
+    return _RECORDED.get(name)
+
+
+def baseline_of(name, obj):
+    """``(args, kwargs)`` of the call every bad call of ``obj`` spoils, or None."""
+    if name in EXPLICIT:
+        return eval(EXPLICIT[name], _names())
+    return baseline(obj) or recorded(name)
+
+
+SCALED = ("subnormal", "1e-300", "1e300")
+
+
+def scaled(obj, signature, trial, family, limit):
+    """The outcome of a call with scaled numbers: as :func:`classify`, except that a call which
+    runs out of time is ``slow``, not a ``hang``, if it ends once its documented bound on the
+    work is small (``maxiter=2``) or within ten times the time: such numbers, far from every
+    solution, run a solver to its bound (a seed of 1e-300 takes a damped Newton iteration to
+    ``maxiter``), which the families of :data:`WORK` check."""
+    outcome = classify(*call(obj, trial, limit), family)
+    if outcome[0] != "hang":
+        return outcome
+    retry = dict(trial, maxiter=2) if "maxiter" in signature.parameters else trial
+    if not isinstance(call(obj, retry, 10 * limit)[1], TimeoutError):
+        return "slow", "more than 5 baselines, but it ends within its bound on the work"
+    return outcome
+
+
 def fuzz(name, obj):
     """Every bad call of ``obj``: a list of ``(argument, family, outcome, detail)``, or None."""
-    if (recorded := baseline(obj)) is None:
+    if (recorded_call := baseline_of(name, obj)) is None:
         return None
     signature = inspect.signature(obj)
-    arguments = signature.bind(*recorded[0], **recorded[1]).arguments
+    arguments = signature.bind(*recorded_call[0], **recorded_call[1]).arguments
     if not arguments:  # nothing to spoil
         return []
     start = time.perf_counter()
-    if call(obj, arguments, 10 * LIMIT)[1] is not None:  # no valid baseline here
+    first = call(obj, arguments, (30 if name in EXPLICIT else 10) * LIMIT)
+    if first[1] is not None:  # no valid baseline here
         return None
     limit = max(LIMIT, 5 * (time.perf_counter() - start))
+    # the same numbers must give the same result, if the function gives one (no random starts)
+    same = None if differs(first[0], call(obj, arguments, limit)[0]) else first
     trials = []
     for arg, value in arguments.items():
         parameter = signature.parameters[arg]
@@ -223,8 +483,21 @@ def fuzz(name, obj):
                        for family, bad in families(arg, value, default).items()]
     if name not in NOT_BATCHES and (empty := emptied(obj, arguments)) is not None:
         trials.append(("batches", "empty batch", empty))
-    return [(arg, family, *classify(*call(obj, trial, limit), family))
-            for arg, family, trial in trials]
+    rows = []
+    for arg, family, trial in trials:
+        if family in SCALED:  # numbers far from every solution: a solver may run to its bound
+            rows.append((arg, family, *scaled(obj, signature, trial, family, limit)))
+            continue
+        twin = None
+        if isinstance(trial.get(arg), Same):
+            if same is None:
+                continue  # a function of random starts: nothing to compare with
+            twin = same if trial[arg].twin is not None and np.array_equal(
+                trial[arg].twin, np.asarray(arguments[arg], dtype=float)) else call(
+                obj, dict(trial, **{arg: trial[arg].twin}), limit)
+            trial = dict(trial, **{arg: trial[arg].value})
+        rows.append((arg, family, *classify(*call(obj, trial, limit), family, twin)))
+    return rows
 
 
 FUNCTIONS = public_functions()
@@ -237,6 +510,11 @@ def test_bad_input_gets_a_named_error(name):
     bad = [row for row in rows if row[2] in BAD]
     if bad and FUNCTIONS[name].__module__.startswith(ELSEWHERE):
         pytest.xfail(f"{FUNCTIONS[name].__module__} is being rewritten elsewhere: {bad}")
+    if name in SCALED_OPEN:
+        assert not [row for row in bad if row[1] not in SCALED], "\n".join(map(str, bad))
+        if not bad:
+            pytest.fail(f"{name} has no open finding any more: remove it from SCALED_OPEN")
+        pytest.xfail(f"open findings of the scaled families: {bad}")
     assert not bad, "\n".join(map(str, bad))
 
 
@@ -275,15 +553,15 @@ REPRODUCERS = [
     ("rods.assembly.peak_moment(1.0, np.nan, [0.0, 1.0], 0.0, 1)", "clamp_moment must be finite"),
     ("rods.assembly.Layout(rods=np.nan, inputs=2, pose=2)", "rods must be an integer"),
     ("rfr2.motor_angles(rfr2.TABLE7, [np.nan, 0.5], np.ones((2, 2)))", "P must be finite"),
+    ("rfr2.atlas(rfr2.TABLE7, [1e300], [0.0, 0.1])", "within 4 pi rad"),
+    ("rfr2.atlas(rfr2.TABLE7, [36.0, 38.0], [0.5, 0.6])", r"in degrees\? np.radians"),
+    ("pfr3.atlas(pfr3.TABLE8, [[[0.0, 0.0, 0.0], [1e300, 0.0, 0.0]]])", r"within 1e\+100 m"),
 ]
 
 
 @pytest.mark.parametrize("source, words", REPRODUCERS)
 def test_a_fixed_finding_gives_a_named_error(source, words):
-    names = {m.split(".")[-1]: importlib.import_module(f"mechnum.{m}") for m in (
-        "certify", "continuation", "homotopy", "ode", "plotting", "published", "rods",
-        "mechanisms.rfr2")}
-    names |= dict(np=np, plt=plt, prr3=prr3, f=lambda x: [x[0] * x[0] - 2],
+    names = _names() | dict(f=lambda x: [x[0] * x[0] - 2],
                   J=lambda x: [[2 * x[0]]], ROW=dict(quantity="T", published="1.942",
                                                      computed="1.941626", verdict="reproduced"))
     with pytest.raises((ValueError, AssertionError), match=words):
@@ -291,10 +569,40 @@ def test_a_fixed_finding_gives_a_named_error(source, words):
     plt.close("all")
 
 
+def test_more_workers_than_cores_are_cut_to_the_cores_with_a_warning():
+    # executor=4096 on a two-core machine used to start 4096 processes' worth of work at once
+    from mechnum.rods.assembly import parallel
+    cores = parallel.local_cores()
+    with pytest.warns(UserWarning, match=f"executor={cores + 4094} asks for more workers than "
+                                         f"the {cores} cores this process may use"):
+        assert parallel.checked(cores + 4094) == cores
+    with pytest.warns(UserWarning, match="running"):
+        assert parallel.run(abs, [-1, 2, -3], executor=cores + 1) == [1, 2, 3]
+    assert parallel.checked(cores) == cores and parallel.workers(cores) == cores
+
+
+@pytest.mark.parametrize("scale", [1e300, -1e300, 1.7e308])
+def test_prr3_far_poses_are_named_where_their_squares_overflow(scale):
+    # 1e300 in a pose or an input gave inf, then NaN, from the functions that square distances:
+    # now a ValueError names the argument; the workspace and the inverse problem, which only ask
+    # whether a pose is reachable, still answer "no" for any finite pose (and no warning leaks)
+    g = prr3.EXAMPLES["Table 5"][0]
+    far = [scale, 0.5, 0.0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for call in (lambda: prr3.radicands(g, far), lambda: prr3.branch_inputs(g, far),
+                     lambda: prr3.loop_residuals(g, far, [0.5, 0.5, 0.5]),
+                     lambda: prr3.loop_residuals(g, [0.5, 0.5, 0.0], far)):
+            with pytest.raises(ValueError, match=r"must lie within 1e\+100 m of the origin"):
+                call()
+        assert not prr3.workspace(g, scale, scale, 0.0) and prr3.inverse(g, far).shape == (0, 3)
+
+
 def main():
     """Print every bad outcome (every outcome with ``-v``) and the tally, here and elsewhere."""
     only = [a for a in sys.argv[1:] if not a.startswith("-")]
-    tally = {where: dict.fromkeys(("ok", *BAD, "accepted"), 0) for where in ("here", "elsewhere")}
+    tally = {where: dict.fromkeys(("ok", *BAD, "slow", "accepted"), 0)
+             for where in ("here", "elsewhere")}
     covered, uncovered = [], []
     for name in sorted(n for n in FUNCTIONS if not only or any(o in n for o in only)):
         (uncovered if (rows := fuzz(name, FUNCTIONS[name])) is None else covered).append(name)

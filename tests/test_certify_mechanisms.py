@@ -60,10 +60,14 @@ def test_chapter3_pinned_rod_is_certified_complete(pinned):
     looped = pinned.solutions[np.argmin(np.abs(pinned.solutions[:, 1] - 0.99961))]
     rod = regular.clamped_pinned_regular(1.0, 1.0, looped[0],
                                          regular.t_from_k_rel(looped[0], looped[1]), 2)
+    # the reviewer's values are printed to 5 significant digits (2.7309): rel 1e-4 is that rounding
     np.testing.assert_allclose(rod.clamp_moment, 2.7309, rtol=1e-4)
+    # the reviewer's force is printed to 4 digits (423.2, 56.3): rel 1e-3 covers the rounding of the
+    # smaller component
     np.testing.assert_allclose(rod.force, [423.2, 56.3], rtol=1e-3)
     for (psi, t), (_, _, mode) in zip(pinned.x, pinned.solutions):
         tip = regular.clamped_pinned_regular(1.0, 1.0, psi, t, mode).tip
+        # a certified root, its tip recomputed in floating point: round-off of O(1) numbers
         assert np.abs(tip - [0.8, 0.1]).max() < 1e-12
     assert pinned.stable == [None] * 9
 
@@ -72,6 +76,8 @@ def test_pinned_sampling_equals_certified(pinned):
     sampled = rods.pinned_equilibria(1.0, 1.0, [0.8, 0.1], modes=(1, 2, 3))
     assert len(sampled) == pinned.count
     for row in pinned.solutions:
+        # the sampled roots (Newton to the residual 1e-13) and the certified ones (their
+        # enclosures' midpoints, far narrower) agree to round-off of the chart; 1e-8 is wide
         assert np.any(np.all(np.abs(sampled - row) < 1e-8, axis=1))
 
 
@@ -173,6 +179,7 @@ def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
 def test_boxes_around_points_stay_in_the_chart_and_the_branch():
     boxes = certified.around_boxes([[0.0, -0.5], [3.0, 1e-9], [TWO_PI, regular.T_MAX]], 1)
     assert boxes[0, 0, 0] == 0.0 and boxes[0, 1, 1] < 0.0
+    # exact comparisons: the boxes are cut at the chart's ends, which are floats (no tolerance)
     assert boxes[1, 1, 0] == 0.0 and boxes[1, 1, 1] > 1e-9
     assert boxes[2, 0, 1] == TWO_PI and boxes[2, 1, 1] == regular.T_MAX
     for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):

@@ -27,14 +27,19 @@ def test_the_s_curve_is_traced_through_both_folds():
     branch = pseudo_arclength(cubic, [-2.5, -8.125], cubic_jac, direction=[1.0, 0.0],
                               step=0.05, steps=400, stop=lambda u: u[0] > 2.5)
     assert branch.complete and branch.x[-1, 0] > 2.5
+    # the corrector stops at CORRECTOR_TOL = 1e-10 on the step (relative): the residual of x^3 - 3x
+    # - p at points of size <= 8 is then far below 1e-9
     assert_allclose([cubic(u)[0] for u in branch.x], 0.0, atol=1e-9)
     assert branch.folds.size == 2
+    # a fold is located by the sign change of the tangent's p-component and refined by the corrector
+    # (tol 1e-10): 1e-9 allows for it
     assert_allclose(branch.fold_points, [[-1.0, 2.0], [1.0, -2.0]], atol=1e-9, rtol=0)
     # the folds are where the parameter turns back, and x grows all the way
     p = branch.x[:, 1]
     for i, j in zip(branch.folds, np.append(branch.folds[1:], len(p) - 1)):
         assert np.all(np.sign(np.diff(p[i + 1:j + 1])) == np.sign(np.diff(p[i + 1:i + 3]))[0])
     assert np.all(np.diff(branch.x[:, 0]) > 0)
+    # unit tangents: normalised in floating point, a few ulps
     assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)
 
 
@@ -62,6 +67,7 @@ def test_a_curve_that_ends_is_reported():
 
     branch = pseudo_arclength(fun, [1.0, 1.0], jac, direction=[-1.0, 0.0], step=0.1,
                               steps=200, min_step=1e-6)
+    # the branch ends at x = 0, where the Jacobian blows up: 1e-3 asks only that it got there
     assert not branch.complete and branch.x[-1, 0] < 1e-3 and branch.status == "stagnated"
     # the same curve the other way does not end: traced to its 20 points, complete
     onward = pseudo_arclength(fun, [1.0, 1.0], jac, direction=[1.0, 0.0], step=0.1, steps=20)
@@ -77,6 +83,8 @@ def test_a_bifurcation_point_has_no_tangent():
     with pytest.raises(SingularJacobianError, match="bifurcation"):
         pseudo_arclength(cross[0], [0.0, 0.0], cross[1])
     branch = pseudo_arclength(cross[0], [1.0, 1.0], cross[1], steps=5)   # away from it, a line
+    # points on the line x = p, corrected to CORRECTOR_TOL = 1e-10 relative and with a quadratic
+    # last step: round-off
     assert_allclose(branch.x[:, 0], branch.x[:, 1], rtol=1e-12)
 
 
@@ -117,6 +125,8 @@ def test_solve_path_follows_a_branch_and_reports_failures():
     path = solve_path(square, [1.0], p, square_jac)
     ok = p > 0
     assert np.array_equal(path.converged, ok)
+    # the path's Newton stops at ||f|| <= PATH_TOL = 1e-12, reached by a quadratic last step that
+    # leaves an error far below it: round-off of sqrt(p)
     assert_allclose(path.x[ok, 0], np.sqrt(p[ok]), rtol=1e-12)
     assert np.isnan(path.x[~ok]).all() and set(path.status[~ok]) <= set(STATUSES) - {"converged"}
     # two paths at once, with their own parameters; a failed path may be abandoned
@@ -124,6 +134,7 @@ def test_solve_path_follows_a_branch_and_reports_failures():
                       square_jac, resume=False)
     assert both.converged[:, 1].all() and both.converged[:, 0].sum() == ok.sum()
     assert (both.status[~ok, 0][1:] == "lost").all()      # abandoned after its first failure
+    # as above: the negative root to round-off
     assert_allclose(both.x[:, 1, 0], -np.sqrt(p + 2), rtol=1e-12)
     with pytest.raises(ValueError, match="params"):
         solve_path(square, [[1.0], [2.0]], p, square_jac)
@@ -161,6 +172,7 @@ def test_a_leap_across_the_fold_is_a_branch_jump(n):
     assert np.isnan(path.x[jump]).all() and np.isnan(path.det[jump]).all()
     ok = path.converged
     assert ok.sum() == n - 1 and np.all(path.det[ok] > 0) and np.all(path.x[ok, 1] > 0)
+    # the determinant is computed from the same converged x as sin(x_1): round-off
     assert_allclose(path.det[ok], np.sin(path.x[ok, 1]), rtol=1e-12)
     # the same steps, solved one by one from the last point: Newton does land on the other
     # assembly, with the elbow angle of the opposite sign
@@ -182,6 +194,7 @@ def test_a_point_that_moves_too_fast_is_a_branch_jump():
     assert path.converged[:5].all()
     free = solve_path(fun, [-10.0], p, lambda x, c: np.ones((len(x), 1, 1)), max_jump=None)
     assert free.converged.all()
+    # as above, with atol for the points near the origin (tanh of about 0)
     assert_allclose(free.x[:, 0], 10 * np.tanh(100 * (p - 0.5)), rtol=1e-12, atol=1e-12)
 
 
@@ -189,6 +202,7 @@ def test_solve_path_with_the_jacobian_from_fun():
     p = np.linspace(1.0, 4.0, 7)
     path = solve_path(lambda x, c: (square(x, c), square_jac(x, c)), [1.0], p, jac=True)
     assert path.converged.all() and path.nfev == path.njev
+    # as above: ||f|| <= PATH_TOL = 1e-12 after a quadratic last step
     assert_allclose(path.x[:, 0], np.sqrt(p), rtol=1e-12)
     assert isinstance(path, PathResult) and isinstance(path, Result)
 
@@ -230,6 +244,7 @@ def test_solve_path_points_meet_the_residual_tolerance(a, b, steps, span):
     path = solve_path(fun, [0.0], p, lambda x, c: (3 * x ** 2 + a)[:, :, None], tol=1e-10)
     ok = path.converged
     residual = np.abs(path.x[ok, 0] ** 3 + a * path.x[ok, 0] - p[ok] - b)
+    # the criterion itself: the call's tolerance 1e-10 on the residual
     assert np.all(residual <= 1e-10)
     assert set(path.status[~ok]) <= set(STATUSES) and np.isnan(path.x[~ok]).all()
     assert "branch-jump" not in path.status    # one branch, no fold: nothing to jump to
@@ -247,5 +262,9 @@ def test_pseudo_arclength_points_lie_on_the_curve(rx, ry, step):
         assert "no point" in str(error)
         return
     gaps = np.abs([fun(u)[0] for u in branch.x])
+    # the corrector stops on its relative step (1e-10) after a quadratic last step; the residual of
+    # an equation of order one is then round-off, and 1e-8 leaves room for the worst ellipses (axes
+    # ratio 25, whose condition multiplies it)
     assert np.all(gaps <= 1e-8)
+    # unit tangents: normalised in floating point, a few ulps
     assert_allclose(np.linalg.norm(branch.tangent, axis=1), 1.0, rtol=1e-12)

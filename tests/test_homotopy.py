@@ -33,6 +33,8 @@ def test_track_follows_a_path_to_its_end(h0):
     assert end.s == 1.0 and end.status == "converged" and end.converged
     assert end.rejected == 0 and end.steps == schedule(h0) == end.iterations
     assert end.nfev == end.njev >= 5 * end.steps      # four stages and a corrector per step
+    # track's corrector stops at its tolerance TOL = 1e-9 (relative): the endpoint is no more
+    # accurate than that
     assert_allclose(end.x, [-2.0], rtol=1e-9)
 
 
@@ -63,6 +65,8 @@ def test_total_degree_homotopy_finds_every_known_root(a, b, seed):
     assert np.all(result.ends == "finite") and np.all(result.status == "converged")
     assert len(result.x) == 6
     for root in known:
+        # polished endpoints of simple roots carry round-off (about 1e-15 on a system of unit size):
+        # 1e-8 leaves room for the worst-conditioned of the drawn systems
         assert np.abs(result.x - root).max(axis=1).min() < 1e-8
     real = result.real(1e-8)
     assert len(real) == 2 * np.sum(a + b > 0)
@@ -73,8 +77,11 @@ def test_paths_to_infinity_are_classified():
     system = PolynomialSystem.from_dicts([{(1, 1): 1, (0, 0): -1}, {(2, 0): 1, (0, 0): -4}])
     result = homotopy.solve(system, rng=3)
     assert sorted(result.ends.tolist()) == ["at-infinity", "at-infinity", "finite", "finite"]
+    # the two simple roots, polished on the system: round-off of O(1) numbers
     assert_allclose(result.real(), [[-2.0, -0.5], [2.0, 0.5]], atol=1e-10, rtol=0)
     at_infinity = result.endpoints[result.ends == "at-infinity"]
+    # an endpoint at infinity has x0 below _AT_INFINITY = 1e-6 of |X|: the classification's own
+    # threshold
     assert np.all(np.abs(at_infinity[:, 0]) < 1e-6 * np.linalg.norm(at_infinity, axis=1))
 
 
@@ -112,6 +119,9 @@ def test_a_multiple_root_is_found_with_its_multiplicity(power):
                                      {(0, 1): 1, (0, 0): -1}])
     result = homotopy.solve(F, rng=0)
     assert result.multiplicity.tolist() == [power] and len(result.x) == 1
+    # a root of multiplicity m is determined to about eps^(1/m) only (its digits are those of the
+    # m-th root of round-off): 1e-7 for the double root (eps^(1/2) = 1.5e-8), 1e-4 for the triple
+    # one (eps^(1/3) = 6e-6)
     assert_allclose(result.real(), [[1.0, 1.0]], rtol=1e-4 if power == 3 else 1e-7)
     assert set(result.status) <= {"converged", "singular"} and "singular" in result.status
     assert (result.ends == "finite").all()
@@ -123,6 +133,8 @@ def test_simple_and_double_roots_together():
     F = PolynomialSystem.from_dicts([{(k, 0): v for k, v in enumerate(c)},
                                      {(0, 2): 1, (0, 0): -4}])
     result = homotopy.solve(F, rng=4)
+    # the double roots x = 1 carry about sqrt(eps) = 1.5e-8 relative error (their digits are those
+    # of sqrt(round-off)): 1e-7
     assert_allclose(result.real(), [[-2, -2], [-2, 2], [1, -2], [1, 2]], rtol=1e-7)
     assert sorted(result.multiplicity.tolist()) == [1, 1, 2, 2]
 
@@ -166,4 +178,6 @@ def test_track_ends_on_the_target_system(a, b, seed):
     H = lambda x, s: (x ** 2 - (a + b * s), np.diag(2 * x), np.array([-b + 0j]))  # noqa: E731
     end = homotopy.track(H, [np.sqrt(a) + 0j])
     assert end.status == "converged"
+    # track's corrector tolerance TOL = 1e-9 (relative) on a root of size sqrt(a + b): the residual
+    # x^2 - (a + b) is then below about 2 TOL (a + |b|); 1e-8 leaves a margin of five
     assert abs(end.x[0] ** 2 - (a + b)) <= 1e-8 * (a + abs(b))

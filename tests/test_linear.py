@@ -1,6 +1,7 @@
 """Tests of mechnum.linear: textbook systems, every public function's bad input, and
 properties checked by hypothesis (200 examples each) over the valid domain and its edges."""
 
+import warnings
 from fractions import Fraction
 
 import numpy as np
@@ -86,6 +87,7 @@ def test_burden_faires_iteration_counts(method, iterations, last):
     assert res.iterations == iterations
     assert res.x.round(4).tolist() == last
     assert res.step_norms.shape == (iterations,)
+    # the criterion itself: the last step is the first below tol = 1e-3
     assert res.step_norms[-1] < 1e-3 <= res.step_norms[-2]
 
 
@@ -93,6 +95,8 @@ def test_sor_textbook_solution_and_speed_up():
     # Burden and Faires, Example 7.4.3: 7 decimals, an absolute test
     sor = linear.sor(TRI_A, TRI_B, 1.25, seed=np.ones(3), tol=1e-7, relative=False)
     gs = linear.gauss_seidel(TRI_A, TRI_B, seed=np.ones(3), tol=1e-7, relative=False)
+    # the absolute step test with tol 1e-7 stops with an error of about rho / (1 - rho) times the
+    # step (rho = omega - 1 = 0.25): 1e-6 bounds it
     assert_allclose(sor.x, [3, 4, -5], atol=1e-6, rtol=0)
     assert sor.iterations < gs.iterations / 2
 
@@ -101,10 +105,15 @@ def test_optimal_omega_young_textbook_value():
     best = linear.optimal_omega(TRI_A)
     # rho_J^2 = 0.625 for this matrix, so omega* = 2 / (1 + sqrt(0.375)) = 1.2404...
     assert best.how == "young"
+    # Young's formula evaluated from the computed rho_J: round-off of O(1) numbers
     assert best.x == pytest.approx(2 / (1 + np.sqrt(0.375)), rel=1e-12)
+    # the SOR iteration matrix's radius at Young's omega is omega - 1 exactly; computed from its
+    # eigenvalues, to round-off (a defective eigenvalue there would cost digits, but rel 1e-12 holds
+    # for this 3 x 3)
     assert best.spectral_radius == pytest.approx(best.x - 1, rel=1e-12)
     fine = np.linspace(1.0, 1.5, 5001)
     radii = linear.sor_spectral_radii(TRI_A, fine)
+    # the grid's spacing is 1e-4: its minimiser lies within two spacings of the optimum
     assert fine[np.argmin(radii)] == pytest.approx(best.x, abs=2e-4)
 
 
@@ -113,7 +122,10 @@ def test_optimal_omega_numerical_is_a_minimum():
     best = linear.optimal_omega(A)
     assert best.how == "numerical"
     grid = np.linspace(0.01, 1.99, 199)
+    # the optimum found numerically is at least as good as any point of the grid, up to round-off of
+    # the radii
     assert best.spectral_radius <= linear.sor_spectral_radii(A, grid).min() + 1e-12
+    # as above: the radius at the returned omega, recomputed, to round-off
     assert best.spectral_radius == pytest.approx(
         linear.spectral_radius(linear.iteration_matrix(A, "sor", best.x)), rel=1e-12)
 
@@ -121,8 +133,11 @@ def test_optimal_omega_numerical_is_a_minimum():
 def test_condition_number_of_the_ill_conditioned_example():
     delta = 1e-2
     A = [[1.0, -2.0], [1.0, -(2 + delta)]]
+    # cond_inf of a 2 x 2 matrix, computed from its explicit inverse: pytest's default rel 1e-6 is
+    # far above the round-off (delta = 1e-2 costs two digits of sixteen)
     assert linear.condition_number(A, np.inf) == pytest.approx((3 + delta) * (4 + delta) / delta)
     for p in (1, 2, "fro"):
+        # the same norms numpy computes, by other means: its default rel 1e-6 is far above round-off
         assert linear.condition_number(A, p) == pytest.approx(np.linalg.cond(A, p))
     assert linear.condition_number([[1.0, 2.0], [2.0, 4.0]], 1) == np.inf
     assert linear.condition_number([[1.0, 2.0], [2.0, 4.0]], 2) > 1 / np.finfo(float).eps
@@ -130,6 +145,8 @@ def test_condition_number_of_the_ill_conditioned_example():
 
 def test_rectangular_condition_number_squares_in_normal_equations():
     A = np.vander(np.linspace(0, 1, 12), 4)
+    # cond(A^T A) = cond(A)^2 for the 2-norm in exact arithmetic; forming A^T A rounds at about
+    # eps cond(A)^2 = 2e-12 relative for this Vandermonde (cond(A) = 102): rel 1e-8 is generous
     assert linear.condition_number(A.T @ A) == pytest.approx(linear.condition_number(A) ** 2,
                                                               rel=1e-8)
 
@@ -141,6 +158,7 @@ def test_a_small_omega_does_not_fake_convergence():
     # omega = 1e-12 it is 1e-12 after one sweep, while the residual is still 2.
     with pytest.raises(ConvergenceError, match="did not converge") as info:
         linear.sor(A2, B2, 1e-12, maxiter=50)
+    # the residual after 50 sweeps of omega = 1e-12 is still 2 to within 50e-12 relative
     assert info.value.result.residual_norms[-1] == pytest.approx(2.0, rel=1e-9)
     sweep = linear.sor_sweep(A2, B2, [1e-12, 1.0], maxiter=50)
     assert sweep.converged.tolist() == [False, True]
@@ -159,6 +177,8 @@ def test_no_convergence_keeps_history():
     result = info.value.result
     assert result.history.shape == (6, 3) and result.residual_norms.shape == (6,)
     assert result.step_norms.shape == (5,) and not result.converged
+    # the step norms are the max-norms of the differences the history records, recomputed: round-off
+    # of O(1) numbers
     assert_allclose(np.abs(np.diff(result.history, axis=0)).max(axis=1), result.step_norms,
                     rtol=1e-14)
 
@@ -171,8 +191,11 @@ def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
     assert kept.history.shape == (kept.iterations + 1, 16)
     # the kept history is the iteration itself: from x0 to x, its steps and residuals recorded
     assert not kept.history[0].any() and np.array_equal(kept.history[-1], kept.x)
+    # as above, in the sparse route: round-off of O(1) numbers
     assert_allclose(np.abs(np.diff(kept.history, axis=0)).max(axis=1), kept.step_norms,
                     rtol=1e-12)
+    # the residuals recomputed from the history: round-off of b's size, and atol where the residual
+    # is itself near round-off
     assert_allclose(np.abs(b - kept.history @ A.T).max(axis=1), kept.residual_norms,
                     rtol=1e-9, atol=1e-15)
     with pytest.raises(ValueError, match="keep_history must be True or False"):
@@ -181,10 +204,13 @@ def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
 
 def test_residual_criterion():
     res = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=False)
+    # the criterion itself: the first residual below tol = 1e-9 (absolute)
     assert res.residual_norms[-1] < 1e-9 <= res.residual_norms[-2]
     relative = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=True,
                                    norm=2)
+    # the criterion itself, relative: tol ||b||_2
     assert relative.residual_norms[-1] <= 1e-9 * np.linalg.norm(TRI_B)
+    # the recorded residual is the 2-norm of b - A x recomputed: round-off
     assert_allclose(relative.residual_norms[-1], np.linalg.norm(TRI_B - TRI_A @ relative.x),
                     rtol=1e-12)
 
@@ -194,6 +220,8 @@ def test_long_runs_cross_the_compiled_chunks():
     res = linear.sor(TRI_A, TRI_B, 0.01, tol=1e-12, maxiter=CHUNK * 3)
     assert res.iterations > CHUNK
     assert res.history.shape == (res.iterations + 1, 3)
+    # the residuals recomputed from the history across chunk boundaries: round-off of b's size (atol
+    # for the last, near 1e-12)
     assert_allclose(res.residual_norms, np.abs(TRI_B - res.history @ TRI_A.T).max(axis=1),
                     rtol=1e-9, atol=1e-12)
 
@@ -213,6 +241,8 @@ def test_sparse_and_dense_give_the_same_iterates(method):
     dense = getattr(linear, method)(A.toarray(), b, **({"omega": 1.5} if method == "sor" else {}))
     sparse = getattr(linear, method)(A, b, **({"omega": 1.5} if method == "sor" else {}))
     assert sparse.iterations == dense.iterations
+    # the same sweeps on a dense and a sparse matrix (other summation orders): round-off of the
+    # solution's size
     assert_allclose(sparse.x, dense.x, rtol=0, atol=1e-12)
     assert_allclose(A @ sparse.x, b, atol=1e-9 * np.abs(b).max(), rtol=0)  # a relative stop
 
@@ -227,6 +257,9 @@ def test_poisson_sor_at_young_omega():
     assert sor.iterations * 10 < gs.iterations  # O(m) sweeps against O(m^2)
     cg = linear.conjugate_gradient(A, b, tol=1e-10)
     assert cg.iterations < sor.iterations
+    # both stop on their residual tests (1e-8 relative for SOR, 1e-10 for CG); Poisson's matrix
+    # (cond 389 at m = 30, solution up to 71) turns SOR's into an error of 8.3e-8 measured here, so
+    # 1e-7 is a bound with little margin: it checks the two agree to SOR's own test, no better
     assert_allclose(sor.x, cg.x, atol=1e-7, rtol=0)
 
 
@@ -235,6 +268,7 @@ def test_poisson2d_structure():
     assert A.shape == (49, 49) and A.nnz == 5 * 49 - 4 * 7
     assert abs(A - A.T).max() == 0
     rho_j = linear.spectral_radius(linear.iteration_matrix(A.toarray(), "jacobi"))
+    # an eigenvalue of a symmetric 49 x 49 matrix: a few ulps, relative to its size (about 1)
     assert rho_j == pytest.approx(np.cos(np.pi / 8), rel=1e-12)
 
 
@@ -249,8 +283,11 @@ def test_poisson3d_structure_and_jacobi_radius():
     assert dense[0, [1, m, m * m]].tolist() == [-1.0, -1.0, -1.0] and dense[m - 1, m] == 0
     eig = np.linalg.eigvalsh(dense)
     assert eig.min() > 0
+    # eigvalsh of a symmetric matrix: errors of eps times its norm (12), a few ulps relative to the
+    # largest eigenvalue
     assert eig.max() / 6 - 1 == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
     rho_j = linear.spectral_radius(linear.iteration_matrix(dense, "jacobi"))
+    # as above: the Jacobi radius, an eigenvalue of I - D^-1 A
     assert rho_j == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
     assert linear.poisson3d(1).toarray().tolist() == [[6.0]]
 
@@ -278,9 +315,12 @@ def test_compiled_sweep_is_the_textbook_sweep(system, omega, method):
         expected = (b - (A - np.diag(np.diag(A))) @ x) / np.diag(A)
     else:
         expected = linear.sweep_by_components(A, b, x, split.omega)
+    # one sweep written two ways (vectorised and by components): round-off of O(1) numbers
     assert_allclose(split.sweep(x, b), expected, rtol=1e-12, atol=1e-12)
     # ... and the matrix form x <- M x + c, with c the sweep of x = 0
     M = linear.iteration_matrix(A, method, omega)
+    # the sweep and its matrix form M x + c (M from an inverse of D - L): round-off amplified by
+    # that inverse, for the drawn systems at most a few hundred ulps: 1e-10
     assert_allclose(split.sweep(x, b), M @ x + split.sweep(np.zeros(b.size), b),
                     rtol=1e-10, atol=1e-10)
 
@@ -289,6 +329,8 @@ def test_sweep_by_components_by_hand():
     # One Gauss-Seidel sweep from 0 on [[4, 1], [1, 3]] x = [1, 2]: x1 = 1/4, x2 = (2 - 1/4)/3.
     assert_allclose(linear.sweep_by_components(A2, B2, [0.0, 0.0]), [0.25, 1.75 / 3],
                     rtol=1e-15)
+    # x1 = 1/4 and x2 = 1.75/3 computed in a few operations: a few ulps (1e-15 relative is about 4
+    # eps)
     assert_allclose(linear.sweep_by_components(A2, B2, [0.0, 0.0], 0.5), [0.125, 1.875 / 6],
                     rtol=1e-15)
 
@@ -412,6 +454,9 @@ def test_conjugate_gradient_solves_spd_systems(system):
     A, b = system
     res = linear.conjugate_gradient(A, b, tol=1e-12)
     assert res.converged and res.iterations <= 3 * b.size
+    # CG with tol 1e-12 on its relative residual stops with ||A x - b|| <= 1e-12 ||b||; 1e-9 allows
+    # for the recomputed residual's round-off (eps cond(A) ||b||, cond up to about 1e3 for these
+    # systems)
     assert np.linalg.norm(A @ res.x - b) <= 1e-9 * max(np.linalg.norm(b), 1e-300) + 1e-300
     assert res.step_norms.shape == (res.iterations,)
 
@@ -438,9 +483,12 @@ def test_least_squares_methods_meet_the_normal_equations(problem):
     qr = linear.least_squares(A, b)
     # optimality: the residual is orthogonal to the columns of A
     assert np.abs(A.T @ (A @ qr.x - b)).max() <= 1e-10 * (1 + np.abs(b).max())
+    # the stored residuals are A x - b recomputed: round-off of b's size (a few ulps)
     assert_allclose(qr.residuals, A @ qr.x - b, rtol=0, atol=1e-14 * (1 + np.abs(b).max()))
     for method in ("svd", "cholesky", "lu"):
         other = linear.least_squares(A, b, method)
+        # the normal equations square the condition number: their solutions differ from QR's by
+        # about eps kappa^2 (kappa <= 1e3 here, by the return above): 1e-6 relative
         assert_allclose(other.x, qr.x, rtol=1e-6, atol=1e-6 * (1 + np.abs(b).max()))
     assert qr.rank == A.shape[1]
 
@@ -452,6 +500,9 @@ def test_least_squares_iterative_methods(method, options):
     A = np.vander(np.linspace(0, 1, 9), 3)
     b = np.exp(np.linspace(0, 1, 9))
     fit = linear.least_squares(A, b, method, **options)
+    # both iterative methods stop at their tolerances (1e-12, 1e-14) on the normal equations of a
+    # Vandermonde of condition about 1e2: their answers agree with QR's to about 1e-10 relative,
+    # 1e-9 a margin of ten
     assert_allclose(fit.x, linear.least_squares(A, b).x, rtol=1e-9)
     assert fit.solver is not None and fit.solver.converged
 
@@ -466,7 +517,10 @@ def test_least_squares_rank_deficiency():
     assert fit.rank == 2
     # the minimum-norm solution: no component along the null vector (0, 2, -1)
     assert abs(fit.x @ [0.0, 2.0, -1.0]) < 1e-12
+    # the minimum-norm solution: its component along the null vector is round-off of O(1) numbers
     assert np.abs(A.T @ fit.residuals).max() < 1e-10
+# the residual of the least-squares fit is orthogonal to the columns, to round-off of b's size times
+# the condition (about 10)
 
 
 @pytest.mark.parametrize("call, error, message", [
@@ -494,6 +548,8 @@ def test_iterative_refinement_recovers_double_precision():
     n = 5
     res = linear.iterative_refinement(_hilbert(n), _hilbert(n) @ np.ones(n))
     assert np.max(np.abs(res.history[0] - 1)) > 1e-4  # a float32 solve alone is poor
+    # iterative refinement reaches about eps cond(H5) = 2.2e-16 * 4.8e5 = 1e-10 in x: 1e-9 is a
+    # margin of ten
     assert np.max(np.abs(res.x - 1)) < 1e-9
     assert res.converged and res.iterations >= 2
     assert res.step_norms.shape == (res.iterations,)
@@ -515,8 +571,11 @@ def test_iterative_refinement_reaches_maxiter():
 def test_iterative_refinement_is_scale_invariant(scale):
     # float32 holds neither 1e-50 nor 1e300: the right-hand side is scaled before the solve.
     res = linear.iterative_refinement(A2, scale * B2)
+    # the scaled system is solved as the unscaled one, by powers of two: the same digits, round-off
+    # only
     assert_allclose(res.x, scale * X2, rtol=1e-12)
     res = linear.iterative_refinement(scale * A2, B2)
+    # as above
     assert_allclose(res.x, X2 / scale, rtol=1e-12)
 
 
@@ -573,6 +632,9 @@ def test_sor_converges_on_spd_for_every_omega(system, omega):
     assert linear.spectral_radius(linear.iteration_matrix(A, "sor", omega)) < 1
     res = linear.sor(A, b, omega, tol=1e-12, maxiter=200_000)
     expected = np.linalg.solve(A, b)
+    # SOR stops on its relative step (1e-12); a contraction's error is then about the step times rho
+    # / (1 - rho), and the answer itself is only determined to eps cond(A): 1e-8 cond(A) bounds both
+    # for the drawn systems
     assert np.abs(res.x - expected).max() <= 1e-8 * linear.condition_number(A) * max(
         1.0, np.abs(expected).max())
 
@@ -586,6 +648,8 @@ def test_jacobi_and_gauss_seidel_converge_on_dominant_systems(system, method, no
                                   criterion="residual")
     assert res.converged
     limit = 1e-11 * (np.linalg.norm(b, norm) if relative else 1.0)
+    # the criterion itself, recomputed: the residual it measured, up to a few ulps of rounding in
+    # the recomputation
     assert np.linalg.norm(b - A @ res.x, norm) <= limit * (1 + 1e-9) + 1e-300
 
 
@@ -597,6 +661,7 @@ def test_sweep_matches_single_runs(system, ws):
     single = [linear.sor(A, b, w, tol=1e-9, criterion="residual", maxiter=50_000).iterations
               for w in ws]
     assert sweep.iterations.tolist() == single and sweep.converged.all()
+    # the same radii by the same formula, vectorised over omega: round-off
     assert_allclose(sweep.spectral_radii, linear.sor_spectral_radii(A, ws), rtol=1e-12)
 
 
@@ -617,6 +682,8 @@ def test_iteration_matrix_is_p_inverse_n(system, omega, method):
     D, L = np.diag(np.diag(A)), np.tril(A, -1)
     P = {"jacobi": D, "gauss_seidel": D + L, "sor": D / omega + L}[method]
     M = linear.iteration_matrix(A, method, omega)
+    # P M = P - A holds exactly; computed, M carries round-off of P^-1 (diagonal dominance keeps P's
+    # condition modest): 1e-9
     assert_allclose(P @ M, P - A, rtol=1e-9, atol=1e-9 * np.abs(A).max())
 
 
@@ -627,7 +694,10 @@ def test_spectral_radius_is_homogeneous_and_below_the_norm(values, c):
     n = int(round(np.sqrt(len(values))))
     M = np.array(values).reshape(n, n)
     rho = linear.spectral_radius(M)
+    # rho <= ||M||_2, with a few ulps of rounding in both (1e-300: M = 0)
     assert 0 <= rho <= np.linalg.norm(M, 2) * (1 + 1e-9) + 1e-300
+    # the eigenvalues of c M are c times those of M; a defective eigenvalue (drawn matrices may
+    # have one) is only determined to about sqrt(eps) = 1.5e-8 of the norm: 1e-6
     assert linear.spectral_radius(c * M) == pytest.approx(abs(c) * rho, rel=1e-6, abs=1e-9)
 
 
@@ -637,6 +707,8 @@ def test_sor_spectral_radii_match_the_iteration_matrices(system, ws):
     A, _ = system
     radii = linear.sor_spectral_radii(A, ws)
     expected = [linear.spectral_radius(linear.iteration_matrix(A, "sor", w)) for w in ws]
+    # two ways of computing the same eigenvalue moduli (the batched closed form, and eigenvalues of
+    # the matrix): round-off, with atol for radii near 0
     assert_allclose(radii, expected, rtol=1e-10, atol=1e-12)
     assert np.all(radii < 1)  # Ostrowski-Reich: SPD, omega in (0, 2)
 
@@ -677,6 +749,8 @@ def test_optimal_omega_beats_the_grid(system):
     best = linear.optimal_omega(A)
     assert 0 < best.x < 2
     grid = linear.sor_spectral_radii(A, OMEGA_GRID)
+    # the optimum found (a refinement of the grid's best point) is at least as good as every grid
+    # point, up to round-off of the radii
     assert best.spectral_radius <= grid.min() + 1e-12
 
 
@@ -685,7 +759,10 @@ def test_optimal_omega_beats_the_grid(system):
 def test_condition_number_matches_numpy(system, p):
     A, _ = system
     cond = linear.condition_number(A, p)
+    # cond >= 1 for an induced norm, up to round-off (the Frobenius one is not induced)
     assert cond >= 1 - 1e-12 or p == "fro"
+    # the same norms numpy computes, through another factorisation: round-off amplified by cond
+    # (the drawn matrices are diagonally dominant, modestly conditioned): 1e-8
     assert cond == pytest.approx(np.linalg.cond(A, p), rel=1e-8)
 
 
@@ -694,10 +771,13 @@ def test_condition_number_matches_numpy(system, p):
 def test_poisson2d_is_spd_with_known_jacobi_radius(m):
     A = linear.poisson2d(m)
     assert A.shape == (m * m, m * m) and abs(A - A.T).max() == 0
+    # row sums of integers: exact; rtol only for the form
     assert_allclose(A.sum(axis=1)[[0, -1]], [2.0, 2.0] if m > 1 else [4.0, 4.0], rtol=1e-12)
     if m <= 6:
         eig = np.linalg.eigvalsh(A.toarray())
         assert eig.min() > 0
+        # eigvalsh of a symmetric matrix: errors of eps times its norm (8), a few ulps relative to
+        # the largest eigenvalue
         assert eig.max() / 4 - 1 == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
 
 
@@ -719,9 +799,12 @@ def test_the_default_test_is_relative():
     # stops after one sweep at [3.0e-13, 6.8e-13], 200 % off
     A = A2 * 1e12
     res = linear.sor(A, B2, 1.2)
+    # SOR stops on its relative step (default 1e-10): for this 2 x 2 contraction the error is of the
+    # same size; 1e-9 a margin of ten
     assert_allclose(res.x, X2 / 1e12, rtol=1e-9)
     for method in ("jacobi", "gauss_seidel"):
         assert_allclose(getattr(linear, method)(A, B2).x, X2 / 1e12, rtol=1e-9)
+        # as above, for Jacobi and Gauss-Seidel
         assert_allclose(getattr(linear, method)(sp.csr_array(A), B2).x, X2 / 1e12, rtol=1e-9)
     absolute = linear.sor(A, B2, 1.2, relative=False)
     assert absolute.iterations == 1 and np.abs(absolute.x / (X2 / 1e12) - 1).max() > 1
@@ -748,6 +831,8 @@ def test_stationary_solvers_are_indifferent_to_scale(system, power, method, crit
     tested = 1e-10 * min(np.abs(one.x).max(), np.abs(scaled.x).max(), np.abs(b).max())
     if tested >= np.finfo(float).tiny:
         assert scaled.iterations == one.iterations
+        # the same iteration in a scale shifted by a power of two: the same digits exactly, rtol
+        # only for the form
         assert_allclose(scaled.x * 2.0 ** power, one.x, rtol=1e-12, atol=1e-300)
     exact = np.linalg.solve(A, b)
     if criterion == "residual":   # the documented tolerance, recomputed
@@ -763,6 +848,8 @@ def test_conjugate_gradient_meets_its_tolerance(system, power):
     A, b = system
     A = A * 2.0 ** power
     res = linear.conjugate_gradient(A, b, tol=1e-10)
+    # CG with tol 1e-10 on its relative residual; 1e-9 allows for the recomputed residual's
+    # round-off
     assert np.linalg.norm(b - A @ res.x) <= 1e-9 * np.linalg.norm(b) + 1e-300
 
 
@@ -806,3 +893,22 @@ def test_a_sparse_matrix_of_float16_is_accepted():
         checked = check_matrix(A)
         assert checked.dtype == np.float64
         assert_allclose(checked.toarray(), TRI_A, rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("scale", [2.0 ** -1040, 1e-300, 1e300])
+def test_scale_invariant_quantities_ignore_the_scale(scale):
+    # cond(c A) = cond(A) and SOR's iteration matrix of c A is that of A: with subnormal (2^-1040)
+    # or huge entries the inverse and D^-1 overflowed (cond came out inf, optimal_omega raised
+    # numpy's LinAlgError). A power of two keeps every digit; 1e-300 and 1e300 round each entry
+    # once, so the results agree to a few ulps (rtol 1e-14).
+    A = np.array([[4.0, 1.0, 0.0], [1.0, 4.0, 1.0], [0.0, 1.0, 4.0]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        for p in (1, 2, np.inf, "fro"):
+            # a few ulps, as above
+            assert linear.condition_number(scale * A, p) == pytest.approx(
+                linear.condition_number(A, p), rel=1e-14)
+        assert_allclose(linear.sor_spectral_radii(scale * A, [1.0, 1.2]),
+                        linear.sor_spectral_radii(A, [1.0, 1.2]), rtol=1e-14)  # as above
+        assert linear.optimal_omega(scale * A).x == pytest.approx(  # as above
+            linear.optimal_omega(A).x, rel=1e-14)

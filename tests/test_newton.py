@@ -24,6 +24,8 @@ def circle_line_jac(x):
 def test_textbook_system_converges_quadratically():
     res = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
     assert res.converged
+    # the root is 1/sqrt(2) to round-off: tol 1e-14 leaves an error far below it, so what remains is
+    # a few ulps of 0.7 (eps 0.7 = 1.6e-16)
     np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], rtol=0, atol=1e-15)
     assert res.history.shape == (res.iterations + 1, 2)
     assert res.residual_norms.shape == (res.iterations + 1,)
@@ -46,6 +48,7 @@ def test_step_criterion_counts_the_confirming_step():
     residual = solve(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8,
                      criterion="residual")
     assert (step.iterations, residual.iterations) == (2, 1)
+    # a 2 x 2 solve of condition about 2.6: its answer is exact to a few ulps of its O(1) entries
     np.testing.assert_allclose(step.x, np.linalg.solve(A, b), atol=1e-14, rtol=0)
 
 
@@ -68,14 +71,51 @@ def test_norm_choice_changes_the_test_not_the_iterates():
 
 def test_finite_difference_jacobian_is_the_default():
     res = solve(circle_line, [1.0, 0.5], tol=1e-12)
+    # forward differences give J to about sqrt(eps) = 1.5e-8, which only slows convergence: the last
+    # steps still shrink below tol 1e-12, and the root is O(1)
     np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12, rtol=0)
     J = fd_jacobian(circle_line, np.array([0.3, -0.7]))
+    # a forward difference errs by about sqrt(eps) |f''| ~ 1e-8 here (second derivatives of 2): 1e-7
+    # leaves a margin of ten
     np.testing.assert_allclose(J, circle_line_jac([0.3, -0.7]), atol=1e-7, rtol=0)
+
+
+@pytest.mark.parametrize("x", [0.5, -0.25, 3.0, 1e6])
+def test_fd_jacobian_step_is_sqrt_eps_relative(x):
+    # What it protects: the forward-difference step h = sqrt(eps) max(1, |x|), which balances
+    # truncation (h |f''| / 2) against round-off (eps |f| / h). For f = x^2 the difference
+    # quotient is exactly 2 x + h: its error measures h itself, which must be sqrt(eps) for
+    # |x| <= 1 and sqrt(eps) |x| beyond (a step that did not grow with x would vanish in x + h
+    # at 1e6). The bound allows a quarter of h for the rounding of x + h and of the quotient.
+    h = np.sqrt(np.finfo(float).eps) * max(1.0, abs(x))
+    J = fd_jacobian(lambda z: z ** 2, np.array([x]))
+    assert abs(J[0, 0] - 2 * x - h) <= 0.25 * h
+
+
+BIG = np.sqrt(np.finfo(float).max) * (1 - 1e-9)  # BIG^2 is a float, (BIG (1 + 1.5e-8))^2 is not
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: fd_jacobian(None, np.ones(2)), "fun must be"),
+    (lambda: fd_jacobian(lambda z: z, np.ones((2, 2, 2))), "x must"),
+    (lambda: fd_jacobian(lambda z: z, np.ones(0)), "x must have at least one unknown"),
+    (lambda: fd_jacobian(lambda z: z[:1], np.ones(2)), "fun returned shape"),
+    (lambda: fd_jacobian(lambda z: z ** 2, np.array([BIG, 1.0])), "not finite"),
+])
+def test_fd_jacobian_refuses_what_it_cannot_difference(call, words):
+    # z^2 is finite at BIG, not at BIG + h (it passes the largest float): a named error, and no
+    # overflow warning leaks (the mutation runs make RuntimeWarnings errors, as make explore does)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        with pytest.raises((ValueError, NonFiniteError), match=words):
+            call()
 
 
 def test_fd_jacobian_of_a_batch():
     x = np.array([[0.3, -0.7], [1.0, 2.0]])
     J = fd_jacobian(lambda z: np.stack([z[:, 0] ** 2, z[:, 0] * z[:, 1]], axis=-1), x)
+    # forward differences err by about sqrt(eps) times the second derivatives (2 here): 1e-6 is a
+    # margin of about a hundred
     np.testing.assert_allclose(J[1], [[2.0, 0.0], [2.0, 1.0]], atol=1e-6, rtol=0)
 
 
@@ -114,6 +154,42 @@ def test_numerically_singular_jacobian_is_refused():
         solve(lambda x: J @ x - np.array([1.0, 2.0]), [0.0, 0.0], lambda x: J)
 
 
+@pytest.mark.parametrize("d, delta, flagged", [(1e-3, 2.0 ** -52, True), (1.0, 1e-12, False)])
+def test_the_trust_test_flags_a_step_of_no_digit_and_only_such_a_step(d, delta, flagged):
+    # What it protects: the threshold of the singular-Jacobian test, a growth of the step past
+    # 1/eps = 4.5e15 times the residual (no digit of the step is left). Rows (1, 1) and
+    # d (1, 1 + delta) with f = (0, -1): the step is about 1/(d delta), so the measured growth
+    # is 9e18 for d = 1e-3, delta = eps (a thousand times past the bound, a thousand times
+    # short of a bound a million times laxer) and 2e12 for delta = 1e-12 (a thousand times
+    # inside it, a thousand times past a bound a million times stricter): that honest step,
+    # cond 4e12, is taken.
+    A = np.array([[1.0, 1.0], [d, d * (1 + delta)]])
+    b = np.array([0.0, -1.0])
+    if flagged:
+        with pytest.raises(SingularJacobianError, match=r"condition number >= 9\.\d+e\+18"):
+            solve(lambda x: A @ x + b, [0.0, 0.0], lambda x: A)
+    else:
+        res = solve(lambda x: A @ x + b, [0.0, 0.0], lambda x: A, criterion="residual",
+                    tol=1e-3)
+        assert res.converged and res.iterations == 1
+
+
+@pytest.mark.parametrize("scale", [1e-12, 1e12])
+def test_the_relative_residual_rule_ignores_the_units_of_f(scale):
+    # What it protects: relative=True measures ||f|| against ||f(x0)||, so a badly scaled
+    # system stops where a well scaled one does. f = scale (x^2 - 2) from x0 = 1: with
+    # scale 1e-12, |f(x0)| = 1e-12 is already below an absolute tol of 1e-8 (an absolute test
+    # would return the seed, 41 % off); with scale 1e12, round-off in f is about 1e-3, so an
+    # absolute 1e-8 is never met.
+    res = solve(lambda x: scale * (x ** 2 - 2), [1.0], lambda x: np.diag(2 * scale * x),
+                tol=1e-8, criterion="residual", relative=True)
+    assert res.converged and res.iterations >= 3
+    # the criterion itself: tol times ||f(x0)|| = scale
+    assert res.residual_norms[-1] <= 1e-8 * scale
+    # |x^2 - 2| <= 1e-8 bounds the error by 1e-8 / (2 sqrt 2) < 1e-8 sqrt 2
+    np.testing.assert_allclose(res.x, [np.sqrt(2)], rtol=1e-8)
+
+
 def atan_system(x):
     """Newton on arctan(x) = 0 diverges from |x0| > 1.39 (the iterates alternate and grow)."""
     return np.arctan(x)
@@ -140,6 +216,8 @@ def test_non_finite_iterate_is_not_convergence():
 def test_batch_has_per_system_convergence():
     c = np.array([2.0, 3.0, 400.0])
     res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((3, 1)), lambda x: 2 * x[:, :, None])
+    # Newton's quadratic convergence to tol 1e-10 ends within round-off of sqrt(c) (<= 20): a few
+    # ulps, relative
     np.testing.assert_allclose(res.x[:, 0], np.sqrt(c), rtol=1e-14)
     singles = [solve(lambda x, ci=ci: x ** 2 - ci, [1.0], lambda x: np.diag(2 * x)).iterations
                for ci in c]
@@ -151,6 +229,8 @@ def test_batch_has_per_system_convergence():
 def test_batch_with_fd_jacobian():
     c = np.array([2.0, 5.0])
     res = solve_batch(lambda x: x ** 2 - c[:, None], np.ones((2, 1)), tol=1e-12)
+    # forward differences slow the last steps but the step test (tol 1e-12) still stops within 1e-12
+    # relative of the root
     np.testing.assert_allclose(res.x[:, 0], np.sqrt(c), rtol=1e-12)
 
 
@@ -161,6 +241,8 @@ def test_batch_singular_system_does_not_stop_the_others():
                     np.array([[1.0], [0.0], [1.0]]), lambda x: 2 * x[:, :, None])
     res = info.value.result
     assert res.singular[1] and not res.singular[0]
+    # the two regular systems converge quadratically to their roots; 1e-12 relative is round-off
+    # plus the last step's size
     np.testing.assert_allclose(res.x[[0, 2], 0], [2.0, 3.0], rtol=1e-12)
     assert res.converged[[0, 2]].all()
 
@@ -184,11 +266,33 @@ def test_batch_wrong_jacobian_shape():
         solve_batch(lambda x: x, np.ones((2, 2)), lambda x: np.ones((2, 2)))
 
 
+@pytest.mark.parametrize("shape", [(2, 2), (1, 1, 1), (3, 1, 2), (3, 1, 1, 1), (3,)])
+@pytest.mark.parametrize("options", [{}, {"jac": True}, {"damping": True, "independent": True}])
+def test_batch_checks_the_jacobian_shape_on_every_route(shape, options):
+    # a Jacobian of another shape would broadcast (a (1, 1, 1) one to every system) or be read
+    # wrongly: each route that evaluates J (jac, fun's pair, the stacked line search) checks it
+    c = np.array([2.0, 3.0, 4.0])
+    seeds = np.full((3, 1), 1.0)
+    if options.get("jac"):
+        def fun(x):
+            return x ** 2 - c[:, None], np.ones(shape)
+        jac, what = True, "fun's Jacobian"
+    else:
+        def fun(x):
+            return x ** 2 - c[: len(x), None]
+        jac, what = (lambda x: np.ones(shape)), "jac"
+    extra = {k: v for k, v in options.items() if k != "jac"}
+    with pytest.raises(ValueError, match=f"{what} returned shape"):
+        solve_batch(fun, seeds, jac, **extra)
+
+
 @settings(max_examples=60, deadline=None)
 @given(a=st.floats(1e-3, 1e3), start=st.floats(0.5, 2.0))
 def test_cube_root_from_anywhere_near(a, start):
     x0 = start * np.cbrt(a)
     res = solve(lambda x: x ** 3 - a, [x0], lambda x: np.diag(3 * x ** 2), tol=1e-13)
+    # tol 1e-13 (relative step) bounds the error by about 1e-13 relative after the quadratic last
+    # step; 1e-12 leaves a margin of ten
     assert abs(res.x[0] - np.cbrt(a)) <= 1e-12 * np.cbrt(a)
 
 
@@ -198,6 +302,8 @@ def test_damping_rescues_a_start_that_plain_newton_loses():
     with pytest.raises((ConvergenceError, SingularJacobianError)), np.errstate(over="ignore"):
         solve(atan_system, [1.5], atan_jac)  # the iterates grow until J underflows
     res = solve(atan_system, [1.5], atan_jac, damping=True, tol=1e-14)
+    # Newton on arctan converges cubically to 0 (x -> -2x^3/3) and lands on 0.0: a relative step
+    # test cannot stop before (near 0 a step is about |x|); the bound asks for a root at round-off
     assert res.converged and abs(res.x[0]) < 1e-14
     assert np.all(np.diff(res.residual_norms) <= 0)  # the line search makes |f| decrease
 
@@ -236,6 +342,7 @@ def test_batch_status_names_every_outcome():
     assert res.status.tolist() == ["converged", "singular", "left-domain", "non-finite",
                                    "converged"]
     assert set(res.status) <= set(STATUSES)
+    # two regular roots reached by quadratic steps: the error is a few ulps of 2 and sqrt(2)
     np.testing.assert_allclose(res.x[[0, 4], 0], [2.0, np.sqrt(2)], rtol=1e-14)
     assert res.njev >= 1 and res.nfev == res.njev + 1  # one fun per step, plus the start
     with pytest.raises(SingularJacobianError):
@@ -256,6 +363,7 @@ def test_damped_batch_stays_in_the_domain_by_backtracking():
     res = solve_batch(fun, [[-30.0]], jac, damping=True, domain=lambda x: x[:, 0] < 1,
                       raise_on_failure=False, tol=1e-13)
     assert res.status.tolist() == ["converged"]
+    # tol 1e-13 relative on the step: the root 0.75 is met to about that, plus round-off
     np.testing.assert_allclose(res.x[0, 0], 0.75, rtol=1e-13)
 
 
@@ -278,13 +386,44 @@ def cubic_pair_jac(z):
                      np.stack([zero, 2 * z[:, 1]], -1)], axis=1)
 
 
+def test_solve_all_accounts_for_its_work():
+    # What it protects: a search's evidence is its accounting. n_starts and n_check starts were
+    # run (a status each), fun and jac were called nfev and njev times (the final residual check
+    # included), and the message says how many roots from how many starts, by status.
+    calls = {"fun": 0, "jac": 0}
+
+    def fun(z):
+        calls["fun"] += 1
+        return cubic_pair(z)
+
+    def jac(z):
+        calls["jac"] += 1
+        return cubic_pair_jac(z)
+
+    sample = lambda rng, m: rng.uniform(-2, 2, (m, 2))  # noqa: E731
+    found = solve_all(fun, sample, jac, n_starts=30, check=2, rng=5)
+    assert (found.n_starts, found.n_check, len(found.status), found.iterations.shape) == (
+        30, 60, 90, (90,))
+    assert (found.nfev, found.njev) == (calls["fun"], calls["jac"])
+    counts = {str(s): int(c) for s, c in zip(*np.unique(found.status, return_counts=True))}
+    assert found.message == (f"6 roots from 90 starts ({counts}); "
+                             f"{found.new_in_check} new in the check")
+    assert found.new_in_check == 0 and found.complete
+    # the defaults: a thousand starts and ten times as many in the check
+    assert solve_all(cubic_pair, sample, cubic_pair_jac, rng=5).n_starts == 1000
+
+
 def test_solve_all_finds_every_root_of_a_polynomial_system():
     found = solve_all(cubic_pair, lambda rng, m: rng.uniform(-2, 2, (m, 2)), cubic_pair_jac,
                       n_starts=300, rng=1)
     expected = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 1)], dtype=float)
+    # each root is met by quadratic convergence and deduplicated; round-off of roots of size 1 is
+    # ~1e-16, 1e-12 allows for the last step's size
     np.testing.assert_allclose(found.x, expected, atol=1e-12, rtol=0)
     assert found.complete and found.new_in_check == 0 and found.n_check == 3000
     assert found.hits.sum() == found.status_counts["converged"] and found.hits.min() > 10
+    # the polished roots of O(1) cubics have residuals at round-off (about 1e-15); 1e-12 is the
+    # deduplication tolerance's scale
     assert np.all(found.residual_norms < 1e-12)
 
 
@@ -304,6 +443,7 @@ def test_solve_all_seeds_and_domain():
     assert found.status_counts["left-domain"] >= 1 and found.n_check == 0
     found = solve_all(cubic_pair, sample, cubic_pair_jac, n_starts=20, check=0, rng=3,
                       seeds=[[-1.1, -1.1]])
+    # the roots +-(1, 1) are met to round-off of O(1) numbers; 1e-12 allows for the last step's size
     np.testing.assert_allclose(found.x, [[-1.0, -1.0], [1.0, 1.0]], atol=1e-12, rtol=0)
     assert found.hits.tolist() == [1, 20]
 
@@ -328,6 +468,8 @@ def test_damped_newton_finds_the_cube_root_from_far_away(a, start):
     except (ConvergenceError, SingularJacobianError) as error:
         assert error.result is not None and str(error)
         return
+    # damping only changes the path: the last steps are Newton's, so the relative step test (tol
+    # 1e-13) leaves an error below 1e-12 relative
     np.testing.assert_allclose(res.x[0], np.cbrt(a), rtol=1e-12)
     assert res.history.shape == (res.iterations + 1, 1)
 
@@ -379,6 +521,8 @@ def test_damping_calls_a_single_system_with_vectors_only():
         return np.arctan(x)
 
     res = solve(fun, [1.5], lambda x: np.diag(1 / (1 + x ** 2)), damping=True, tol=1e-14)
+    # Newton on arctan converges cubically to 0 (x -> -2x^3/3) and lands on 0.0: a relative step
+    # test cannot stop before (near 0 a step is about |x|); the bound asks for a root at round-off
     assert res.converged and abs(res.x[0]) < 1e-14
 # --- Broyden's method -------------------------------------------------------------------------
 
@@ -391,6 +535,8 @@ def test_broyden_converges_superlinearly_with_one_jacobian():
 
     res = broyden(circle_line, [1.0, 0.5], jac, tol=1e-14)
     newton = solve(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-14)
+    # Broyden's last step is a full Newton step here (same Jacobian at the start, same test): it
+    # ends at the same root to a few ulps of 0.7
     np.testing.assert_allclose(res.x, newton.x, rtol=0, atol=1e-15)
     assert calls["jac"] == 1 and res.iterations > newton.iterations
     e = np.linalg.norm(res.history[:-1] - res.x, axis=1)
@@ -403,11 +549,14 @@ def test_broyden_keeps_an_exact_jacobian_of_a_linear_system():
     A, b = np.array([[3.0, 1.0], [1.0, 2.0]]), np.array([1.0, 1.0])
     res = broyden(lambda x: A @ x - b, [5.0, -5.0], lambda x: A, tol=1e-8)
     assert res.iterations == 2
+    # the linear system's solution to a few ulps (condition 2.6, entries O(1))
     np.testing.assert_allclose(res.x, np.linalg.solve(A, b), atol=1e-14, rtol=0)
 
 
 def test_broyden_without_a_jacobian_uses_differences():
     res = broyden(circle_line, [1.0, 0.5], tol=1e-13)
+    # Broyden with differences converges superlinearly to tol 1e-13: the root 1/sqrt(2) to within
+    # 1e-12
     np.testing.assert_allclose(res.x, [2 ** -0.5, 2 ** -0.5], atol=1e-12, rtol=0)
 
 
@@ -442,15 +591,22 @@ def test_broyden_finds_cube_roots_from_nearby(a, b, start):
         assert error.result is not None  # a named failure carries the partial result
         return
     assert res.x.shape == (2,) and res.converged
+    # the tolerance 1e-12 max(roots) on the step bounds the error by about that, relative; 1e-9 is a
+    # generous margin for Broyden's superlinear (not quadratic) last step
     np.testing.assert_allclose(res.x, roots, rtol=1e-9)
 
 
 def test_max_step_bounds_every_step():
     res = solve(atan_system, [1.5], atan_jac, max_step=0.5, tol=1e-14)
+    # Newton on arctan converges cubically to 0 (x -> -2x^3/3) and lands on 0.0: a relative step
+    # test cannot stop before (near 0 a step is about |x|); the bound asks for a root at round-off
     assert res.converged and abs(res.x[0]) < 1e-14
+    # max_step 0.5 is applied in floating point (step * (0.5 / largest)): a rounding of 0.5 may
+    # exceed it by an ulp (1e-16)
     assert np.all(res.step_norms <= 0.5 + 1e-15) and res.step_norms[0] == pytest.approx(0.5)
     batch = solve_batch(lambda x: np.arctan(x), [[1.5], [-3.0]],
                         lambda x: (1 / (1 + x ** 2))[:, :, None], max_step=0.5, tol=1e-14)
+    # as above: an ulp of 0.5 of rounding in the shortening
     assert batch.converged.all() and np.nanmax(batch.step_norms) <= 0.5 + 1e-15
     with pytest.raises(ValueError, match="max_step must be positive"):
         solve(atan_system, [1.5], atan_jac, max_step=0.0)
@@ -463,6 +619,8 @@ def test_independent_batch_gives_the_same_iterates_with_fewer_calls():
     a = solve_batch(cubic_pair, x0, cubic_pair_jac, **kwargs)
     b = solve_batch(cubic_pair, x0, cubic_pair_jac, independent=True, **kwargs)
     np.testing.assert_array_equal(a.status, b.status)
+    # the same arithmetic in another grouping of the batch: the iterates agree to round-off of O(1)
+    # numbers
     np.testing.assert_allclose(a.x, b.x, rtol=0, atol=1e-14)
     assert b.nfev < a.nfev
 
@@ -488,7 +646,10 @@ def test_a_max_step_below_tol_cannot_fake_convergence():
     assert batch.status.tolist() == ["maxiter"]
     # with room to walk there, it converges, and only where the full step is small
     res = solve(*square[:1], [10.0], square[1], tol=1e-3, max_step=0.5, maxiter=100)
+    # with tol 1e-3 on the relative step, the error after that step is far smaller than 1e-3
+    # relative (quadratic convergence): the test only asks that it meet its tolerance
     assert abs(res.x[0] - np.sqrt(2)) < 1e-3 * np.sqrt(2)
+    # the criterion itself (tol 1e-3 on the relative step)
     assert res.full_step_norms[-1] <= 1e-3 * abs(res.x[0]) < res.full_step_norms[0]
 
 
@@ -497,8 +658,26 @@ def test_damping_with_max_step_measures_armijo_against_the_full_step():
     # 1e-4 |f| Armijo would ask of a full step: the shortened step must be judged as such
     res = solve(atan_system, [50.0], atan_jac, damping=True, max_step=0.1, maxiter=1000,
                 tol=1e-12)
+    # the bounded steps bring x near 0, then Newton's cubic convergence on arctan lands on 0.0: the
+    # bound only asks for a root at round-off
     assert res.converged and abs(res.x[0]) < 1e-12
+    # max_step 0.1 up to the rounding of the shortening (a few ulps, relative)
     assert res.step_norms.max() <= 0.1 * (1 + 1e-12) and res.iterations > 490
+
+
+def test_damping_refuses_a_full_step_that_increases_the_residual():
+    # What it protects: Armijo's sufficient decrease, ||f|| <= (1 - 1e-4 alpha) ||f(x)||.
+    # arctan's Newton iteration has a 2-cycle at +-1.3917452; from 1e-5 beyond it the full step
+    # lands at -(1.3917452 + 2.6e-5), where |f| is larger by a relative 6e-6 only: a line
+    # search that accepted a step that does not decrease ||f|| would take it (and cycle
+    # outwards); Armijo's halves it, to about 0, the root.
+    res = solve(atan_system, [1.3917452002707 + 1e-5], atan_jac, damping=True)
+    # the halved step lands near 0, then Newton's cubic convergence on arctan lands on 0.0 (the
+    # residuals above end at exactly 0): the bound only asks for a root at round-off
+    assert res.converged and abs(res.x[0]) < 1e-12
+    assert res.residual_norms[1] < res.residual_norms[0]
+    assert np.all(np.diff(res.residual_norms) <= 0)
+    assert res.step_norms[0] < 0.6 * res.full_step_norms[0]  # the first step was halved
 
 
 def test_the_default_step_test_is_relative():
@@ -506,6 +685,7 @@ def test_the_default_step_test_is_relative():
     # step, 42 % off; the relative test finds s to ten digits
     s = 1e-13
     res = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3))
+    # the relative step test with the default tol 1e-10 finds s to about ten digits
     assert abs(res.x[0] - s) <= 1e-10 * s
     absolute = solve(lambda x: (x / s) ** 3 - 1, [2 * s], lambda x: np.diag(3 * x ** 2 / s ** 3),
                      relative=False)
@@ -535,6 +715,7 @@ def test_jac_true_takes_the_jacobian_from_fun():
     assert broyden(counted, [1.0, 0.5], jac=True, tol=1e-14).converged
     batch = solve_batch(lambda z: (cubic_pair(z), cubic_pair_jac(z)), [[0.8, 0.7], [-2.0, -3.0]],
                         jac=True, tol=1e-14)
+    # both roots (+-1, +-1) to a few ulps after quadratic convergence to tol 1e-14
     np.testing.assert_allclose(batch.x, [[1.0, 1.0], [-1.0, -1.0]], rtol=1e-14)
     found = solve_all(lambda z: (cubic_pair(z), cubic_pair_jac(z)),
                       lambda rng, m: rng.uniform(-2, 2, (m, 2)), True, n_starts=100, rng=1)
@@ -573,7 +754,14 @@ def test_solve_batch_refuses_bad_flags_and_domains(kwargs, match):
     ({"rng": "a"}, "rng must be"), ({"rng": -1}, "rng must be"),
     ({"domain": lambda z: np.ones(2, bool)}, "domain returned shape"),
     ({"n_starts": 10 ** 8}, "bound on the work"), ({"check": 10 ** 6}, "bound on the work"),
-    ({"sample": lambda rng, m: np.empty((0, 2))}, r"must return 10 starts"),
+    ({"n_starts": 10_000_001}, "n_starts must"),
+    ({"n_starts": 1000, "check": 10_000}, "check must"),
+    ({"halvings": 53}, "halvings must"), ({"same": 0.0}, "same must"),
+    ({"sample": "a"}, "sample must be callable"),
+    ({"sample": lambda rng, m: np.empty((0, 2))},
+     r"sample\(rng, 10\) must return 10 starts, shape \(10, n\), got shape \(0, 2\)"),
+    ({"sample": lambda rng, m: np.ones((m, 3)), "seeds": [[0.5, 0.5]]},
+     r"must return 10 starts, shape \(10, 2\), got shape \(10, 3\)"),
     ({"sample": lambda rng, m: np.full((m, 2), np.nan)}, "must be finite"),
 ])
 def test_solve_all_refuses_bad_input(kwargs, match):
@@ -677,6 +865,7 @@ def test_solve_meets_its_tolerance_or_says_why(system, damping):
         assert error.result.status in STATUSES and error.result.status != "converged"
         return
     assert res.converged and close_to_the_root(res.x, root, 1e-10)
+    # the criterion itself, with the default tol 1e-10 and the relative step
     assert res.full_step_norms[-1] <= 1e-10 * np.linalg.norm(res.x)
 
 
@@ -689,6 +878,7 @@ def test_solve_residual_criterion_meets_its_tolerance_or_says_why(system):
     except (ConvergenceError, SingularJacobianError) as error:
         assert error.result.status in STATUSES and error.result.status != "converged"
         return
+    # the criterion itself: the residual tolerance the call asked for
     assert np.linalg.norm(fun(res.x)) <= 1e-8 * max(1.0, np.abs(root).max())
 
 
@@ -728,5 +918,9 @@ def test_solve_all_roots_meet_the_tolerance(r, seed):
     known = np.array([[a, b] for a in r[:2] for b in r[2:]])
     assert set(found.status) <= set(STATUSES)
     for root in found.x:
+        # every root returned is one of the known roots to the deduplication tolerance (1e-10
+        # relative) of solve_all
         assert np.abs(known - root).max(axis=1).min() <= 1e-10 * (1 + np.abs(root).max())
+    # residuals of polished roots are round-off: about eps times the terms of the cubics, which grow
+    # as the square of the roots' size
     assert np.all(found.residual_norms <= 1e-12 * (1 + np.abs(known).max()) ** 2)

@@ -28,8 +28,13 @@ def test_roots_are_the_companion_eigenvalues_and_match_the_true_roots(r, lead, b
     found = poly.roots(C)
     assert found.shape == (batch, len(r))
     for row in found:
+        # the roots' sensitivity to the coefficients grows with their size to the power of the
+        # degree (Wilkinson): round-off of the companion's eigenvalues, eps |c| scaled by that, is
+        # below 1e-6 of it for these small degrees
         assert_allclose(np.sort(row.real), r, atol=1e-6 * (1 + np.abs(r).max()) ** len(r), rtol=0)
     M = poly.companion(c)
+    # np.poly rebuilds the characteristic polynomial from the companion's eigenvalues: round-off of
+    # the coefficients' size, amplified by the eigenvalues' conditioning (at most degree 5 here)
     assert_allclose(np.poly(M)[::-1] * c[-1], c, atol=1e-9 * np.abs(c).max(), rtol=0)
 
 
@@ -65,6 +70,8 @@ def test_sylvester_determinant_is_the_product_of_root_differences(p, q):
     # Res(p, q) = prod (p_i - q_j) for monic p, q: zero exactly when a root is shared
     assert exact == np.prod([pi - qj for pi in p for qj in q], dtype=object)
     hadamard = np.prod(np.linalg.norm(S, axis=1))  # bounds |det S|; round-off is eps of it
+    # the determinant of a matrix with integer entries, computed by LU in floating point: its
+    # round-off is a small multiple of eps times Hadamard's bound (eps = 2.2e-16)
     assert_allclose(np.linalg.det(S), float(exact), atol=1e-13 * hadamard, rtol=0)
 
 
@@ -123,8 +130,11 @@ def test_system_evaluation_and_jacobian_agree_with_finite_differences(seed):
     J = system.jacobian(x)
     h = 1e-7
     fd = np.column_stack([(system(x + h * e) - system(x - h * e)) / (2 * h) for e in np.eye(3)])
+    # central differences with h = 1e-7 err by h^2 |J''| ~ 1e-14 and by round-off eps |f| / h ~ 1e-9
+    # relative: 1e-5 is a wide margin for polynomials of degree <= 6 with O(1) coefficients
     assert_allclose(J, fd, atol=1e-5 * (1 + np.abs(J).max()), rtol=0)
     H = system.homogenized()  # at x0 = 1 the homogenized system is the system
+    # the same sums evaluated in another order (homogenized, x0 = 1): round-off of the terms' size
     assert_allclose(H(np.r_[1.0, x]), system(x), atol=1e-12 * (1 + np.abs(system(x)).max()), rtol=0)
 
 
@@ -143,11 +153,16 @@ def test_roots_of_badly_scaled_polynomials():
     # 1e300 + t + 1e-10 t^2: the companion's -1e310 overflows, the roots do not; they are
     # -5e9 +- i sqrt(1e310 - 2.5e19) = -5e9 +- 1e155 i
     found = poly.roots([1e300, 1.0, 1e-10])
+    # the roots of the rescaled polynomial, rescaled back (exact powers of two): a few ulps of 1e155
     assert_allclose(np.sort(found.imag), [-1e155, 1e155], rtol=1e-12)
+    # the real part of a complex pair of the (scaled) 2 x 2 companion is half its trace, -b / (2 a),
+    # exact here; it is 1e-145 of the roots' modulus, so round-off at the roots' scale would swamp
+    # it: 1e-6 relative asks that it is not formed from the roots
     assert_allclose(found.real, -5e9, rtol=1e-6)
     with pytest.raises(NonFiniteError, match="beyond the largest float"):
         poly.roots([1e300, 1e-300])           # the root is -1e600
     batch = poly.roots([[1e300, 1.0, 1e-10], [2.0, -3.0, 1.0]])
+    # simple roots of an O(1) quadratic: a few ulps
     assert_allclose(np.sort(batch[1].real), [1.0, 2.0], rtol=1e-14)
 
 
@@ -176,3 +191,32 @@ def test_five_dense_quadratics_have_a_mixed_volume_of_32():
 def test_bad_input_of_the_new_checks(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+@pytest.mark.parametrize("j", [-600, -400, 400, 600])
+@pytest.mark.parametrize("unit", [
+    [1.0, -2.0, 0.5],                  # three real roots of different signs and sizes
+    [1.0, 1j, -0.5 + 0.25j],           # complex roots: complex coefficients
+    [1.0, np.exp(2j * np.pi / 3), np.exp(-2j * np.pi / 3)],   # t^3 - 1: zero middle coefficients
+])
+def test_roots_beyond_the_companions_range_are_scaled_exactly(j, unit):
+    # What it protects: the scaled route of roots, for polynomials whose companion entries
+    # -c_k / c_n overflow or underflow (its roots R u_i are beyond 2^+-340 in size): t and the
+    # coefficients are rescaled by powers of two, so only exponents change. Coefficients
+    # a R^(3-k) with R = 2^j, a = 2^(-3j/2) are normal floats (2^+-900); the companion's entries
+    # R^(3-k) are not (2^+-1200 and more). The roots found are R times those of the unscaled
+    # polynomial, to the unscaled problem's round-off (1e-12 relative: simple roots, well apart).
+    base = P.polyfromroots(np.array(unit, dtype=complex))
+    powers = -3 * j // 2 + (3 - np.arange(4)) * j          # a R^(3-k) = 2^powers, exactly
+    c = np.ldexp(base.real, powers) + 1j * np.ldexp(base.imag, powers)
+    if np.all(c.imag == 0):
+        c = c.real
+    assert np.abs(c[c != 0]).min() > np.finfo(float).tiny and np.abs(c).max() < 2.0 ** 1000
+    unscaled = poly.roots(base.real if np.all(base.imag == 0) else base)
+    expected = np.sort_complex(np.ldexp(unscaled.real, j) + 1j * np.ldexp(unscaled.imag, j))
+    assert_allclose(np.sort_complex(poly.roots(c)), expected, rtol=1e-12)  # round-off, above
+    # in a batch with an ordinary polynomial, each row gets its own roots
+    batch = poly.roots(np.stack([c, np.array([2.0, -3.0, 1.0, 1.0])]))
+    assert_allclose(np.sort_complex(batch[0]), expected, rtol=1e-12)  # as above
+    assert_allclose(np.sort_complex(batch[1]), np.sort_complex(poly.roots([2.0, -3.0, 1.0, 1.0])),
+                    rtol=1e-12)

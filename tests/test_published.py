@@ -25,6 +25,8 @@ from mechnum.published import (
 @pytest.mark.parametrize("printed, half", [("1.942", 5e-4), ("-0.099672", 5e-7), ("62", 0.5),
                                            ("6.032e-4", 5e-8), ("0", 0.5)])
 def test_half_unit(printed, half):
+    # half a unit of the last printed digit is a power of ten over two: pytest's default rel 1e-6
+    # only absorbs its float representation
     assert half_unit(printed) == pytest.approx(half)
 
 

@@ -49,6 +49,8 @@ def test_closed_form_shape_at_psi_pi_exactly_is_a_rod():
 @pytest.mark.parametrize("t", [0.1191, -0.5934, 0.1385, 0.1743, 0.9, -0.95])
 def test_regular_shape_at_psi_pi_exactly_is_a_rod(t):
     rod = regular.shape(1.0, 1.0, PI, t, nodes=201)
+    # nodes spaced L / 200 = 0.005 along the arc; the chords are shorter, up to their rounding
+    # (1e-12 relative)
     assert np.hypot(np.diff(rod.x), np.diff(rod.y)).max() <= 0.005 * (1 + 1e-12)
     pieces_solve_the_equations(1.0, rod, 1e-10)
 
@@ -70,6 +72,8 @@ def test_the_nodes_the_error_suggests_resolve_the_load():
         rods.shoot_cantilever(1.0, 1.0, [0.0, 300.0])
     nodes = int(str(error.value).split("about ")[1].split(")")[0])
     res = rods.shoot_cantilever(1.0, 1.0, [0.0, 300.0], nodes=nodes)
+    # the nodes the error message suggests resolve the tip to the closed form within 1e-6 (the
+    # message's promise)
     assert np.abs(res.rod.tip - rods.cantilever(1.0, 1.0, [0.0, 300.0]).tip).max() < 1e-6
     with pytest.raises(rods.UnresolvedRodError, match="beyond single shooting"):
         rods.shoot_cantilever(1.0, 1.0, [0.0, 1e3])
@@ -108,6 +112,8 @@ def test_a_batch_may_ask_for_nan_outside_the_family():
     rod = rods.clamped_pinned(1.0, 1.0, 2.0, -0.4, 2)
     psi, k_rel, mode, phi2 = rods.elliptic_parameters(
         1.0, 1.0, [float(rod.clamp_moment), 5.0], [rod.force, [1.0, 1e-300]], outside="nan")
+    # the same rod's parameters recovered from its clamp moment and force: round-off of the
+    # inversion
     assert_allclose([k_rel[0], mode[0]], [-0.4, 2.0], rtol=1e-12)
     assert np.isnan([k_rel[1], mode[1], phi2[1]]).all() and np.isfinite(psi).all()
     with pytest.raises(ValueError, match="outside must be one of"):
@@ -125,8 +131,12 @@ def test_shape_of_a_nearly_unloaded_rod_is_linear_beam_theory(t, shape):
     s, ny = rod.s, rod.force[1]
     beam = ny / 2.0 * (1.5 * s ** 2 / 2 - s ** 3 / 6)      # y(s), to O(load**2)
     ulps = 8 * np.finfo(float).eps * 1.5
+    # the deflection is at most 1.6e-12 L here (t <= 1e-6), so beam theory's neglected terms (of
+    # its square, 1e-24) are far below rounding: every node within a few ulps of L (atol) of it;
+    # rtol 1e-9 adds little room, at the largest load only
     assert_allclose(rod.y, beam, rtol=1e-9, atol=ulps)
     assert_allclose(rod.x, s, rtol=0, atol=ulps)
+    # every chord is L / 30 = 0.05 up to the rounding of the nodes (two ulps of L)
     assert_allclose(np.hypot(np.diff(rod.x), np.diff(rod.y)), 0.05, rtol=0, atol=2 * ulps)
 
 

@@ -59,7 +59,9 @@ def test_the_thesis_point_has_one_two_and_two_looped_rods_per_mode(thesis):
     assert sols[:, 2].tolist() == [1, 2, 2, 2, 2, 3, 3, 3, 3]
     issue = np.flatnonzero(np.abs(closed.clamp_moment - 2.7309) < 5e-5)
     assert issue.size == 1 and sols[issue[0], 2] == 2
+    # the study prints the force to one decimal (423.2, 56.3): atol 0.05 is half its last unit
     assert_allclose(closed.force[issue[0]], [423.2, 56.3], rtol=0, atol=0.05)
+    # and k_rel to five decimals (0.99961): atol 5e-6 is half its last unit
     assert_allclose(sols[issue[0], 1], 0.99961, rtol=0, atol=5e-6)
     looped = np.hypot(*closed.force.T) > 100      # all the looped rods are in strong tension
     assert looped.tolist() == [True, False, False, True, True, False, False, True, True]
@@ -68,6 +70,8 @@ def test_the_thesis_point_has_one_two_and_two_looped_rods_per_mode(thesis):
 @pytest.mark.parametrize("n_psi, n_k", [(30, 15), (240, 120)])
 def test_coarser_and_finer_grids_find_the_same_equilibria(thesis, n_psi, n_k):
     sols = rods.pinned_equilibria(1.0, 1.0, THESIS, modes=(1, 2, 3), n_psi=n_psi, n_k=n_k)
+    # the same roots polished by Newton to the residual 1e-13 from other grids' starts: round-off of
+    # the chart
     assert_allclose(sols, thesis[0], rtol=1e-9, atol=1e-12)
 
 
@@ -78,7 +82,10 @@ def test_the_chart_t_holds_what_k_rel_cannot():
         rods.pinned_equilibria(1.0, 1.0, [0.99, 0.1], modes=(1, 2))
     sols = rods.pinned_equilibria(1.0, 1.0, [0.99, 0.1], modes=(1, 2), chart="t")
     tips = regular.clamped_pinned_regular(1.0, 1.0, sols[:, 0], sols[:, 1], sols[:, 2]).tip
+    # the roots' tips recomputed in floating point; pinned_equilibria polishes to the residual 1e-13
+    # (its tol), and 1e-10 allows for the amplification near k_rel = 1
     assert_allclose(tips, np.tile([0.99, 0.1], (len(sols), 1)), rtol=0, atol=1e-10)
+    # k_rel's complement so close to 1 that the other chart rounds it to 1 (the point of this case)
     assert np.min(regular.k_rel_from_t(sols[:, 0], sols[:, 1], complement=True)) < 1e-200
 
 
@@ -92,6 +99,8 @@ def test_every_root_returned_is_a_distinct_equilibrium(radius, angle, modes):
     assert np.abs(rod.tip - point).max(initial=0.0) <= pinned.TIP_ACCEPT
     for i in range(len(sols)):
         for j in range(i):
+            # two equilibria of one mode are distinct roots (their charts differ by far more than
+            # the 1e-6 of Newton's tolerance)
             assert sols[i, 2] != sols[j, 2] or np.abs(sols[i, :2] - sols[j, :2]).max() > 1e-6
     R = np.hypot(*rod.force.T)
     assert np.all(np.diff(sols[:, 2]) >= 0)
@@ -126,6 +135,8 @@ def test_classify_names_the_equilibrium_of_a_resolved_rod(thesis):
         shot = rods.shoot_pinned(1.0, 1.0, THESIS, guess, nodes=201).rod
         verdict = rods.classify(1.0, 1.0, shot)
         assert verdict.kind == "elastica" and verdict.mode == sols[i, 2]
+        # RK4 on 200 steps errs by about 1e-8 here (h^4 = 6e-10 times the derivatives): the
+        # classified parameters agree to 1e-7 relative
         assert_allclose([verdict.psi, verdict.k_rel], sols[i, :2], rtol=1e-7)
         assert verdict.gap < 1e-7                  # RK4's error on 200 steps
 
@@ -137,6 +148,8 @@ def test_classify_works_in_any_clamp_frame():
                             theta0=0.7, origin=[2.0, -1.0], nodes=61)
     a, b = rods.classify(1.0, 1.0, shot), rods.classify(1.0, 1.0, turned)
     assert a.kind == b.kind == "elastica" and a.mode == b.mode
+    # the same rod rotated and moved: the classification is invariant up to round-off of the
+    # rotation
     assert_allclose([b.psi, b.k_rel], [a.psi, a.k_rel], rtol=1e-9)
 
 

@@ -24,13 +24,18 @@ def test_regular_chart_agrees_with_the_study_chart():
     a = regular.clamped_pinned_regular(EI, L, psi[keep], t[keep], mode[keep])
     b = rods.clamped_pinned(EI, L, psi[keep], k_rel[keep], mode[keep])
     assert np.abs(a.tip - b.tip).max() < 1e-9
+    # the two charts' closed forms agree up to scipy's loss of digits near k = 1, which the mask
+    # above keeps below 1e-9
     np.testing.assert_allclose(a.force, b.force, rtol=1e-9, atol=1e-12)
+    # as above, for the forces
     np.testing.assert_allclose(a.clamp_moment, b.clamp_moment, rtol=1e-9, atol=1e-12)
 
 
 def test_chart_conversions_round_trip_to_both_ends():
     psi = np.array([0.3, 2.0, np.pi, 4.0, 6.1, 2.0, 5.0])
     k_rel = np.array([1e-9, -1e-6, 0.5, -0.999, 1 - 1e-9, -(1 - 1e-12), 0.3])
+    # the round trip through t loses the digits of 1 - |k_rel| that t carries (k_rel up to 1 -
+    # 1e-12): 1e-9 relative
     np.testing.assert_allclose(regular.k_rel_from_t(psi, regular.t_from_k_rel(psi, k_rel)),
                                k_rel, rtol=1e-9, atol=0)
 
@@ -47,6 +52,8 @@ def test_analytic_jacobian_matches_central_differences():
     fd = np.stack(((out(psi + h, t) - out(psi - h, t)) / (2 * h),
                    (out(psi, t + h) - out(psi, t - h)) / (2 * h)), axis=-1)
     scale = 1 + np.abs(rod.jacobian)
+    # central differences with h = 1e-6 err by h^2 times the third derivatives (about 1e-12) and
+    # round-off eps / h ~ 1e-10: 1e-6 relative to 1 + |J| is wide
     assert np.max(np.abs(fd - rod.jacobian) / scale) < 1e-6
 
 
@@ -75,7 +82,10 @@ def test_place_rotates_tip_force_and_derivatives():
         b = regular.place(rod, [[1.0, 2.0], [0.0, 0.0]],
                           [angle - h if i == 0 else 0.3, angle - h if i == 1 else -1.0])
         fd = (np.concatenate((a[0][i], a[1][i])) - np.concatenate((b[0][i], b[1][i]))) / (2 * h)
+        # as above, central differences with the test's h: 1e-7 absolute covers both errors for O(1)
+        # derivatives
         np.testing.assert_allclose(d_angle[i], fd, rtol=0, atol=1e-7)
+    # a rigid placement keeps distances: the same lengths up to round-off of the rotation
     np.testing.assert_allclose(np.hypot(*(tip - [[1.0, 2.0], [0.0, 0.0]]).T),
                                np.hypot(*rod.tip.T), rtol=1e-14)
 

@@ -39,6 +39,7 @@ beyond a mechanism's few unknowns)."""
 MINKOWSKI_POINTS_LIMIT = 200_000
 """The most candidate points of one Minkowski sum in :func:`mixed_volume` (the products of the
 summands' hull vertices): a bound on the memory and on the hull's work."""
+_TINY = np.finfo(float).tiny  # below it a float is subnormal: it keeps fewer than 53 bits
 
 
 def _coefficients(c, name="c"):
@@ -98,10 +99,10 @@ def roots(c: ArrayLike) -> np.ndarray:
     differ from ``c`` by a few units of round-off (relative to the largest coefficient). How
     far that moves each root is :func:`root_condition`.
 
-    Where the companion matrix would overflow (coefficients of very different sizes, as
-    ``1e300 + 1e-300 t``), the polynomial is first scaled, ``t = 2^e u`` with ``e`` from
-    Fujiwara's bound on the roots' size, which is exact (only exponents change); its roots are
-    then of order one.
+    Where the companion matrix would overflow or underflow (coefficients of very different
+    sizes, as ``1e300 + 1e-300 t``, or roots below ``1e-100``), the polynomial is first scaled,
+    ``t = 2^e u`` with ``e`` from Fujiwara's bound on the roots' size, which is exact (only
+    exponents change); its roots are then of order one.
 
     Parameters
     ----------
@@ -129,9 +130,12 @@ def roots(c: ArrayLike) -> np.ndarray:
     (2, 2)
     """
     c = _coefficients(c)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         matrix = companion(c)
-    if np.all(np.isfinite(matrix)):
+        # an entry -c_k / c_n that underflows (to zero, or to a subnormal with fewer digits)
+        # loses the small roots it determines: t^3 - 2^-1200 became t^3
+        lost = np.any((c[..., :-1] != 0) & (np.abs(c[..., :-1] / c[..., -1:]) < _TINY))
+    if np.all(np.isfinite(matrix)) and not lost:
         return np.linalg.eigvals(matrix)
     e, scaled = _scaled(c)
     u = np.linalg.eigvals(companion(scaled))

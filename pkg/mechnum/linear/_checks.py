@@ -74,6 +74,14 @@ def _dense(A, what, square=True):
     return check_matrix(A, square)
 
 
+def _unit_scaled(A):
+    """``A`` times the power of two that brings its largest entry into ``[0.5, 1)``: exact, and
+    what a scale-invariant quantity (a condition number, an iteration matrix) is computed from,
+    so that subnormal or huge entries (1e-310, 1e300) neither overflow nor lose digits."""
+    top = np.abs(A).max(initial=0.0)
+    return np.ldexp(A, -np.frexp(top)[1]) if top > 0 else A
+
+
 def _relaxation_factor(omega):
     """``omega`` as a float in (0, 2), or a RelaxationFactorError."""
     try:
@@ -135,7 +143,7 @@ def condition_number(A: ArrayLike, p: float | str = 2) -> float:
     1000.0
     """
     _validate.choice(p, (1, 2, np.inf, "fro"), "p")
-    A = _dense(A, "condition_number", square=p != 2)
+    A = _unit_scaled(_dense(A, "condition_number", square=p != 2))
     if p == 2:
         s = np.linalg.svd(A, compute_uv=False)
         return float(s[0] / s[-1]) if s[-1] > 0 else np.inf

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from mechnum import _validate
-from mechnum.linear._checks import _dense, _relaxation_factors
+from mechnum.linear._checks import _dense, _relaxation_factors, _unit_scaled
 from mechnum.linear._sweeps import splitting
 from mechnum.results import Result
 
@@ -82,7 +82,7 @@ def iteration_matrix(A: ArrayLike, method: str, omega: float = 1.0) -> np.ndarra
     array([[0. , 0.5],
            [0.5, 0. ]])
     """
-    A = _dense(A, "iteration_matrix")
+    A = _unit_scaled(_dense(A, "iteration_matrix"))
     split = splitting(A, method, omega)
     if method == "jacobi":
         return np.eye(len(A)) - A / split.diagonal[:, None]
@@ -135,7 +135,7 @@ def sor_spectral_radii(A: ArrayLike, omegas: ArrayLike) -> np.ndarray:
     >>> sor_spectral_radii([[2.0, -1.0], [-1.0, 2.0]], [1.0]).round(6).tolist()
     [0.25]
     """
-    A = _dense(A, "sor_spectral_radii")
+    A = _unit_scaled(_dense(A, "sor_spectral_radii"))
     splitting(A, "gauss_seidel")  # checks the diagonal
     omegas = _relaxation_factors(omegas)
     radii = np.empty(omegas.size)
@@ -196,7 +196,7 @@ def optimal_omega(A: ArrayLike) -> "OptimalOmega":
     >>> round(best.x, 6), round(best.spectral_radius, 6), best.how
     (1.171573, 0.171573, 'young')
     """
-    A = _dense(A, "optimal_omega")
+    A = _unit_scaled(_dense(A, "optimal_omega"))
     if _young_applies(A):
         omega = young_omega(spectral_radius(iteration_matrix(A, "jacobi")))
         return OptimalOmega(x=omega, status="converged", iterations=0, nfev=0, njev=0,

@@ -28,6 +28,9 @@ from mechnum.rods.assembly import atlas as atlases
 PLANE_TOL = 1e-9
 """How far (relative to the largest input, plus 1 m) a grid's point may lie from the plane of
 its first row and column: rounding, not a bent grid."""
+MAX_SLIDER = 1e100
+"""The largest slider input of an atlas's grid (m): the plane's dot products of larger ones
+overflow (a grid at 1e300 m did), and no mechanism closes with its sliders that far anyway."""
 
 
 def plane(lambdas_grid: ArrayLike) -> tuple:
@@ -37,9 +40,9 @@ def plane(lambdas_grid: ArrayLike) -> tuple:
     Raises
     ------
     ValueError
-        If the grid is not of shape (nx, ny, 3), not finite, larger than
-        :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points, or not a grid over a plane
-        (its rows and columns not parallel lines, or all on one line).
+        If the grid is not of shape (nx, ny, 3), not finite, beyond :data:`MAX_SLIDER`, larger
+        than :data:`~mechnum.rods.assembly.checks.MAX_POINTS` points, or not a grid over a
+        plane (its rows and columns not parallel lines, or all on one line).
 
     Examples
     --------
@@ -57,6 +60,9 @@ def plane(lambdas_grid: ArrayLike) -> tuple:
     if np.size(lambdas_grid) == 0 and np.ndim(lambdas_grid) != 3:    # [] is an empty grid
         lambdas_grid = np.zeros((0, 0, 3))
     grid = _validate.array(lambdas_grid, "lambdas_grid", shape=(None, None, 3))
+    if grid.size and np.abs(grid).max() > MAX_SLIDER:
+        raise ValueError(f"lambdas_grid must lie within {MAX_SLIDER:g} m of zero (the plane's "
+                         f"products would overflow), got up to {np.abs(grid).max():.3g} m")
     nx, ny = grid.shape[:2]
     assembly.grid_axes(np.zeros(nx), np.zeros(ny), ("the grid's rows", "the grid's columns"))
     if not grid.size:

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _deprecated, _validate
 from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, vectors
+from mechnum.mechanisms.prr3.geometry import Geometry, check, resolved, vectors
 from mechnum.polynomials import PolynomialSystem
 
 _ROOT3 = math.sqrt(3.0)  # a Python float: the arithmetic on one input stays in floats
@@ -233,7 +233,7 @@ def equations(mech: Geometry, lambdas: ArrayLike) -> PolynomialSystem:
     >>> system.degrees
     (2, 2, 2, 2)
     """
-    lam = _validate.array(lambdas, "lambdas", shape=(3,))
+    lam = resolved(_validate.array(lambdas, "lambdas", shape=(3,)), "lambdas")
     (c1, c2, c3) = kernels.sliders(check(mech), lam) / mech.L
     A = mech.a / mech.L
     x, y, c, s = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))
@@ -276,7 +276,7 @@ def solutions_from_equations(mech: Geometry, points: ArrayLike) -> np.ndarray:
     [[1.0, 0.5, 1.5708]]
     """
     check(mech)
-    points = _validate.array(points, "points", ndim=(1, 2))
+    points = resolved(_validate.array(points, "points", ndim=(1, 2)), "points")
     if points.shape[-1] != 4:
         raise ValueError(f"points must have shape (n, 4), got shape {points.shape}")
     points = points.reshape(-1, 4)

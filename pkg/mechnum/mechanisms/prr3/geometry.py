@@ -108,6 +108,27 @@ def vectors(value: ArrayLike, name: str) -> np.ndarray:
     return out
 
 
+def resolved(values: np.ndarray, name: str) -> np.ndarray:
+    """``values`` (checked poses or inputs) if their positions lie within ``1e100`` m, the
+    lengths this module resolves; else a ValueError naming them. Beyond, the squares of the loop
+    equations overflow (1e300 gave inf and then NaN), and no answer of the functions that
+    compute those squares would carry a digit. (The workspace and :func:`inverse` take any
+    finite pose: so far away nothing is reachable.)
+
+    Examples
+    --------
+    >>> resolved(np.array([1e300, 0.0, 0.0]), "poses")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: poses must lie within 1e+100 m of the origin ..., got [1.e+300 0.e+000 0.e+000]
+    """
+    if values.size and np.abs(values).max() > LENGTH_LIMITS[1]:
+        raise ValueError(f"{name} must lie within {LENGTH_LIMITS[1]:g} m of the origin (the "
+                         f"lengths this module resolves: their squares would overflow), got "
+                         f"{_validate.shown(values)}")
+    return values
+
+
 def pairs(poses: ArrayLike, lambdas: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Poses and inputs of shape ``(..., 3)`` whose batch shapes broadcast, checked."""
     poses, lambdas = vectors(poses, "poses"), vectors(lambdas, "lambdas")
@@ -184,8 +205,12 @@ def radicands(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., 3)
-        ``L^2 - y_P^2``, ``L^2 - y_P2^2``, ``L^2 - (B3 - x_P3)^2`` in m^2 (``-inf`` for a pose
-        so far away that the square overflows: it is unreachable).
+        ``L^2 - y_P^2``, ``L^2 - y_P2^2``, ``L^2 - (B3 - x_P3)^2`` in m^2.
+
+    Raises
+    ------
+    ValueError
+        If ``poses`` is ill-shaped, not finite, or beyond ``1e100`` m (:func:`resolved`).
 
     Examples
     --------
@@ -193,10 +218,7 @@ def radicands(mech: Geometry, poses: ArrayLike) -> np.ndarray:
     >>> radicands(g, [0.6, 0.4, 0.0]).round(4).tolist()
     [0.84, 0.84, 0.84]
     """
-    v = kernels.vertices(check(mech), vectors(poses, "poses"))
-    distance = np.stack([v[..., 0, 1], v[..., 1, 1], mech.B3 - v[..., 2, 0]], axis=-1)
-    with np.errstate(over="ignore"):
-        return (mech.L - distance) * (mech.L + distance)
+    return kernels.radicands(check(mech), resolved(vectors(poses, "poses"), "poses"))
 
 
 @_deprecated.mech_moved(to=2, **_MOVED)
@@ -232,7 +254,8 @@ def loop_residuals(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.n
     Raises
     ------
     ValueError
-        If an argument is not finite, has no last axis of 3, or the two do not broadcast.
+        If an argument is not finite, beyond ``1e100`` m (:func:`resolved`), has no last axis
+        of 3, or the two do not broadcast.
 
     Examples
     --------
@@ -240,7 +263,9 @@ def loop_residuals(mech: Geometry, poses: ArrayLike, lambdas: ArrayLike) -> np.n
     >>> loop_residuals(g, [0.6, 0.4, 0.0], [0.6, 0.5, 0.25]).round(4).tolist()
     [-0.84, -0.03, -0.6058]
     """
-    return kernels.loop_residuals(check(mech), *pairs(poses, lambdas))
+    poses, lambdas = pairs(poses, lambdas)
+    return kernels.loop_residuals(check(mech), resolved(poses, "poses"),
+                                  resolved(lambdas, "lambdas"))
 
 
 @_deprecated.mech_moved(to=2, **_MOVED)
@@ -327,4 +352,6 @@ def jacobian_dets(mech: Geometry, poses: ArrayLike,
     ...                                            -0.182541])]
     [0.7699, -0.4]
     """
-    return kernels.jacobian_dets(check(mech), *pairs(poses, lambdas))
+    poses, lambdas = pairs(poses, lambdas)
+    return kernels.jacobian_dets(check(mech), resolved(poses, "poses"),
+                                 resolved(lambdas, "lambdas"))

@@ -7,7 +7,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _deprecated, _validate
 from mechnum.mechanisms.prr3 import kernels
-from mechnum.mechanisms.prr3.geometry import Geometry, check, radicands, vectors
+from mechnum.mechanisms.prr3.geometry import Geometry, check, resolved, vectors
 
 _MOVED = {"mech_type": Geometry, "name": "geometry"}  # the old forms: the geometry came later
 
@@ -53,8 +53,8 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
     Raises
     ------
     ValueError
-        If ``poses`` is ill-shaped or not finite, ``signs`` are not three values +-1, or ``tol``
-        is not a positive number.
+        If ``poses`` is ill-shaped, not finite or beyond ``1e100`` m, ``signs`` are not three
+        values +-1, or ``tol`` is not a positive number.
 
     Examples
     --------
@@ -67,8 +67,13 @@ def branch_inputs(mech: Geometry, poses: ArrayLike, signs: ArrayLike = STUDY_ORD
     if not np.all(np.abs(signs) == 1):
         raise ValueError(f"signs must be three values +1 or -1, got {signs.tolist()}")
     tol = _validate.tolerance(tol)
-    poses = vectors(poses, "poses")
-    root = _tangent_roots(radicands(mech, poses), tol, mech.L)
+    return _branch_inputs(check(mech), resolved(vectors(poses, "poses"), "poses"), signs, tol)
+
+
+def _branch_inputs(mech, poses, signs, tol):
+    """:func:`branch_inputs` on checked input, any finite pose (NaN where a leg cannot reach:
+    all of them far away)."""
+    root = _tangent_roots(kernels.radicands(mech, poses), tol, mech.L)
     v = kernels.vertices(mech, poses)
     centre = np.stack([v[..., 0, 0], mech.B2 - v[..., 1, 0], mech.H3 - v[..., 2, 1]], -1)
     return centre + signs * root
@@ -113,10 +118,11 @@ def inverse(mech: Geometry, pose: ArrayLike, *, tol: float = TANGENT_TOL) -> np.
     """
     pose = _validate.array(pose, "pose", shape=(3,))
     tol = _validate.tolerance(tol)
-    first = branch_inputs(mech, pose, STUDY_ORDER, tol=tol)
+    mech = check(mech)
+    first = _branch_inputs(mech, pose, np.array(STUDY_ORDER, dtype=float), tol)
     if np.any(np.isnan(first)):
         return np.empty((0, 3))
-    second = branch_inputs(mech, pose, np.negative(STUDY_ORDER), tol=tol)
+    second = _branch_inputs(mech, pose, np.negative(STUDY_ORDER, dtype=float), tol)
     values = [(f,) if f == s else (f, s) for f, s in zip(first, second)]  # equal: tangent
     return np.array(list(product(*values)))
 
@@ -162,4 +168,4 @@ def workspace(mech: Geometry, x: ArrayLike, y: ArrayLike, psi: ArrayLike, *,
     except ValueError:
         raise ValueError("x, y and psi must broadcast together, got shapes "
                          f"{[a.shape for a in arrays]}") from None
-    return np.all(radicands(mech, poses) >= -tol * mech.L ** 2, axis=-1)
+    return np.all(kernels.radicands(check(mech), poses) >= -tol * mech.L ** 2, axis=-1)

@@ -54,6 +54,14 @@ def loop_residuals(mech, poses, lambdas):
         return np.sum(bars(mech, poses, lambdas) ** 2, axis=-1) - mech.L ** 2
 
 
+def radicands(mech, poses):
+    """``L^2 - d_i^2`` of each leg (m^2), shape ``(..., 3)``; an overflow gives ``-inf``."""
+    v = vertices(mech, poses)
+    distance = np.stack([v[..., 0, 1], v[..., 1, 1], mech.B3 - v[..., 2, 0]], axis=-1)
+    with np.errstate(over="ignore"):
+        return (mech.L - distance) * (mech.L + distance)
+
+
 def slider_points(mech, lambdas):
     """The slider points as complex numbers ``x + i y``: shape ``(..., 3)``."""
     out = np.empty(lambdas.shape[:-1] + (3,), dtype=complex)

@@ -21,6 +21,11 @@ from mechnum.mechanisms.rfr2.model import Mechanism, rods
 from mechnum.rods import assembly
 from mechnum.rods.assembly import atlas as atlases
 
+MAX_ANGLE = 4 * np.pi
+"""The largest motor angle of an atlas, two turns either way (rad): an angle is defined modulo a
+turn, so no atlas needs more, and a larger one is a slip (degrees passed as radians: 40 degrees
+as 40 rad is six turns; 1e300 rad gave overflow warnings and a grid of meaningless angles)."""
+
 
 def search(mech: Mechanism, modes: tuple, task) -> list:
     """The full search at the motor angles of a task ``(indices, thetas)``: for each point,
@@ -53,13 +58,14 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
     theta1, theta2 : array_like, shapes (nx,) and (ny,)
         The motor angles of the grid's rows and columns (rad), close enough for continuation
         (a few degrees); ``nx ny`` at most :data:`~mechnum.rods.assembly.checks.MAX_POINTS`.
-        An empty axis gives an empty atlas.
+        An empty axis gives an empty atlas. Each angle at most :data:`MAX_ANGLE` in size.
     modes : (int, int), optional
         The rods' buckling modes (as in :func:`~mechnum.mechanisms.rfr2.forward_elliptic`).
     executor : None, int or dask.distributed.Client, optional
         Where the full searches run: None, all local cores (joblib); ``n``, ``n`` local
-        workers (1: serially, here); a dask Client, its cluster
-        (:func:`mechnum.rods.assembly.parallel.run`). The result does not depend on it.
+        workers (1: serially, here; more than the local cores are cut to them, with a
+        warning); a dask Client, its cluster (:func:`mechnum.rods.assembly.parallel.run`).
+        The result does not depend on it.
 
     Returns
     -------
@@ -70,8 +76,9 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
     Raises
     ------
     ValueError
-        If ``mech`` is no Mechanism, an axis is not a finite 1-D array, the grid too large,
-        ``modes`` not two integers ``>= 1``, or ``executor`` none of the above.
+        If ``mech`` is no Mechanism, an axis is not a finite 1-D array of angles within
+        :data:`MAX_ANGLE`, the grid too large, ``modes`` not two integers ``>= 1``, or
+        ``executor`` none of the above.
 
     Examples
     --------
@@ -85,6 +92,11 @@ def atlas(mech: Mechanism, theta1: ArrayLike, theta2: ArrayLike, *, modes: Array
     modes = tuple(int(m) for m in assembly.check_modes(modes, 2))
     theta1, theta2 = assembly.grid_axes(theta1, theta2, ("theta1", "theta2"),
                                         monotonic=True)
+    for axis, name in ((theta1, "theta1"), (theta2, "theta2")):
+        if axis.size and np.abs(axis).max() > MAX_ANGLE:
+            raise ValueError(f"{name} must lie within 4 pi rad (two turns) of zero, got angles "
+                             f"up to {np.abs(axis).max():.3g} rad (in degrees? np.radians "
+                             "converts them)")
     grid = np.stack(np.meshgrid(theta1, theta2, indexing="ij"), axis=-1)
 
     def lift(theta, chart):

@@ -14,9 +14,22 @@ from __future__ import annotations
 
 import numbers
 import os
+import warnings
 
-MAX_WORKERS = 4096
-"""Most local workers of :func:`run` (a bound on the processes one call may start)."""
+
+def local_cores() -> int:
+    """The cores this process may run on: the most local workers :func:`run` starts (more
+    processes than cores would only share them).
+
+    Examples
+    --------
+    >>> local_cores() >= 1
+    True
+    """
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # no affinity outside Linux
+        return os.cpu_count() or 1
 
 
 def workers(executor) -> int:
@@ -25,19 +38,20 @@ def workers(executor) -> int:
 
     Examples
     --------
-    >>> workers(1), workers(None) == (os.cpu_count() or 1)
+    >>> workers(1), workers(None) == local_cores()
     (1, True)
     """
     executor = checked(executor)
     if executor is None:
-        return os.cpu_count() or 1
+        return local_cores()
     if isinstance(executor, int):
         return executor
     return max(1, sum(executor.nthreads().values()))
 
 
 def checked(executor):
-    """``executor`` if it is one that :func:`run` takes, else a ValueError that names it.
+    """``executor`` if it is one that :func:`run` takes, else a ValueError that names it. A
+    number of workers larger than :func:`local_cores` is cut to it, with a warning.
 
     Examples
     --------
@@ -46,13 +60,17 @@ def checked(executor):
     ...
     ValueError: executor must be None (all local cores), a number of workers ..., got 0
     """
-    usage = ("executor must be None (all local cores), a number of workers from 1 to "
-             f"{MAX_WORKERS}, or a dask.distributed.Client, got {executor!r:.80}")
+    usage = ("executor must be None (all local cores), a number of workers >= 1, or a "
+             f"dask.distributed.Client, got {executor!r:.80}")
     if executor is None:
         return None
     if isinstance(executor, numbers.Integral) and not isinstance(executor, bool):
-        if not 1 <= executor <= MAX_WORKERS:
+        if executor < 1:
             raise ValueError(usage)
+        if executor > (cores := local_cores()):
+            warnings.warn(f"executor={executor} asks for more workers than the {cores} cores "
+                          f"this process may use: running {cores}", stacklevel=3)
+            return cores
         return int(executor)
     if all(callable(getattr(executor, name, None)) for name in ("map", "gather", "nthreads")):
         return executor
