@@ -41,11 +41,13 @@ def test_every_rod_lies_within_its_reach(mode):
                              _reach_ratio(*_chart(500, mode, near_euler=True), mode)])
     assert np.all(ratios <= rods.reach(mode))
     assert ratios.max() > 0.95 * rods.reach(mode)
+    # near the Euler load D -> j pi, v b -> 0: the ratio approaches 2 j pi from below
     assert ratios.max() > 2 * np.pi * mode * (1 - 1e-3)
 
 
 def test_reach_is_rounded_up_and_checks_its_mode():
     exact = 2 * ((arb.pi()) ** 2 + 1).sqrt()
+    # rounded up by one ulp or so of 6.59 (8.9e-16): far below 1e-14
     assert bool(arb(rods.reach(1)) >= exact) and rods.reach(1) - float(exact.mid()) < 1e-14
     for bad in (0, 11, 1.5, True, "1", None):
         with pytest.raises(ValueError, match="mode"):
@@ -64,7 +66,10 @@ def test_chart_t_bound_holds_every_rod_below_the_load():
     tip = regular.clamped_pinned_regular(1.0, 1.0, 1e-4, bound * (1 - 1e-12), 1).force
     assert np.sqrt(np.hypot(*tip)) > 10.39 - np.log(2) - 1e-3
     assert rods.chart_t_bound(1e4) == regular.T_MAX
+    # |t| = (q / (1 + q))**(1/2) with q = 2 log cosh(1e-3), about 1e-3
     assert 0 < rods.chart_t_bound(1e-3) < 0.05
+    for tiny in (5e-324, 1e-300, 1e-10):     # q <= lam**2 rounded up: finite, near lam
+        assert tiny * (1 - 1e-9) <= rods.chart_t_bound(tiny) <= 2 * np.sqrt(tiny)
 
 
 def test_pinned_bound_holds_every_pinned_equilibrium():
@@ -98,6 +103,7 @@ def test_pair_bound_is_the_crossing_and_proven():
             c = [rods.reach(modes[i]), rods.reach(modes[1 - i])]
             crossing = scipy.optimize.brentq(_excess, np.sqrt(f) + 1e-9, 1e4,
                                              args=(*c, f, room), xtol=1e-14)
+            # brentq to xtol 1e-14 on a crossing near 10: both within 1e-9 of the other
             np.testing.assert_allclose(bound[i], crossing, rtol=1e-9)
             assert bool(_apriori._excess(bound[i], _apriori._reach_ball(modes[i]),
                                          _apriori._reach_ball(modes[1 - i]), arb(f),

@@ -48,6 +48,7 @@ def test_a_leaf_encloses_every_rod_of_its_box():
         slack = 1e-12 * (1 + np.abs(force).max())
         assert np.all(row[4:6] - slack <= force) and np.all(force <= row[6:8] + slack)
         R = np.hypot(*force.T)
+        # the sampled rods' forces are floats of the closed form: a few ulps from exact
         assert np.all(row[8] <= R * (1 + 1e-12)) and np.all(R <= row[9] * (1 + 1e-12))
         assert row[10] <= p[ok].min() + rod.angle and p[ok].max() + rod.angle <= row[11]
 
@@ -97,6 +98,7 @@ def test_no_test_drops_a_triple_that_holds_a_table8_root():
     origins = clamps(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
     assert np.array_equal([rod.origin for rod in chart], origins)
     assembly = pfr3_certified.assembly(pfr3.TABLE8)
+    # the pins' distances from their coordinates: rounding of a hypot only
     assert [m[2] for m in assembly.meets] == pytest.approx([pfr3.TABLE8.a] * 3, rel=1e-12)
     D = _tuples_around(TABLE8_ROOTS, chart, 400, rng)
     assert not np.any(_tuples.tuple_codes(assembly, D))

@@ -103,7 +103,9 @@ def chart_t_bound(lam_max: float) -> float:
     lam_max = _validate.scalar(lam_max, "lam_max", positive=True)
     lam = arb(lam_max)
     q = 2 * (lam - arb(2).log() + (1 + (-2 * lam).exp()).log())     # 2 log cosh, no overflow
-    if _up(q) >= regular.Q_MAX:
+    if not _up(q) <= _up(lam * lam):         # log cosh x <= x**2 / 2: tiny loads, no cancelling
+        q = lam * lam
+    if q >= regular.Q_MAX:
         return regular.T_MAX
     return min(_up((q / (1 + q)).sqrt()), regular.T_MAX)
 
