@@ -31,8 +31,8 @@ residual of the same ``system`` and the chart as the domain
   surely above 1 N (``Lambda`` about 4.4): a tighter bound on the load would not cut them.
   Cutting each box across its relatively wider side (``psi / 2 pi`` against ``t``) instead of
   where its enclosures widen most leaves more: 3.6 million after round 2. And 98 % of round 2's
-  live triples lie farther than 0.5 (in every coordinate of the chart) from each of the nine
-  sampled roots: settling boxes around the nine early would not close the search either.
+  live triples lie farther than 0.5 from each of the nine sampled roots (in the chart, in one
+  coordinate at least): settling boxes around the nine early would not close the search.
 """
 
 import os
