@@ -101,11 +101,11 @@ nbgrader: $(STAMP)
 XDIST := -n auto --dist worksteal
 unit: $(STAMP)
 	HYPOTHESIS_PROFILE=repeatable MPLBACKEND=Agg $(BIN)/pytest $(XDIST) --doctest-modules \
-		pkg/mechnum course/mechnum_course tests
+		pkg/mechnum course/mechnum_course book/published.py tests
 
 # The linter, ruff (configured in pkg/pyproject.toml), over the package, its tests and benchmarks.
 lint: $(STAMP)
-	$(BIN)/ruff check --config pkg/pyproject.toml pkg course tests bench
+	$(BIN)/ruff check --config pkg/pyproject.toml pkg course tests bench book/published.py
 
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore MPLBACKEND=Agg $(BIN)/pytest $(XDIST) -W error::RuntimeWarning tests

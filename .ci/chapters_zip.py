@@ -4,8 +4,9 @@ cites, at the paths the notebooks use.
 
 Usage: ``python .ci/chapters_zip.py BOOK_FOLDER ZIP``
 
-What a notebook reads is listed once, here, in :data:`SERVED`: the registry and its findings
-(the study pages and the appendix), the stored certificates (Chapters 3, 5 and 6 and the study
+What a notebook reads is listed once, here, in :data:`SERVED`: the book's module ``published``
+(the registry's rules, which every chapter imports), the registry and its findings (the study
+pages and the appendix), the stored certificates (Chapters 3, 5 and 6 and the study
 page of Chapter 3 verify them) and the bibliography the chapters cite. The script that recomputes
 the certificates (``make certify``) is the repository's, not the reader's. A pattern that
 matches no file is an error, so that a renamed file cannot silently leave the zip;
@@ -16,7 +17,7 @@ import sys
 import zipfile
 from pathlib import Path
 
-SERVED = ("*.ipynb", "published_values.csv", "findings.csv", "references.bib",
+SERVED = ("*.ipynb", "published.py", "published_values.csv", "findings.csv", "references.bib",
           "certificates/*.json")
 
 

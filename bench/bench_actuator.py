@@ -15,8 +15,6 @@ import numpy as np
 import pytest
 
 from mechnum.mechanisms.actuator import (
-    ANNEX,
-    G_MATHCAD,
     forward_dynamics,
     kane_force,
     kinematics,
@@ -25,6 +23,7 @@ from mechnum.mechanisms.actuator import (
     stroke_kinematics,
     virtual_power_force,
 )
+from mechnum.mechanisms.actuator.study import ANNEX, G_MATHCAD
 
 T = np.linspace(0.0, 1.0, 1000)
 CYCLE = np.linspace(0.0, 1.0, 101)

@@ -30,7 +30,9 @@ import pytest
 from mechnum import certify, rods
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
+from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
+from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 FULL = os.environ.get("MECHNUM_BENCH_FULL") == "1"
@@ -85,39 +87,39 @@ def test_pinned_sampled(benchmark):
 
 @pytest.fixture(scope="module")
 def table7():
-    return rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
+    return rfr2.forward(TABLE7, TABLE7_THETA, rng=0)
 
 
 @pytest.fixture(scope="module")
 def table8():
-    return pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
+    return pfr3.forward(TABLE8, TABLE8_LAMBDAS, rng=0)
 
 
 def test_table7_sampled(benchmark):
-    benchmark.pedantic(rfr2.forward_elliptic, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    benchmark.pedantic(rfr2.forward, args=(TABLE7, TABLE7_THETA),
                        kwargs={"rng": 0}, rounds=1, iterations=1)
     record(benchmark, "Table 7 (1, 1), each sampled one proven", "peer")
 
 
 def test_table7_around(benchmark, table7):
-    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
-                                kwargs={"around": table7.chart}, rounds=1, iterations=1)
+    result = benchmark.pedantic(rfr2.certify_forward, args=(TABLE7, TABLE7_THETA),
+                                kwargs={"around": table7.x}, rounds=1, iterations=1)
     assert result.count == 3
     record(benchmark, "Table 7 (1, 1), each sampled one proven", "mechnum", _proven(result))
 
 
 def test_table7_whole_chart_corefined(benchmark):
-    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    result = benchmark.pedantic(rfr2.certify_forward, args=(TABLE7, TABLE7_THETA),
                                 rounds=1, iterations=1)
     assert result.complete and result.count == 3 and result.stable == [True, True, True]
     record(benchmark, "Table 7 (1, 1), whole chart (<= 60 s)", "mechnum", _proven(result))
-    cert = result.certificate(rfr2_certified.certificate_inputs(rfr2.TABLE7,
-                                                                rfr2.TABLE7_THETA))
+    cert = result.certificate(rfr2_certified.certificate_inputs(TABLE7,
+                                                                TABLE7_THETA))
     MADE["table7"] = cert
 
 
 def test_table7_whole_chart_sampled(benchmark):
-    benchmark.pedantic(rfr2.forward_elliptic, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    benchmark.pedantic(rfr2.forward, args=(TABLE7, TABLE7_THETA),
                        kwargs={"rng": 0}, rounds=1, iterations=1)
     record(benchmark, "Table 7 (1, 1), whole chart (<= 60 s)", "peer")
 
@@ -126,7 +128,7 @@ def test_table7_verify_corefined(benchmark):
     cert = MADE.get("table7") or rods.CoCertificate.load(
         CERTIFICATES / "ch5_table7_all_modes11.json")
     checked = benchmark.pedantic(rfr2_certified.verify_certificate,
-                                 args=(cert, rfr2.TABLE7, rfr2.TABLE7_THETA), rounds=1,
+                                 args=(cert, TABLE7, TABLE7_THETA), rounds=1,
                                  iterations=1)
     assert checked.count == 3 and checked.complete
     record(benchmark, "Table 7 whole-chart certificate, verify (<= 20 s)", "mechnum",
@@ -134,14 +136,14 @@ def test_table7_verify_corefined(benchmark):
 
 
 def test_table8_sampled(benchmark):
-    benchmark.pedantic(pfr3.forward_elliptic, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
+    benchmark.pedantic(pfr3.forward, args=(TABLE8, TABLE8_LAMBDAS),
                        kwargs={"rng": 0}, rounds=1, iterations=1)
     record(benchmark, "Table 8 (1, 1, 1), each sampled one proven", "peer")
 
 
 def test_table8_around(benchmark, table8):
-    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
-                                kwargs={"around": table8.chart}, rounds=1, iterations=1)
+    result = benchmark.pedantic(pfr3.certify_forward, args=(TABLE8, TABLE8_LAMBDAS),
+                                kwargs={"around": table8.x}, rounds=1, iterations=1)
     assert result.count == 9
     record(benchmark, "Table 8 (1, 1, 1), each sampled one proven", "mechnum",
            _proven(result))
@@ -149,13 +151,13 @@ def test_table8_around(benchmark, table8):
 
 def test_table8_verify_stored(benchmark):
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    f, J, _, exclude = pfr3_certified.system(TABLE8, TABLE8_LAMBDAS)
     checked = benchmark.pedantic(certify.verify, args=(cert, f, J, exclude),
                                  kwargs={"domain": rods.certified.branch_boxes(3)}, rounds=3,
                                  iterations=1)
     assert checked.count == 9
     record(benchmark, "Table 8 stored certificate, verify (<= 20 s)", "mechnum",
-           f"{checked.leaves} leaves, {checked.nfev} + {checked.njev} evaluations")
+           f"{checked.iterations} leaves, {checked.nfev} + {checked.njev} evaluations")
 
 
 FULL_REASON = "whole-chart searches take many minutes: MECHNUM_BENCH_FULL=1 runs them"
@@ -165,13 +167,13 @@ FULL_REASON = "whole-chart searches take many minutes: MECHNUM_BENCH_FULL=1 runs
 @pytest.mark.parametrize("modes", [(m1, m2) for m1 in (1, 2, 3) for m2 in (1, 2, 3)
                                    if (m1, m2) != (1, 1)])
 def test_table7_whole_chart(benchmark, modes):
-    result = benchmark.pedantic(rfr2.certify_forward, args=(rfr2.TABLE7, rfr2.TABLE7_THETA),
+    result = benchmark.pedantic(rfr2.certify_forward, args=(TABLE7, TABLE7_THETA),
                                 kwargs={"modes": modes}, rounds=1, iterations=1)
     record(benchmark, f"Table 7 {modes}, whole chart", "mechnum", _proven(result))
 
 
 @pytest.mark.skipif(not FULL, reason=FULL_REASON)
 def test_table8_whole_chart(benchmark):
-    result = benchmark.pedantic(pfr3.certify_forward, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS),
+    result = benchmark.pedantic(pfr3.certify_forward, args=(TABLE8, TABLE8_LAMBDAS),
                                 rounds=1, iterations=1)
     record(benchmark, "Table 8 (1, 1, 1), whole chart", "mechnum", _proven(result))

@@ -1,6 +1,6 @@
 """The cost of the guard of mechnum.certify: the same searches with and without it.
 
-With the guard (``mechnum.certify.guard``), a search hands the residual ``certify.Ball``\\ s and
+With the guard (``mechnum.certify._guard``), a search hands the residual ``certify.Ball``\\ s and
 checks everything it returns (lengths, types, finite at points); the peer is the same search
 handing plain Arb balls that only carry their box's float ends (which the rods' enclosures need
 to pick a branch) and converting what comes back without a check, as before the guard. The
@@ -16,9 +16,10 @@ import pytest
 from flint import arb
 
 from mechnum import certify
-from mechnum.certify import balls, guard
-from mechnum.certify import krawczyk as kr
-from mechnum.certify import search as sr
+from mechnum.certify import _guard as guard
+from mechnum.certify import _krawczyk as kr
+from mechnum.certify import _search as sr
+from mechnum.certify import balls
 from mechnum.mechanisms import rfr2
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
 from mechnum.rods import certified
@@ -53,7 +54,7 @@ def unguarded(monkeypatch):
     """The search without the guard (the peer)."""
     for module in (kr, sr):
         monkeypatch.setattr(module, "guarded", _marked)
-    monkeypatch.setattr(guard, "interval", lambda x: getattr(x, "interval", None))
+    monkeypatch.setattr(certified, "interval", lambda x: getattr(x, "interval", None))
     monkeypatch.setattr(guard, "values", lambda f, X, n, point=False: _plain(f(X), n))
     monkeypatch.setattr(guard, "matrix", lambda J, X, n: [_plain(row, n) for row in J(X)])
     monkeypatch.setattr(guard, "decision", lambda exclude, X: bool(exclude(X)))
@@ -78,7 +79,7 @@ def pinned():
 
 
 def table7():
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
     return certify.roots(f, J, LEAF, max_boxes=1500, exclude=exclude, split=exclude.split)
 
 

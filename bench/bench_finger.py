@@ -8,16 +8,17 @@ import numpy as np
 
 from mechnum import linear
 from mechnum.mechanisms import finger as F
+from mechnum.mechanisms.finger import study as FS
 
 
 def omega_study(n_omegas=200):
     """The fits (QR, LU, SOR at the study's five omegas) and the spectral radius and iteration
     count of SOR for ``n_omegas`` relaxation factors in (0, 2)."""
-    fits = [F.synthesize(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT, F.TABLE1_R4, m)
+    fits = [F.synthesize(FS.TABLE2_THETA_IN, FS.TABLE2_THETA_OUT, FS.TABLE1_R4, m)
             for m in ("qr", "lu")]
-    fits += [F.synthesize(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT, F.TABLE1_R4, "sor", w,
-                          tol=1e-10) for w in F.STUDY_OMEGAS]
-    A, b = F.design_matrix(F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT)
+    fits += [F.synthesize(FS.TABLE2_THETA_IN, FS.TABLE2_THETA_OUT, FS.TABLE1_R4, "sor", w,
+                          tol=1e-10) for w in FS.STUDY_OMEGAS]
+    A, b = F.design_matrix(FS.TABLE2_THETA_IN, FS.TABLE2_THETA_OUT)
     sweep = linear.sor_sweep(A.T @ A, A.T @ b, np.linspace(0.05, 1.95, n_omegas), tol=1e-10)
     return fits, sweep
 
@@ -29,10 +30,10 @@ def test_full_omega_study(benchmark):
 
 
 def test_least_squares_fit_qr(benchmark):
-    fit = benchmark(F.synthesize, F.TABLE2_THETA_IN, F.TABLE2_THETA_OUT, F.TABLE1_R4, "qr")
+    fit = benchmark(F.synthesize, FS.TABLE2_THETA_IN, FS.TABLE2_THETA_OUT, FS.TABLE1_R4, "qr")
     assert fit.linkage.r1 > 0
 
 
 def test_registry_reproduction(benchmark):
-    values = benchmark(F.reproduce)
+    values = benchmark(FS.reproduce)
     assert len(values) > 300

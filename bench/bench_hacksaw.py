@@ -20,15 +20,17 @@ import numpy as np
 import pytest
 
 from mechnum.mechanisms import hacksaw as hs
+from mechnum.mechanisms.hacksaw import study
+from mechnum.mechanisms.hacksaw._solvers import PREDICTORS
 
 TIMES = np.linspace(0.0, 2 * hs.first_revolution_time(), 1000)
-EXACT = hs.closed_form(hs.STUDY, TIMES)
+EXACT = hs.closed_form(study.STUDY, TIMES)
 FASTEST = {}  # the fastest time of each benchmark of this run, for the printed ratios
 BATCHED_RATIO = 1.5  # the batched sweep: at most this many times the minimal Newton (medians)
 ROUNDS = 41  # interleaved rounds of the two timings of the ratio
 
 
-def reference_sweep(times, seed=hs.TRAJECTORY_SEED, tol=hs.TOL, g=hs.STUDY):
+def reference_sweep(times, seed=study.TRAJECTORY_SEED, tol=study.TOL, g=study.STUDY):
     """The minimal vectorised Newton for the whole trajectory: the peer of the batched sweep."""
     th2, w2, a2 = hs.motor(times)
     s2, c2 = np.sin(th2), np.cos(th2)
@@ -79,12 +81,12 @@ def test_reference_vectorised_newton(benchmark):
 
 @pytest.mark.benchmark(group="hacksaw: 1000 points at once")
 def test_batched_sweep(benchmark, capsys):
-    res = benchmark.pedantic(hs.sweep, args=(hs.STUDY, TIMES, "batched"), rounds=30,
+    res = benchmark.pedantic(hs.sweep, args=(study.STUDY, TIMES, "batched"), rounds=30,
                              warmup_rounds=2)
     assert np.abs(res.x - EXACT).max() < 1e-9
     _record(benchmark, "batched sweep", "reference")
     times = np.array([[timeit.timeit(f, number=1) for f in (
-        lambda: hs.sweep(hs.STUDY, TIMES, "batched"), lambda: reference_sweep(TIMES))]
+        lambda: hs.sweep(study.STUDY, TIMES, "batched"), lambda: reference_sweep(TIMES))]
         for _ in range(ROUNDS)])  # interleaved, so that a change of load touches both alike
     mine, peer = np.median(times, axis=0)
     benchmark.extra_info["median ratio to the minimal Newton"] = round(mine / peer, 2)
@@ -96,7 +98,7 @@ def test_batched_sweep(benchmark, capsys):
 
 @pytest.mark.benchmark(group="hacksaw: 1000 points at once")
 def test_closed_form(benchmark):
-    x = benchmark(hs.closed_form, hs.STUDY, TIMES)
+    x = benchmark(hs.closed_form, study.STUDY, TIMES)
     assert x.shape == (1000, 9)
     _record(benchmark, "closed form", "reference")
 
@@ -105,10 +107,10 @@ def scipy_root_sweep(times):
     """A peer: the simultaneous loop with SciPy's MINPACK ``hybr`` instead of our Newton."""
     from scipy.optimize import root
 
-    out, x = np.empty((times.size, 9)), hs.TRAJECTORY_SEED
+    out, x = np.empty((times.size, 9)), study.TRAJECTORY_SEED
     for i, state in enumerate(np.stack(hs.motor(times), axis=-1)):
-        x = root(lambda z, *s: hs.residual(hs.STUDY, z, *s), x, args=tuple(state),
-                 jac=lambda z, *_: hs.jacobian(hs.STUDY, z), method="hybr", tol=1e-12).x
+        x = root(lambda z, *s: hs.residual(study.STUDY, z, *s), x, args=tuple(state),
+                 jac=lambda z, *_: hs.jacobian(study.STUDY, z), method="hybr", tol=1e-12).x
         out[i] = x
     return out
 
@@ -121,10 +123,10 @@ def test_sweep_scipy_root_peer(benchmark):
 
 
 @pytest.mark.benchmark(group="hacksaw: point by point")
-@pytest.mark.parametrize("predictor", hs.PREDICTORS)
+@pytest.mark.parametrize("predictor", PREDICTORS)
 @pytest.mark.parametrize("method", ["consecutive", "simultaneous"])
 def test_sweep_loop(benchmark, method, predictor):
-    res = benchmark.pedantic(hs.sweep, args=(hs.STUDY, TIMES, method),
+    res = benchmark.pedantic(hs.sweep, args=(study.STUDY, TIMES, method),
                              kwargs={"predictor": predictor}, rounds=3, warmup_rounds=1)
     assert np.abs(res.x - EXACT).max() < 1e-9
     _record(benchmark, f"{method}, {predictor}", "scipy hybr")

@@ -18,7 +18,10 @@ import numpy as np
 from peers import fsolve_each
 
 from mechnum.mechanisms import pfr3
-from mechnum.mechanisms.pfr3 import equilibria, model, shooting, study
+from mechnum.mechanisms.pfr3 import _elliptic as equilibria
+from mechnum.mechanisms.pfr3 import _model as model
+from mechnum.mechanisms.pfr3 import study
+from mechnum.rods import chart_from_clamps, in_chart
 
 MODES = list(itertools.product((1, 2), repeat=3))
 COUNTS = {(1, 1, 1): 9, (1, 1, 2): 8, (1, 2, 1): 8, (1, 2, 2): 8, (2, 1, 1): 8, (2, 1, 2): 9,
@@ -31,19 +34,20 @@ STUDY_SECONDS = {"thesis_min_s": float(np.nanmin(study.TABLE2_TIMES)),
 def _fsolve_multistart(mech, lambdas, modes, n_starts, seed=0):
     """Every root that fsolve reaches from ``n_starts`` starts (the package's sampler), one at
     a time."""
-    fun, jac = model.forward_system(mech, lambdas, modes)
-    starts = equilibria.sampler(mech, lambdas)(np.random.default_rng(seed), n_starts)
-    return fsolve_each(fun, jac, model.in_chart, starts)
+    system = model.forward_system(mech, lambdas, modes)
+    starts = pfr3.sampler(mech, lambdas)(np.random.default_rng(seed), n_starts)
+    return fsolve_each(system, in_chart, starts)
 
 
 def test_mode1_equilibria_of_table8(benchmark):
     benchmark.extra_info.update(STUDY_SECONDS)
-    eq = benchmark(pfr3.forward_elliptic, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
+    eq = benchmark(pfr3.forward, pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
     assert len(eq.pose) == 9 and eq.search.complete
 
 
 def test_mode1_equilibria_of_table8_scipy_fsolve_multistart(benchmark):
-    roots = benchmark.pedantic(_fsolve_multistart, args=(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
+    roots = benchmark.pedantic(_fsolve_multistart, args=(pfr3.study.TABLE8,
+                                                         pfr3.study.TABLE8_LAMBDAS,
                                                          (1, 1, 1), equilibria.N_STARTS),
                                rounds=1, iterations=1)
     assert len(roots) <= 9
@@ -51,28 +55,30 @@ def test_mode1_equilibria_of_table8_scipy_fsolve_multistart(benchmark):
 
 def test_mode1_equilibria_of_table2(benchmark):
     benchmark.extra_info.update(STUDY_SECONDS)
-    eq = benchmark(pfr3.forward_elliptic, pfr3.TABLE2, pfr3.TABLE2_LAMBDAS, rng=0)
+    eq = benchmark(pfr3.forward, pfr3.study.TABLE2, pfr3.study.TABLE2_LAMBDAS, rng=0)
     assert len(eq.pose) == 3 and eq.search.complete
 
 
 def test_mode1_equilibria_of_table2_mirrored(benchmark):
     benchmark.extra_info.update(STUDY_SECONDS)
-    eq = benchmark.pedantic(pfr3.forward_elliptic, args=(pfr3.TABLE2.mirrored(),
-                                                         pfr3.TABLE2_LAMBDAS),
+    eq = benchmark.pedantic(pfr3.forward, args=(pfr3.study.TABLE2.mirrored(),
+                                                         pfr3.study.TABLE2_LAMBDAS),
                             kwargs={"rng": 0, "n_starts": 3 * equilibria.N_STARTS}, rounds=1,
                             iterations=1)
-    assert study.within_study_reach(eq.chart).sum() == 3
+    assert study.within_study_reach(eq.x).sum() == 3
 
 
 def test_mode1_equilibria_of_table2_scipy_fsolve_multistart(benchmark):
-    roots = benchmark.pedantic(_fsolve_multistart, args=(pfr3.TABLE2, pfr3.TABLE2_LAMBDAS,
+    roots = benchmark.pedantic(_fsolve_multistart, args=(pfr3.study.TABLE2,
+                                                         pfr3.study.TABLE2_LAMBDAS,
                                                          (1, 1, 1), equilibria.N_STARTS),
                                rounds=1, iterations=1)
     assert len(roots) <= 3
 
 
 def _all_modes():
-    return [pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, m, rng=1) for m in MODES]
+    return [pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, modes=m, rng=1)
+            for m in MODES]
 
 
 def test_equilibria_with_modes_up_to_2(benchmark):
@@ -82,24 +88,26 @@ def test_equilibria_with_modes_up_to_2(benchmark):
 
 def test_equilibria_with_modes_up_to_2_scipy_fsolve_multistart(benchmark):
     found = benchmark.pedantic(lambda: [_fsolve_multistart(
-        pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, m, equilibria.N_STARTS) for m in MODES],
+        pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, m, equilibria.N_STARTS) for m in MODES],
         rounds=1, iterations=1)
     assert sum(len(r) for r in found) <= sum(COUNTS.values())
 
 
 def _shooting_example():
     """The equilibrium of Annex II 4.1 at its starting pose, as the chapter finds it."""
-    mech = pfr3.SHOOTING_EXAMPLE
-    guess = np.concatenate([np.r_[-0.002, 0.04 * model.UNIT_CIRCLE[i], 0.0] for i in range(3)])
-    sol = pfr3.inverse_shooting(mech, pfr3.SHOOTING_POSE, guess)
-    z, modes = shooting.chart_from_clamps(mech, sol.clamp_moments[0], sol.forces[0])
-    return mech, sol.lambdas[0], z, modes
+    mech = pfr3.study.SHOOTING_EXAMPLE
+    seed = np.concatenate([np.r_[-0.002, 0.04 * model.UNIT_CIRCLE[i], 0.0] for i in range(3)])
+    sol = pfr3.inverse_shooting(mech, pfr3.study.SHOOTING_POSE, seed)
+    z, modes = chart_from_clamps(mech.EI, mech.L, mech.clamp_angles,
+                                          sol.clamp_moments[0], sol.forces[0])
+    return mech, sol.inputs[0], z, modes
 
 
 def test_det_jik_map_101x101(benchmark):
     mech, lambdas, z, modes = _shooting_example()
     x = np.linspace(-0.4, 0.4, 101)
-    result = benchmark.pedantic(pfr3.inverse_map, args=(mech, x, x, pfr3.SHOOTING_POSE[2],
-                                                        pfr3.SHOOTING_POSE, lambdas, z, modes),
+    pose = pfr3.study.SHOOTING_POSE
+    result = benchmark.pedantic(pfr3.inverse_map, args=(mech, x, x, pose[2], pose, lambdas, z,
+                                                        modes),
                                 rounds=3, iterations=1)
     assert result.det_ik.shape == (101, 101) and result.converged.mean() > 0.5

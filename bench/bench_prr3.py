@@ -20,7 +20,8 @@ import timeit
 import numpy as np
 
 from mechnum.mechanisms import prr3
-from mechnum.mechanisms.prr3 import EXAMPLES
+from mechnum.mechanisms.prr3 import _geometry
+from mechnum.mechanisms.prr3.study import EXAMPLES
 
 GEOMETRY, LAMBDAS = EXAMPLES["Table 5"]
 ONE_POSE_RATIO = 20  # one input: at most this many np.roots of the degree-8 polynomial
@@ -76,7 +77,7 @@ def medians(first, second, number, rounds=ROUNDS):
 def test_forward_one_input_against_np_roots(benchmark, capsys):
     octic = prr3.polynomial(GEOMETRY, LAMBDAS)[::-1]
     sol = benchmark(prr3.forward, GEOMETRY, LAMBDAS)
-    assert sol.poses.shape == (2, 3)
+    assert sol.x.shape == (2, 3)
     mine, roots = medians(lambda: prr3.forward(GEOMETRY, LAMBDAS), lambda: np.roots(octic), 1,
                           ONE_CALL_ROUNDS)
     ratio = mine / roots
@@ -93,7 +94,7 @@ def test_forward_2000_inputs_against_the_minimal_batch(benchmark, capsys):
     mine, peer = medians(lambda: prr3.forward(GEOMETRY, INPUTS),
                          lambda: peer_forward(INPUTS, GEOMETRY), 1)
     poses, row = peer_forward(INPUTS, GEOMETRY)
-    assert np.abs(prr3.loop_residuals(GEOMETRY, poses, INPUTS[row])).max() < 1e-6
+    assert np.abs(_geometry.loop_residuals(GEOMETRY, poses, INPUTS[row])).max() < 1e-6
     benchmark.extra_info.update(us_per_input=mine / 2000 * 1e6, ratio_to_peer=mine / peer)
     with capsys.disabled():
         print(f"\n3PRR forward, 2000 inputs: {mine / 2000 * 1e6:.1f} us per input (target "
@@ -108,7 +109,7 @@ def test_inverse_problem_table_3(benchmark):
 
 
 def test_workspace_grid_51_51_14(benchmark):
-    geometry = prr3.WORKSPACE_GEOMETRY  # the study's workspace script
+    geometry = prr3.study.WORKSPACE_GEOMETRY  # the study's workspace script
     x = np.linspace(-3, 6, 51)
     psi = np.arange(14) * 0.15 * np.pi
     X, Y, PSI = np.meshgrid(x, x, psi, indexing="ij")

@@ -36,8 +36,8 @@ from scipy.optimize import brentq, root
 from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 
 from mechnum import rods
-from mechnum.rods import regular
-from mechnum.rods import rod as rod_module
+from mechnum.rods import _regular as regular
+from mechnum.rods import _rod as rod_module
 
 EI, L = 1.0, 1.0
 TOL = 1e-10                       # the accuracy every contender must reach (tip, over L)

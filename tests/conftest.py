@@ -1,4 +1,5 @@
-"""Hypothesis profiles: the same examples for ``make test``, new ones for ``make explore``.
+"""Hypothesis profiles: the same examples for ``make test``, new ones for ``make explore``; the
+book's module ``published`` on the path.
 
 ``make test`` (and CI) must give the same verdict on every run and every machine, so it sets
 ``HYPOTHESIS_PROFILE=repeatable``: each test draws the same examples every time (seeded from the
@@ -8,8 +9,14 @@ examples on each run and remembers a failure in ``.hypothesis`` so that the next
 A counterexample it finds becomes an ``@example`` on its test, which every run then checks.
 """
 import os
+import sys
+from pathlib import Path
 
 from hypothesis import HealthCheck, settings
+
+# The book's own module, book/published.py (the registry's rules, served with the chapters),
+# importable as ``published`` as the chapters import it.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "book"))
 
 settings.register_profile("repeatable", derandomize=True, database=None, deadline=None,
                           print_blob=True,

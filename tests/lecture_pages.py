@@ -34,76 +34,44 @@ def notebook(page):
     return nbformat.read(ROOT / f"{page}.ipynb", as_version=4)
 
 
-# Markdown: a fence opens a code block (```python), a directive (```{exercise}, :::{admonition})
-# or, inside a directive, its options (:label: x); $$ and \begin{...} open display maths
+# Markdown: a fence opens a code block (```python) or a directive (```{exercise},
+# :::{admonition}); only a code block's lines are code that the page shows
 FENCE = re.compile(r"^\s*(`{3,}|~{3,}|:{3,})\s*(?:\{([\w:-]+)\})?\s*(.*)$")
-NOT_PROSE = {"code", "code-block", "code-cell", "sourcecode", "math", "raw", "literalinclude",
-             "bibliography", "eval-rst"}
-NOT_CODE = {"math", "raw", "bibliography", "eval-rst"}
-OPTION = re.compile(r"^\s*:[\w-]+:")
-SKIPPED_LINE = re.compile(r"^\s*(\([\w-]+\)=|%|\+\+\+)")  # a target, a comment, a cell break
-INLINE = [(re.compile(r"\{[\w:-]+\}(`+).*?\1"), " reference "),     # a role: one word
-          (re.compile(r"(`+).+?\1"), " "),                            # inline code
-          (re.compile(r"\$\$.+?\$\$|(?<![\\$])\$(?=\S)[^$]*?(?<=\S)\$"), " "),  # inline maths
-          (re.compile(r"!\[[^\]]*\]\([^)]*\)"), " "),                 # an image
-          (re.compile(r"\[([^\]]*)\]\([^)]*\)"), r"\1"),              # a link: its text
-          (re.compile(r"<[^>]*>"), " ")]                              # HTML, autolinks
+SHOWN_CODE = {None, "code", "code-block", "code-cell", "sourcecode"}
 
 
-def read_markdown(source):
-    """``(words, code lines)`` of a Markdown cell: the words of its prose, and the lines of the
-    code blocks it shows (see CONTRIBUTING.md, "The lecture's budget")."""
-    source = re.sub(r"<!--.*?-->", " ", source, flags=re.DOTALL)
-    words, code, blocks, maths, options = 0, [], [], None, False
+def count_words(source):
+    """Every word of a Markdown cell, its mathematics included: the pieces of its source
+    between white space (a formula read aloud or worked on the board is part of the lecture,
+    so ``$x_k^2 + 1$`` is three words; so is a directive's option line, a target or a
+    comment: nothing is left out)."""
+    return len(source.split())
+
+
+def shown_code(source):
+    """The lines of the code blocks that a Markdown cell shows (for the width of the column);
+    a directive's body (an exercise, a ``{math}`` block) is not code."""
+    code, blocks = [], []
     for line in source.splitlines():
         fence = FENCE.match(line)
         if blocks and fence and not fence[2] and not fence[3] \
                 and fence[1][0] == blocks[-1][0][0] and len(fence[1]) >= len(blocks[-1][0]):
             blocks.pop()
-            continue
-        inside = blocks[-1] if blocks else (None, "prose")
-        if inside[1] in ("code", "hidden"):
-            code += [line] if inside[1] == "code" else []
-            continue
-        if fence:
-            name = fence[2]
-            kind = "prose" if name and name not in NOT_PROSE else \
-                "hidden" if name in NOT_CODE else "code"
-            blocks.append((fence[1], kind))
-            options = bool(name)
-            words += count_words(fence[3]) if kind == "prose" else 0  # a directive's title
-            continue
-        if options and (OPTION.match(line) or not line.strip()):
-            continue
-        options = False
-        if maths:
-            maths = None if maths in line else maths
-        elif line.lstrip().startswith("$$"):
-            maths = None if line.rstrip().endswith("$$") and len(line.strip()) > 2 else "$$"
-        elif re.match(r"^\s*\\begin\{([\w*]+)\}", line):
-            env = re.match(r"^\s*\\begin\{([\w*]+)\}", line)[1]
-            maths = None if f"\\end{{{env}}}" in line else f"\\end{{{env}}}"
-        elif not SKIPPED_LINE.match(line):
-            words += count_words(line)
-    return words, code
-
-
-def count_words(text):
-    """The words of a line of prose: what is left of it without inline code and maths, link
-    targets and HTML, split at spaces, each piece holding a letter or a digit."""
-    for pattern, replacement in INLINE:
-        text = pattern.sub(replacement, text)
-    return sum(bool(re.search(r"[^\W_]", token)) for token in text.split())
+        elif blocks and blocks[-1][1]:
+            code.append(line)
+        elif fence:
+            blocks.append((fence[1], fence[1][0] != ":" and fence[2] in SHOWN_CODE))
+    return code
 
 
 def budget(page):
-    """``{"words", "code lines", "long lines"}`` of a page: words of prose, non-blank source
-    lines of its code cells, and every line of code it shows longer than ``MAX_LINE``."""
+    """``{"words", "code lines", "long lines"}`` of a page: every word of its Markdown cells
+    (mathematics included), the non-blank source lines of its code cells, and every line of code
+    it shows longer than ``MAX_LINE``."""
     words, lines, shown = 0, 0, []
     for cell in notebook(page).cells:
         if cell.cell_type == "markdown":
-            more, code = read_markdown(cell.source)
-            words, shown = words + more, shown + code
+            words, shown = words + count_words(cell.source), shown + shown_code(cell.source)
         elif cell.cell_type == "code":
             source = cell.source.splitlines()
             lines, shown = lines + sum(bool(line.strip()) for line in source), shown + source

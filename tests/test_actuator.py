@@ -14,6 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
+from published import agrees, read_published
 
 from mechnum.errors import (
     ConvergenceError,
@@ -22,9 +23,7 @@ from mechnum.errors import (
     UnreachablePoseError,
 )
 from mechnum.mechanisms.actuator import (
-    ANNEX,
     Actuator,
-    centres_of_mass,
     draw,
     energy,
     forward,
@@ -37,14 +36,14 @@ from mechnum.mechanisms.actuator import (
     loop_jacobian,
     loop_residual,
     partial_velocities,
-    positions,
     singular_points,
     solve_loop,
     stroke_kinematics,
     virtual_power_force,
 )
+from mechnum.mechanisms.actuator._velocities import centres_of_mass
+from mechnum.mechanisms.actuator.study import ANNEX
 from mechnum.plotting import animate
-from mechnum.published import agrees, read_published
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
@@ -178,17 +177,15 @@ def test_stroke_is_a_harmonic_motion(mech, t):
 # --- positions -----------------------------------------------------------------------------
 
 def test_positions_reject_bad_input():
-    for function in (positions, forward):
-        with pytest.raises(ValueError, match="a must be finite"):
-            function(ANNEX, [0.6, np.inf])
-        with pytest.raises(ValueError, match="a must be real"):
-            function(ANNEX, 0.6 + 0j)
-        with pytest.raises(ValueError, match="mech must be an Actuator"):
-            function(None, 0.6)
-        with pytest.raises(UnreachablePoseError, match=r"a \+ l = 1.5 m is outside"):
-            function(ANNEX, [0.6, 1.1])
-    assert positions(ANNEX, [])[0].shape == (0,)  # an empty batch is valid
-    assert forward(ANNEX, []).shape == (0, 2, 2)
+    with pytest.raises(ValueError, match="a must be finite"):
+        forward(ANNEX, [0.6, np.inf])
+    with pytest.raises(ValueError, match="a must be real"):
+        forward(ANNEX, 0.6 + 0j)
+    with pytest.raises(ValueError, match="mech must be an Actuator"):
+        forward(None, 0.6)
+    with pytest.raises(UnreachablePoseError, match=r"a \+ l = 1.5 m is outside"):
+        forward(ANNEX, [0.6, 1.1])
+    assert forward(ANNEX, []).x.shape == (0, 2, 2)  # an empty batch is valid
 
 
 @MANY
@@ -197,12 +194,11 @@ def test_positions_close_the_loop_or_refuse(mech, u):
     low, high = reach(mech)
     a = low + (high - low) * (0.5 + 0.7 * u)  # up to 20 % of the range beyond each end
     try:
-        both = forward(mech, a)
+        both = forward(mech, a).x
     except UnreachablePoseError:
         assert not low <= a <= high
         return
     assert low <= a <= high and both.shape == (2, 2)
-    assert_allclose(positions(mech, a), both[0], rtol=0, atol=0)  # the annex's mode first
     for x in both:  # each mode closes the loop
         assert_allclose(loop_residual(mech, x, a), 0.0, atol=1e-12)
     # the modes are mirror images across O2 O4: the same stroke, the other side of the line
@@ -233,7 +229,7 @@ def test_loop_functions_reject_bad_input(function):
 def test_residual_vanishes_at_the_pose_and_is_periodic(mech, th2, th4, u):
     low, high = reach(mech)
     a = low + (high - low) * (0.05 + 0.9 * u)
-    assert_allclose(loop_residual(mech, positions(mech, a), a), 0.0, atol=1e-12)
+    assert_allclose(loop_residual(mech, forward(mech, a).x[..., 0, :], a), 0.0, atol=1e-12)
     x = np.array([th2, th4])
     assert_allclose(loop_residual(mech, x + 2 * np.pi, a), loop_residual(mech, x, a),
                     rtol=1e-12, atol=1e-12)
@@ -277,7 +273,7 @@ def test_singular_guess_on_a_regular_mechanism():
     assert caught.value.result.iterations == 0
     for damping in (False, True):
         res = solve_loop(ANNEX, 0.6, seed=(1.5, 1.4), damping=damping)
-        assert_allclose(res.x, positions(ANNEX, 0.6), rtol=1e-12, atol=1e-12)
+        assert_allclose(res.x, forward(ANNEX, 0.6).x[0], rtol=1e-12, atol=1e-12)
 
 
 def test_newton_slows_to_a_linear_rate_at_a_dead_point():
@@ -302,7 +298,7 @@ def test_newton_from_a_near_guess_closes_the_loop(mech, u, e2, e4):
     # closing; from a start close enough (1e-3 rad) it is the triangle's own pose.
     low, high = reach(mech)
     a = low + (high - low) * (0.1 + 0.8 * u)
-    exact = forward(mech, a)[0]
+    exact = forward(mech, a).x[0]
     res = solve_loop(mech, a, seed=exact + [e2, e4])
     assert res.converged
     assert_allclose(loop_residual(mech, res.x, a), 0.0, atol=1e-10 * (a + mech.l))
@@ -566,7 +562,7 @@ def axes():
 
 
 def test_draw_rejects_bad_input(axes):
-    state = (0.6, forward(ANNEX, 0.6)[0])
+    state = (0.6, forward(ANNEX, 0.6).x[0])
     with pytest.raises(ValueError, match="a must be finite"):
         draw(axes, ANNEX, (np.nan, state[1]))
     with pytest.raises(ValueError, match="state must close the loop"):
@@ -588,9 +584,9 @@ def test_drawing_closes_the_loop_and_moves(axes, mech, u, mode):
     for line in axes.lines[:]:
         line.remove()
     start = low + (high - low) * (0.1 + 0.8 * u)
-    parts = draw(axes, mech, (start, forward(mech, start)[mode]))
+    parts = draw(axes, mech, (start, forward(mech, start).x[mode]))
     a = low + (high - low) * (0.9 - 0.8 * u)
-    assert draw(axes, mech, (a, forward(mech, a)[mode]), artists=parts) is parts
+    assert draw(axes, mech, (a, forward(mech, a).x[mode]), artists=parts) is parts
     assert len(axes.lines) == 5  # moved, not drawn again
     pin = complex(*parts["rod"].get_xydata()[1])  # the rod's end A
     o4, end = (complex(*p) for p in parts["rocker"].get_xydata())
@@ -601,7 +597,7 @@ def test_drawing_closes_the_loop_and_moves(axes, mech, u, mode):
 
 def test_animate_moves_the_mechanism():
     strokes = ANNEX.stroke(np.linspace(0.0, 1.0, 5, endpoint=False))[0]
-    html = animate(draw, ANNEX, list(zip(strokes, forward(ANNEX, strokes)[:, 0])))
+    html = animate(draw, ANNEX, list(zip(strokes, forward(ANNEX, strokes).x[:, 0])))
     assert html.count("data:image/png;base64") == 5
 
 
@@ -612,7 +608,7 @@ def test_animate_moves_the_mechanism():
 def test_inverse_gives_the_stroke_of_the_rocker_angle_in_either_mode(mech, u, mode):
     low, high = reach(mech)
     a = low + (high - low) * (0.05 + 0.9 * u)
-    theta4 = forward(mech, a)[mode, 1]
+    theta4 = forward(mech, a).x[mode, 1]
     assert_allclose(inverse(mech, theta4), a, rtol=1e-10, atol=1e-12 * (a + mech.l))
 
 
@@ -631,7 +627,7 @@ def test_singular_points_are_where_the_jacobian_vanishes_and_the_modes_meet(mech
     for a in singular_points(mech):
         if a + mech.l <= 0:
             continue  # no stroke can reach a negative length
-        both = forward(mech, a)
+        both = forward(mech, a).x
         gap = np.angle(np.exp(1j * (both[0] - both[1])))  # modulo 2 pi
         assert_allclose(gap, 0.0, rtol=0, atol=1e-6)  # a double root: about sqrt(eps)
         assert abs(np.linalg.det(loop_jacobian(mech, both[0], a))) < 1e-6 * (a + mech.l)
@@ -639,34 +635,3 @@ def test_singular_points_are_where_the_jacobian_vanishes_and_the_modes_meet(mech
             stroke_kinematics(mech, a)
 
 
-# --- deprecated forms --------------------------------------------------------------------
-
-OLD_FORMS = [
-    (lambda: positions(0.61), lambda: positions(ANNEX, 0.61)),
-    (lambda: positions(0.61, Actuator(b=0.3)), lambda: positions(Actuator(b=0.3), 0.61)),
-    (lambda: loop_residual([1.5, 0.1], 0.6), lambda: loop_residual(ANNEX, [1.5, 0.1], 0.6)),
-    (lambda: loop_jacobian([1.5, 0.1], 0.6, mech=ANNEX),
-     lambda: loop_jacobian(ANNEX, [1.5, 0.1], 0.6)),
-    (lambda: solve_loop(0.6, x0=(1.5, 0.1)).x, lambda: solve_loop(ANNEX, 0.6,
-                                                                  seed=(1.5, 0.1)).x),
-    (lambda: kinematics(0.3, ANNEX, "annex").k4, lambda: kinematics(ANNEX, 0.3, "annex").k4),
-    (lambda: stroke_kinematics(0.6, 0.1).omega4, lambda: stroke_kinematics(ANNEX, 0.6,
-                                                                           0.1).omega4),
-    (lambda: forward_dynamics(_prescribed(ANNEX), [0.0, 0.01], 0.6, 0.1).a,
-     lambda: forward_dynamics(ANNEX, _prescribed(ANNEX), [0.0, 0.01], 0.6, 0.1).a),
-]
-
-
-@pytest.mark.parametrize("old, new", OLD_FORMS)
-def test_old_forms_warn_and_give_the_new_forms_answer(old, new):
-    with pytest.warns(DeprecationWarning, match="deprecated and will be removed in 0.3"):
-        before = old()
-    np.testing.assert_array_equal(np.asarray(before), np.asarray(new()))
-
-
-def test_old_draw_warns_and_draws_the_same(axes):
-    with pytest.warns(DeprecationWarning, match=r"draw\(ax, a, mech\)"):
-        before = draw(axes, 0.6)
-    after = draw(axes, ANNEX, (0.6, forward(ANNEX, 0.6)[0]))
-    for name in after:
-        np.testing.assert_array_equal(before[name].get_xydata(), after[name].get_xydata())

@@ -13,8 +13,8 @@ import pytest
 from flint import arb
 
 from mechnum import certify
+from mechnum.certify import _krawczyk as kr
 from mechnum.certify import balls as B
-from mechnum.certify import krawczyk as kr
 
 
 def circle_hyperbola():
@@ -226,12 +226,31 @@ def test_definite_needs_a_symmetric_matrix():
 
 
 def test_balls_enclose_wide_intervals():
-    x = certify.ball(-1.0, 4.0)
-    lo, hi = certify.bounds(B.cos(x))
+    x = certify.balls.ball(-1.0, 4.0)
+    lo, hi = certify.balls.bounds(B.cos(x))
     # cos over [-1, 4] contains [-1, 1]; Arb's enclosure is wider by round-off only (a few ulps of
     # 1), far below 1e-8
     assert lo <= -1.0 and hi >= 1.0 and hi - lo < 2.0 + 1e-8
-    lo, hi = certify.bounds(B.sin(certify.ball(0.1, 0.2)))
+    lo, hi = certify.balls.bounds(B.sin(certify.balls.ball(0.1, 0.2)))
     assert lo <= math.sin(0.1) and math.sin(0.2) <= hi and hi - lo < 0.1
-    lo, hi = certify.bounds(B.mul(certify.ball(10.0, 1e5), certify.ball(0.96, 1.0)))
+    lo, hi = B.bounds(B.mul(B.ball(10.0, 1e5), B.ball(0.96, 1.0)))
     assert 0.0 < lo <= 9.6 and 1e5 <= hi
+
+
+def test_a_point_box_at_a_subnormal_keeps_its_root():
+    """``x = 3 * 2**-1074``, a root of ``(2**1074 x - 3)**2`` and the box's only point: the
+    halves of its ends round up, and a midpoint taken outside the box once made the
+    mean-value form exclude it ("complete, 0 roots"). In 1-D and as a slice of a 2-D box."""
+    tiny = 3 * 5e-324
+    scale = arb(2) ** 1074
+    f = lambda X: [(X[0] * scale - 3) ** 2]                      # noqa: E731
+    J = lambda X: [[2 * scale * (X[0] * scale - 3)]]             # noqa: E731
+    for y in (np.array([[tiny, tiny]]), np.array([[tiny, tiny], [-1.0, 1.0]])):
+        assert np.all((y[:, 0] <= kr.midpoint(y)[1]) & (kr.midpoint(y)[1] <= y[:, 1]))
+    result = certify.roots(f, J, [[tiny, tiny]])
+    assert not (result.complete and result.count == 0)
+    f2 = lambda X: [(X[0] * scale - 3) ** 2 + X[1] * 0, X[1]]   # noqa: E731
+    J2 = lambda X: [[2 * scale * (X[0] * scale - 3), X[1] * 0],  # noqa: E731
+                    [X[0] * 0, X[1] * 0 + 1]]
+    result = certify.roots(f2, J2, [[tiny, tiny], [-1.0, 1.0]])
+    assert not (result.complete and result.count == 0)

@@ -18,6 +18,7 @@ from flint import arb
 
 from mechnum import certify
 from mechnum.certify import Certificate, CertificateError, Leaf
+from mechnum.certify import _verify as verify_module
 
 BOX = [[-3.0, 3.0], [-3.0, 3.0]]
 
@@ -72,7 +73,7 @@ def test_the_certificate_verifies_and_round_trips(plane, tmp_path):
                for a, b in zip(pa, pb))                      # bit for bit
     checked = certify.verify(loaded, f, J, domain=BOX)
     assert (checked.count, checked.scope, checked.complete) == (4, "all", True)
-    assert checked.leaves == sum(len(part) for part in cert.leaves)
+    assert checked.iterations == sum(len(part) for part in cert.leaves)
 
 
 def test_two_searched_boxes_verify(line):
@@ -338,6 +339,9 @@ BROKEN = {
     "boxes a string": (_set(["boxes"], "everything"), "boxes must be nested lists"),
     "boxes ragged": (_set(["boxes"], [[[0.0, 1.0]], [[0.0, 1.0], [2.0, 3.0]]]), "ragged"),
     "boxes with NaN": (_set(["boxes", 0, 0, 0], float("nan")), "finite intervals"),
+    "a bound of 10**400": (_set(["boxes", 0, 0, 1], 10**400), "beyond the float range"),
+    "a leaf's end 10**400": (_set(["leaves", 0, 0, "box", 0, 0], -10**400),
+                             "beyond the float range"),
     "boxes reversed": (_set(["boxes", 0, 0], [3.0, -3.0]), "lo <= hi"),
     "boxes of bools": (_set(["boxes", 0, 0], [False, True]), "holds bool"),
     "roots of another shape": (_set(["roots"], [[[0.0, 1.0]]]), "roots must have shape"),
@@ -382,3 +386,70 @@ def test_verify_refuses_bad_arguments(plane):
     with pytest.raises(CertificateError, match="sequences of Leaf"):
         Certificate(boxes=[BOX], leaves=[[arb(1)]], roots=[], count=0, scope="all",
                     complete=True, search="by hand")
+
+
+def _naive_distinct(leaves):
+    """distinct_roots as first written: each Krawczyk leaf against every root found."""
+    found, undecided = [], []
+    for leaf in (leaf for leaf in leaves if leaf.test == "krawczyk"):
+        E, T = leaf.enclosure, leaf.test_box
+        for root in found:
+            if (np.all(E[:, 0] >= root[1][:, 0]) and np.all(E[:, 1] <= root[1][:, 1])) or (
+                    np.all(root[0][:, 0] >= T[:, 0]) and np.all(root[0][:, 1] <= T[:, 1])):
+                root[0] = np.column_stack((np.maximum(E[:, 0], root[0][:, 0]),
+                                           np.minimum(E[:, 1], root[0][:, 1])))
+                break
+            if np.all(E[:, 0] <= root[0][:, 1]) and np.all(root[0][:, 0] <= E[:, 1]):
+                undecided.append(leaf)
+                break
+        else:
+            found.append([E, T])
+    return verify_module.sorted_roots([E for E, _ in found]), undecided
+
+
+def test_the_sweeps_find_what_comparing_every_pair_finds():
+    """meeting_pairs (and overlapping) against every pair compared; distinct_roots against the
+    quadratic first version, on random valid leaves around a few roots (grid-aligned ends,
+    so that faces touch and enclosures nest or overlap)."""
+    rng = np.random.default_rng(5)
+    for _ in range(60):
+        n, m = int(rng.integers(1, 4)), int(rng.integers(0, 40))
+        lo = rng.integers(0, 12, (m, n)) / 4
+        boxes = np.stack((lo, lo + rng.integers(0, 6, (m, n)) / 4), axis=-1)
+        for closed in (False, True):
+            less = np.less_equal if closed else np.less
+            every = [[i, j] for i in range(m) for j in range(i + 1, m)
+                     if np.all(less(boxes[i, :, 0], boxes[j, :, 1])
+                               & less(boxes[j, :, 0], boxes[i, :, 1]))]
+            assert verify_module.meeting_pairs(boxes, closed=closed).tolist() == every
+        roots = 2.0 * rng.integers(0, 3, (3, n))      # each test box holds one root only
+        leaves = []
+        for _ in range(m):
+            z = roots[rng.integers(0, 3)]
+            T = np.column_stack((z - rng.integers(1, 8, n) / 16,
+                                 z + rng.integers(1, 8, n) / 16))
+            E = np.column_stack((z - rng.integers(0, 3, n) / 16, z + rng.integers(0, 3, n) / 16))
+            leaves.append(Leaf(T, "krawczyk", T, np.clip(E, T[:, :1], T[:, 1:])))
+        found, undecided = verify_module.distinct_roots(leaves)
+        expected, doubtful = _naive_distinct(leaves)
+        assert [E.tolist() for E in found] == [E.tolist() for E in expected]
+        assert [leaf for leaf, _ in undecided] == doubtful
+
+
+def test_verify_compares_no_pair_of_boxes_in_a_row(monkeypatch):
+    """4000 searched boxes in a row: the sweep compares none of them with another (the first
+    verifier compared all 8 million pairs, 130 s); a grid whose boxes meet along every
+    coordinate's ranges more than MAX_PAIRS is refused, naming the number."""
+    monkeypatch.setattr(verify_module, "MAX_PAIRS", 0)
+    f, J = (lambda X: [X[0] * 0 + 1]), (lambda X: [[X[0] * 0]])
+    xs = np.linspace(0.0, 1.0, 4001)
+    boxes = np.stack((xs[:-1], xs[1:]), axis=-1)[:, None, :]
+    cert = Certificate(boxes=boxes, leaves=[[Leaf(b, "residual")] for b in boxes], roots=[],
+                       count=0, scope="existence", search="a row")
+    assert certify.verify(cert, f, J, domain=[[0.0, 1.0]]).count == 0
+    grid = np.array([[[x, x + 1], [y, y + 1]] for x in range(3) for y in range(3)], float)
+    cert = Certificate(boxes=grid, leaves=[[Leaf(b, "residual")] for b in grid], roots=[],
+                       count=0, scope="existence", search="a grid")
+    F = lambda X: [X[0] * 0 + 1, X[1] * 0 + 1]              # noqa: E731
+    refused(cert, F, F, "9 boxes give 9 pairs to compare.*MAX_PAIRS = 0",
+            domain=[[0.0, 3.0], [0.0, 3.0]])

@@ -6,17 +6,19 @@ Each leaky residual below, handed plain ``flint.arb`` balls, makes the search re
 it, so that these tests fail if the guard is taken away).
 """
 
+import copy
 import math
 import operator
+import pickle
 
 import numpy as np
 import pytest
 from flint import arb
 
 from mechnum import certify
-from mechnum.certify import Ball, BallArithmeticError, ResidualError, guard
+from mechnum.certify import Ball, BallArithmeticError, ResidualError
+from mechnum.certify import _krawczyk as kr
 from mechnum.certify import balls as B
-from mechnum.certify import krawczyk as kr
 
 BOX = [[3.0, 3.3]]                   # holds pi, the root of sin
 J_SIN = lambda X: [[X[0].cos()]]     # noqa: E731
@@ -31,8 +33,18 @@ LEAKS = {
     "int": lambda X: [arb(int(X[0])) - 3 + arb("0.5")],
     "a float of a ball's bound": lambda X: [arb(math.sin(float(X[0].upper())))],
     "the exponent of a ball": lambda X: [arb(X[0].man_exp()[1])],
-    "floats from bounds": lambda X: [arb(math.sin(certify.bounds(X[0])[0]))],
+    "floats from bounds": lambda X: [arb(math.sin(certify.balls.bounds(X[0])[0]))],
+    "the box's ends": lambda X: [X[0] * 0 + math.sin(sum(B.interval(X[0])) / 2)],
+    "the ball's state": lambda X: [X[0] * 0 + math.sin(_state(X[0]))],
+    "a copy": lambda X: [X[0] * 0 + math.sin(copy.copy(X[0]))],
 }
+
+
+def _state(x):
+    """A float the ball's pickled state holds, if any (None: it holds none)."""
+    state = x.__getstate__()
+    floats = [v for value in (state[1] or {}).values() for v in (value or ())]
+    return floats[0] if floats else None
 
 
 @pytest.mark.parametrize("name", LEAKS)
@@ -60,7 +72,12 @@ def test_the_verifier_hands_guarded_balls_too():
 
 def test_ball_arithmetic_stays_guarded_and_answers_certain_questions():
     x = B.guarded([[3.0, 3.3]])[0]
-    assert guard.interval(x) == (3.0, 3.3) and guard.interval(x + 0) is None
+    lo, hi = B.interval(x)
+    assert type(lo) is Ball and lo == 3.0 and hi == 3.3 and B.interval(x + 0) is None
+    assert not hasattr(x, "interval")
+    for leave in (pickle.dumps, copy.copy, copy.deepcopy):
+        with pytest.raises(BallArithmeticError, match="pickling"):
+            leave(x)
     for value in (x + 1, 1 + x, x * x, 2 / x, x ** 2, -x, abs(x), x.sin(), x.mid(),
                   x.lower(), x.rad(), x.sin_cos()[1], arb(2) * x, B.sin(x), B.sqrt(x)):
         assert type(value) is Ball

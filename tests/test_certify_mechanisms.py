@@ -2,18 +2,26 @@
 not samples): the enclosures of the closed form, the chapters' counts, the sampled solvers
 against the certified ones, and the stored certificates."""
 
+import dataclasses
+import json
 import pathlib
 
 import numpy as np
 import pytest
+from flint import arb
 
 from mechnum import certify, rods
-from mechnum.certify import ball, bounds
+from mechnum.certify.balls import ball, bounds
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
-from mechnum.rods import balls, certified, regular
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
+from mechnum.rods import certified
 from mechnum.rods.certified import TWO_PI
+
+TABLE7, THETA7 = rfr2.study.TABLE7, rfr2.study.TABLE7_THETA
+TABLE8, LAMBDAS8 = pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS
 
 CERTIFICATES = pathlib.Path(__file__).parent.parent / "book" / "certificates"
 
@@ -94,8 +102,8 @@ def _same_set(certified, sampled, tol):
 
 
 def test_table7_sampled_equilibria_are_proven():
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     assert result.count == 3 and not result.complete and "lower bound" in result.message
     assert result.scope == "existence" and result.certificate().scope == "existence"
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -105,8 +113,8 @@ def test_table7_sampled_equilibria_are_proven():
 
 
 def test_table8_sampled_equilibria_are_proven():
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    result = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    result = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     assert result.count == 9 and result.scope == "existence" and not result.complete
     assert result.status == "converged" and len(result.parts[0].undecided) == 0
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
@@ -115,34 +123,35 @@ def test_table8_sampled_equilibria_are_proven():
 
 
 def test_a_box_without_an_equilibrium_is_excluded():
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA,
+    result = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA,
                                   around=[[1.0, 0.5, 1.0, 0.5]])
     assert result.count == 0 and result.status == "converged"
 
 
 def test_the_stored_table7_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch5_table7_modes11.json")
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA, (1, 1))
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, (1, 1))
     chart = certified.branch_boxes(2)
     checked = certify.verify(cert, f, J, exclude, domain=chart)
     assert (checked.count, checked.scope, checked.complete) == (3, "existence", None)
     with pytest.raises(certify.CertificateError, match="the caller asks for 'all'"):
         certify.verify(cert, f, J, exclude, domain=chart, scope="all")
-    again = rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA)
+    again = rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
     assert (again.count, again.scope) == (3, "existence")
     with pytest.raises(certify.CertificateError, match="leaf"):          # other motor angles
-        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA + 0.01)
+        rfr2_certified.verify_certificate(cert, rfr2.study.TABLE7, rfr2.study.TABLE7_THETA + 0.01)
 
 
 def test_the_stored_table8_certificate_verifies_as_existence():
     cert = certify.Certificate.load(CERTIFICATES / "ch6_table8_modes111.json")
-    f, J, _, exclude = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, (1, 1, 1))
+    table8, lambdas = pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS
+    f, J, _, exclude = pfr3_certified.system(table8, lambdas, (1, 1, 1))
     checked = certify.verify(cert, f, J, exclude, domain=certified.branch_boxes(3))
     assert (checked.count, checked.scope, checked.complete) == (9, "existence", None)
-    other = pfr3_certified.system(pfr3.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
+    other = pfr3_certified.system(pfr3.study.TABLE8, [0.01, 0.0, 0.0])    # other inputs: rejected
     with pytest.raises(certify.CertificateError):
         certify.verify(cert, other[0], other[1], other[3], domain=certified.branch_boxes(3))
-    assert pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS).count == 9
+    assert pfr3_certified.verify_certificate(cert, table8, lambdas).count == 9
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])
@@ -155,6 +164,21 @@ def test_the_stored_pinned_certificates_verify_complete(mode):
     half = certify.roots(f, J, certified.branch_boxes(1)[:1]).certificate()
     with pytest.raises(certify.CertificateError, match="needs the whole domain"):
         certify.verify(half, f, J, domain=certified.branch_boxes(1))
+
+
+def test_a_leaf_the_rods_refuse_is_a_certificate_error():
+    """A zero-width leaf on the face t = 0 (the branches' edge, where the rods' closed form
+    is refused) spliced into the stored mode-1 cover still merges into its box; verify then
+    names the leaf and the rods' reason in a CertificateError."""
+    data = json.loads((CERTIFICATES / "ch3_pinned_mode1.json").read_text())
+    part = data["leaves"][0]
+    i = next(i for i, leaf in enumerate(part) if leaf["box"][1][0] == 0.0)
+    part.insert(i, {"box": [part[i]["box"][0], [0.0, 0.0]], "test": "residual"})
+    f, J = certified.pinned_system(1.0, 1.0, [0.8, 0.1], 1)
+    with pytest.raises(certify.CertificateError,
+                       match=r"leaf .* \(residual\): the caller's functions refuse it: .*both"):
+        certify.verify(certify.Certificate.from_json(json.dumps(data)), f, J,
+                       domain=certified.branch_boxes(1))
 
 
 def test_the_rods_refuse_boxes_across_branches_or_beyond_the_chart():
@@ -185,3 +209,71 @@ def test_boxes_around_points_stay_in_the_chart_and_the_branch():
     for points in ([[1.0, 0.0]], [[-0.1, 0.5]], [[1.0, 1.0]]):
         with pytest.raises(ValueError, match="points of the chart"):
             certified.around_boxes(points, 1)
+
+
+def test_arcs_meet_modulo_two_pi_at_any_number_of_turns():
+    """The polar force test's arcs, shifted by whole turns (up to 10**6), agree with the
+    arcs reduced to one turn (in floats, with a margin: arcs closer than it are skipped)."""
+    rng = np.random.default_rng(29)
+    pi = balls.B.PI
+    checked = 0
+    for _ in range(400):
+        a0, b0 = rng.uniform(-np.pi, np.pi, 2)
+        wa, wb = rng.uniform(0.01, 3.0), rng.uniform(0.01, 3.0)
+        turns = int(rng.choice([-10**6, -7, -3, 3, 4, 9, 10**6]))
+        gap = (b0 - a0) % TWO_PI                   # b's start, from a's start, in [0, 2 pi)
+        meet = gap <= wa or gap + wb >= TWO_PI
+        margin = min(abs(gap - wa), abs(gap + wb - TWO_PI))
+        if margin < 1e-6:
+            continue
+        a = (arb(a0) + 2 * turns * pi, arb(a0 + wa) + 2 * turns * pi)
+        assert certified._arcs_meet(a, (arb(b0), arb(b0 + wb))) == meet
+        checked += 1
+    assert checked > 350
+
+
+def _one_root_around(system, mech, inputs, point, half):
+    f, J, _, exclude = system(mech, inputs)
+    box = np.column_stack((point - half, point + half))
+    r = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    return r, certify.verify(r.certificate(), f, J, exclude, domain=box)
+
+
+@pytest.mark.parametrize("turns", [2, -3, 10**6])
+def test_rfr2_motor_angles_plus_whole_turns_keep_their_equilibria(turns):
+    """The same 2RFR with its motor angles turned by whole turns: a box around a known
+    equilibrium is proven to hold it (the polar test once excluded it, 'complete, 0')."""
+    point = rfr2.forward(TABLE7, THETA7, rng=0).x[0]
+    theta = THETA7 + 2 * np.pi * turns
+    r, v = _one_root_around(rfr2_certified.system, TABLE7, theta, point, 1e-3)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_pfr3_clamp_angles_plus_whole_turns_keep_their_equilibria():
+    """The same 3PFR with its clamps turned by three whole turns keeps Table 8's first
+    equilibrium (the polar test once excluded its box)."""
+    mech = dataclasses.replace(TABLE8, clamp_angles=TABLE8.clamp_angles + 6 * np.pi)
+    point = pfr3.forward(TABLE8, LAMBDAS8, rng=0).x[0]
+    r, v = _one_root_around(pfr3_certified.system, mech, LAMBDAS8, point, 1e-6)
+    assert (r.count, r.complete) == (1, True) and (v.count, v.complete) == (1, True)
+
+
+def test_the_verifier_refuses_an_exclusion_by_the_old_arc_test(monkeypatch):
+    """A certificate made with the arcs compared at shifts -2..2 only (the old test) excludes
+    a box around an equilibrium at motor angles + 2 turns; the verifier, re-running the
+    caller's exclusion test, refuses it."""
+    def old(a, b):
+        two_pi = 2 * balls.B.PI
+        return any(not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1]))
+                   for k in (-2, -1, 0, 1, 2))
+    point = rfr2.forward(TABLE7, THETA7, rng=0).x[0]
+    theta = THETA7 + 4 * np.pi
+    f, J, _, exclude = rfr2_certified.system(TABLE7, theta)
+    box = np.column_stack((point - 1e-3, point + 1e-3))
+    with monkeypatch.context() as patch:
+        patch.setattr(certified, "_arcs_meet", old)
+        bad = certify.roots(f, J, box, exclude=exclude, split=exclude.split, max_boxes=2000)
+    assert (bad.count, bad.complete) == (0, True)          # the old hole
+    f, J, _, exclude = rfr2_certified.system(TABLE7, theta)
+    with pytest.raises(certify.CertificateError, match="exclusion test fails"):
+        certify.verify(bad.certificate(), f, J, exclude, domain=box)

@@ -22,7 +22,7 @@ from mechnum import certify, rods
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
-from mechnum.rods import regular
+from mechnum.rods import _regular as regular
 from mechnum.rods.certified import TWO_PI, pinned_system
 
 EXPLORE = os.environ.get("HYPOTHESIS_PROFILE", "explore") == "explore"
@@ -51,14 +51,14 @@ def pinned_known():
 
 
 def table7_known():
-    system = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    points = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0).chart
+    system = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
+    points = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0).x
     return [((system[0], system[1], system[3]), z) for z in points]
 
 
 def table8_known():
-    system = pfr3_certified.system(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
-    points = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0).chart
+    system = pfr3_certified.system(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS)
+    points = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0).x
     return [((system[0], system[1], system[3]), z) for z in points]
 
 
@@ -119,7 +119,7 @@ def test_the_issue_s_leaf_is_not_excluded():
     4.811041, 0.855962), lies in it; it was excluded by "residual" (its rod 1 evaluated on
     the other branch, ``t >= 0``, because its ball's radius, rounded outward, crosses
     ``t = 0``)."""
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
     leaf = np.array([[1.9, 2.0], [-0.24979192672217018, 0.0],
                      [4.785677901888251, 4.914237202517668],
                      [0.7493757801665105, 0.8742717435275956]])
@@ -134,7 +134,7 @@ def test_the_issue_s_leaf_is_not_excluded():
                     "make explore runs it")
 def test_the_issue_s_reproducer():
     """The issue's box: never "complete" without Table 7's solution 2 in it."""
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA, (1, 1))
+    f, J, _, exclude = rfr2_certified.system(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, (1, 1))
     T = regular.T_MAX
     box = np.array([[1.6, 2.4], [-T, 0.0], [4.4, 5.2], [0.0, T]])
     result = certify.roots(f, J, box, max_boxes=30000, exclude=exclude, split=exclude.split)

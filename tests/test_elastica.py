@@ -1,7 +1,5 @@
 """Tests of mechnum.mechanisms.elastica: the thesis's single-rod example (study 001)."""
 
-import warnings
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -11,7 +9,9 @@ from scipy.integrate import quad
 
 from mechnum import rods
 from mechnum.errors import ConvergenceError, MechnumError, SingularJacobianError
-from mechnum.mechanisms import elastica as el
+from mechnum.mechanisms import elastica
+from mechnum.mechanisms.elastica import study as el
+from mechnum.mechanisms.elastica._model import ARROW
 
 
 def test_bending_stiffness_is_that_of_a_solid_circular_section():
@@ -53,35 +53,21 @@ def test_a_zero_guess_is_a_singular_jacobian_not_a_linalg_error():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    ({"guess": [0.1, np.nan, 0.1]}, "guess must be finite"),
-    ({"guess": [0.1, 0.1]}, "guess must have shape \\(3,\\)"),
-    ({"guess": [0.1, 0.1, 1j]}, "guess must be real"),
+    ({"seed": [0.1, np.nan, 0.1]}, "seed must be finite"),
+    ({"seed": [0.1, 0.1]}, "seed must have shape \\(3,\\)"),
+    ({"seed": [0.1, 0.1, 1j]}, "seed must be real"),
     ({"target": [0.8]}, "target must have shape \\(2,\\)"),
     ({"EI": 0.0}, "EI must be positive"),
     ({"L": -1.0}, "L must be positive"),
     ({"nodes": 1}, "nodes must be an integer >= 2"),
     ({"nodes": 1e6}, "nodes must be an integer <= 10000"),
     ({"maxiter": 10 ** 9}, "maxiter must be an integer <= 1000"),
-    ({"EI": 1.0, "ei": 1.0}, "not both"),
     ({"tol": -1e-7}, "tol must be positive"),
     ({"maxiter": np.inf}, "maxiter must be an integer"),
 ])
 def test_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
         el.study_shooting(**kwargs)
-
-
-def test_old_argument_names_still_work_and_warn():
-    with pytest.warns(DeprecationWarning, match="'ei' is deprecated"):
-        old = el.study_shooting(ei=2 * el.EI)
-    with pytest.warns(DeprecationWarning, match="'length' is deprecated"):
-        short = el.study_shooting(length=0.9, target=[0.7, 0.1])
-    # the old names call the same function with the same numbers: identical up to round-off (rtol
-    # 1e-14)
-    assert_allclose(old.rod.force, el.study_shooting(EI=2 * el.EI).rod.force, rtol=1e-14)
-    # as above
-    assert_allclose(short.rod.force, el.study_shooting(L=0.9, target=[0.7, 0.1]).rod.force,
-                    rtol=1e-14)
 
 
 def test_no_convergence_is_a_named_error_with_the_partial_result():
@@ -105,13 +91,11 @@ def test_study_loop_answers_or_names_its_failure(guess):
 
 
 def test_budget_adds_its_rows_and_scales_with_the_hours(monkeypatch):
-    with pytest.warns(DeprecationWarning, match="study page"):
-        costs = el.budget()
+    costs = el._budget()
     rows = ("Matlab", "computers", "senior", "junior")
     assert costs["total"] == sum(costs[name] for name in rows)
     monkeypatch.setattr(el, "HOURS", {name: 2 * h for name, h in el.HOURS.items()})
-    with pytest.warns(DeprecationWarning):
-        doubled = el.budget()
+    doubled = el._budget()
     for name in ("computers", "senior", "junior"):       # hour-proportional rows double
         assert_allclose(doubled[name], 2 * costs[name], rtol=1e-15)
     assert doubled["licence rate"] == costs["licence rate"]
@@ -129,9 +113,6 @@ def test_reproduce_recovers_the_odd_q_of_each_mode_from_shooting():
     assert np.all(np.abs(deviation) < 1e-4)
     assert np.all((deviation / fine > 14) & (deviation / fine < 18)), deviation / fine
     assert all(isinstance(v, float) for v in values.values())
-    with warnings.catch_warnings():           # reproduce uses no deprecated name
-        warnings.simplefilter("error", DeprecationWarning)
-        el.reproduce()
 
 
 def test_draw_shows_the_equilibrium_and_moves_without_adding():
@@ -140,23 +121,43 @@ def test_draw_shows_the_equilibrium_and_moves_without_adding():
     import matplotlib.pyplot as plt
 
     push = rods.DeadLoad(el.EI, el.LENGTH, np.pi - 0.1, segments=20)
+    mech = elastica.Mechanism()
     fig, ax = plt.subplots()
-    first = el.draw(ax, push, push.start(0.3))
+    first = elastica.draw(ax, mech, _state(push, push.start(0.3)))
     lines = len(ax.lines)
     u = push.start(-0.5)
-    moved = el.draw(ax, push, u, artists=first)
+    moved = elastica.draw(ax, mech, _state(push, u), artists=first)
     assert moved is first and len(ax.lines) == lines
     rod = push.rod(u)
-    # the drawn line holds the rod's own coordinates: equal up to the rounding of their conversion
-    # (rtol 1e-15)
-    assert_allclose(moved["rod"].get_xydata(), np.column_stack((rod.x, rod.y)), rtol=1e-15)
+    drawn = moved["rod"].get_xydata()
+    assert_allclose(drawn[[0, -1]], [[0.0, 0.0], rod.tip], rtol=0, atol=1e-5)   # RK4, 41 nodes
     head = moved["force"].get_xydata()
-    assert_allclose(head[1], rod.tip, rtol=1e-15)                     # the head at the tip
-    assert_allclose(head[1] - head[0], el.ARROW * el.LENGTH * push.direction, rtol=1e-12)
-    with pytest.raises(ValueError, match="mech must be a rods.DeadLoad"):
-        el.draw(ax, "column", u)
+    assert_allclose(head[1], drawn[-1], rtol=1e-15)                   # the head at the tip
+    assert_allclose(head[1] - head[0], ARROW * el.LENGTH * push.direction, rtol=1e-12)
+    with pytest.raises(ValueError, match="mech must be"):
+        elastica.draw(ax, "column", _state(push, u))
     with pytest.raises(ValueError, match="state"):
-        el.draw(ax, push, [0.0, 1.0, 2.0])
+        elastica.draw(ax, mech, [0.0, 1.0, 2.0])
     with pytest.raises(ValueError, match="ax must be"):
-        el.draw(None, push, u)
+        elastica.draw(None, mech, _state(push, u))
+    plt.close(fig)
+
+
+def _state(push, u):
+    """The state ``(tip, (m0, force))`` of a cantilever under a dead load at ``u``."""
+    rod = push.rod(u)
+    return rod.tip, (rod.m[0], rod.force)
+
+
+def test_forward_finds_every_pinned_equilibrium_and_draws_each():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    found = elastica.forward(elastica.Mechanism(1.0, 1.0), el.TARGET, modes=(1, 2, 3))
+    assert found.modes.tolist() == [1, 2, 2, 2, 2, 3, 3, 3, 3] and found.converged.all()
+    fig, ax = plt.subplots()
+    artists = elastica.draw(ax, elastica.Mechanism(1.0, 1.0), found.state(0))
+    # the chart recovered from the clamp state of a rod in strong tension (1 - |k_rel| ~ 1e-9)
+    assert_allclose(artists["rod"].get_xydata()[-1], el.TARGET, rtol=0, atol=1e-6)
     plt.close(fig)

@@ -19,6 +19,7 @@ import mechnum_course
 from mechnum import exercises, linear, ode, rods
 from mechnum.mechanisms import actuator, prr3
 from mechnum.mechanisms import hacksaw as hs
+from mechnum.mechanisms.actuator.study import ANNEX, G_MATHCAD
 
 NUMBERS = sorted(exercises.CHECKS)
 ROOT = Path(__file__).resolve().parents[1]
@@ -236,34 +237,56 @@ def loop_sign(q, theta2, r1y, r2, r3):
     return F, J
 
 
-def newton_residual_test(F, J, x0, tol=1e-6, maxiter=50):
+def _damped(F, J, x0, tol, maxiter, test="newton", armijo=1e-4, count=0):
     x = np.asarray(x0, float)
-    for k in range(maxiter):
-        if np.linalg.norm(F(x)) < tol:
-            return x, k
-        x = x - np.linalg.solve(J(x), F(x))
-    raise RuntimeError
+    size = np.linalg.norm(F(x))
+    for k in range(1, maxiter + 1):
+        dx = np.linalg.solve(J(x), -F(x))
+        lam = 1.0
+        while np.linalg.norm(F(x + lam * dx)) > (1 - armijo * lam) * size:
+            lam /= 2
+            if lam < 2.0 ** -20:
+                raise RuntimeError("stagnated")
+        x = x + lam * dx
+        size = np.linalg.norm(F(x))
+        if {"newton": np.linalg.norm(dx), "damped": np.linalg.norm(lam * dx),
+                "residual": size}[test] < tol:
+            return x, k + count
+    raise RuntimeError("maxiter")
 
 
-def newton_uncounted(F, J, x0, tol=1e-6, maxiter=50):
-    x, k = np.asarray(x0, float), 0
-    while k < maxiter:
+def newton_undamped(F, J, x0, tol=1e-6, maxiter=50):  # the chapter's ten lines
+    x = x0
+    for k in range(1, maxiter + 1):
         dx = np.linalg.solve(J(x), -F(x))
         x = x + dx
         if np.linalg.norm(dx) < tol:
-            break
-        k += 1
-    return x, k
-
-
-def newton_transposed(F, J, x0, tol=1e-6, maxiter=50):
-    x = np.asarray(x0, float)
-    for k in range(1, maxiter + 1):
-        dx = np.linalg.solve(J(x).T, -F(x))
-        x = x + dx
-        if np.linalg.norm(dx) < tol:
             return x, k
-    return x, maxiter
+    raise RuntimeError(f"no step below {tol} in {maxiter} steps")
+
+
+def newton_residual_test(F, J, x0, tol=1e-6, maxiter=50):
+    return _damped(F, J, x0, tol, maxiter, test="residual")
+
+
+def newton_damped_step_test(F, J, x0, tol=1e-6, maxiter=50):
+    return _damped(F, J, x0, tol, maxiter, test="damped")
+
+
+def newton_uncounted(F, J, x0, tol=1e-6, maxiter=50):
+    return _damped(F, J, x0, tol, maxiter, count=-1)
+
+
+def inverse_bad_broyden(H, s, y):
+    return H + np.outer(s - H @ y, y) / (y @ y)
+
+
+def inverse_without_h(H, s, y):
+    return H + np.outer(s - H @ y, s) / (s @ H @ y)
+
+
+def inverse_direct_formula(H, s, y):
+    return H + np.outer(y - H @ s, s) / (s @ s)
 
 
 def sor_jacobi(A, b, x, omega):
@@ -289,13 +312,29 @@ def lstsq_normal(A, b):
     return np.linalg.solve(A.T @ A, A.T @ b)
 
 
+def _householder(A, b, sign=1.0, reflect_b=True):
+    R, y = np.array(A, float), np.array(b, float)
+    for k in range(R.shape[1]):
+        v = R[k:, k].copy()
+        v[0] += sign * np.copysign(np.linalg.norm(v), v[0])
+        v /= np.linalg.norm(v)
+        R[k:] -= 2 * np.outer(v, v @ R[k:])
+        if reflect_b:
+            y[k:] -= 2 * v * (v @ y[k:])
+    return np.triu(R[:R.shape[1]]), y[:R.shape[1]]
+
+
 def lstsq_no_qt(A, b):
-    return np.linalg.solve(np.linalg.qr(A)[1], b[:A.shape[1]])
+    return np.linalg.solve(*_householder(A, b, reflect_b=False))
 
 
 def lstsq_transposed_r(A, b):
-    Q, R = np.linalg.qr(A)
-    return np.linalg.solve(R.T, Q.T @ b)
+    R, y = _householder(A, b)
+    return np.linalg.solve(R.T, y)
+
+
+def lstsq_cancelling(A, b):
+    return np.linalg.solve(*_householder(A, b, sign=-1.0))
 
 
 def rk4_stages_at_s(f, s, y, h):
@@ -450,6 +489,17 @@ def _K(f, df, lo, hi, sign=-1, centre=True, spread=True):
     return (np.nextafter(c[0] + min(p), -np.inf), np.nextafter(c[1] + max(p), np.inf))
 
 
+def _K_nearest(f, df, lo, hi):  # every end rounded to nearest, none outwards
+    m = lo + (hi - lo) / 2
+    dlo, dhi = df(lo, hi)
+    y = 2 / (dlo + dhi)
+    fm = f(m)
+    c = sorted([m - y * fm[0], m - y * fm[1]])
+    s = sorted([1 - y * dlo, 1 - y * dhi])
+    p = [a * b for a in s for b in (lo - m, hi - m)]
+    return c[0] + min(p), c[1] + max(p)
+
+
 def _verdict(K, lo, hi):
     if lo < K[0] and K[1] < hi:
         return "unique", K
@@ -466,6 +516,10 @@ def krawczyk_uncentred(f, df, lo, hi):
 
 def krawczyk_newton_point(f, df, lo, hi):
     return _verdict(_K(f, df, lo, hi, spread=False), lo, hi)
+
+
+def krawczyk_nearest(f, df, lo, hi):
+    return _verdict(_K_nearest(f, df, lo, hi), lo, hi)
 
 
 def krawczyk_none_when_not_inside(f, df, lo, hi):
@@ -557,12 +611,14 @@ def force_no_couples(kin, mech, g):
 
 WRONG = {
     "1.1": [("typo", loop_typo), ("transposed", loop_transposed), ("sign", loop_sign)],
-    "1.2": [("residual", newton_residual_test), ("counted", newton_uncounted),
-            ("transposed", newton_transposed)],
+    "1.2": [("no damping", newton_undamped), ("residual", newton_residual_test),
+            ("damped step", newton_damped_step_test), ("counted", newton_uncounted)],
+    "1.3": [("other update", inverse_bad_broyden), ("s^T H", inverse_without_h),
+            ("update of B", inverse_direct_formula)],
     "2.1": [("Jacobi", sor_jacobi), ("(1 - omega)", sor_no_relaxation_term),
             ("off-by-one", sor_off_by_one)],
     "2.2": [("normal equations", lstsq_normal), ("without its reflections", lstsq_no_qt),
-            ("transposed R", lstsq_transposed_r)],
+            ("transposed R", lstsq_transposed_r), ("cancelling sign", lstsq_cancelling)],
     "3.1": [("stages at s", rk4_stages_at_s), ("weights", rk4_equal_weights),
             ("full steps", rk4_full_steps)],
     "3.2": [("sign in m'", shooting_moment_sign), ("target minus tip", shooting_target_minus_tip),
@@ -574,7 +630,8 @@ WRONG = {
     "5.2": [("sign of F", pin_plus_load), ("inverse rotation", pin_transposed_rotation),
             ("motors", pin_no_origins)],
     "5.3": [("sign", krawczyk_sign), ("X - m", krawczyk_uncentred),
-            ("Newton point", krawczyk_newton_point), ("overlap", krawczyk_none_when_not_inside)],
+            ("Newton point", krawczyk_newton_point), ("overlap", krawczyk_none_when_not_inside),
+            ("no outward rounding", krawczyk_nearest)],
     "6.1": [("constraints ignored", index_unconstrained), ("row space", index_row_space),
             ("zero counted", index_non_positive)],
     "6.2": [("side lengths", rigid_side_lengths), ("clockwise", rigid_clockwise),
@@ -604,13 +661,13 @@ def test_a_wrong_implementation_fails_with_its_mistake_named(number, mistake, wr
 def test_references_of_chapter_1_agree_with_the_hacksaw():
     rng = np.random.default_rng(0)
     for q, theta2 in zip(rng.uniform(-2, 2, (5, 3)), rng.uniform(-3, 3, 5)):
-        F, J = ref("1.1")(q, theta2, hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
-        assert_allclose(F, hs.position_residual(hs.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
-        assert_allclose(J, hs.position_jacobian(hs.STUDY, q), rtol=1e-13, atol=1e-15)
-    geometry = (hs.STUDY.r1y, hs.STUDY.r2, hs.STUDY.r3)
+        F, J = ref("1.1")(q, theta2, hs.study.STUDY.r1y, hs.study.STUDY.r2, hs.study.STUDY.r3)
+        assert_allclose(F, hs.position_residual(hs.study.STUDY, q, theta2), rtol=1e-13, atol=1e-15)
+        assert_allclose(J, hs.position_jacobian(hs.study.STUDY, q), rtol=1e-13, atol=1e-15)
+    geometry = (hs.study.STUDY.r1y, hs.study.STUDY.r2, hs.study.STUDY.r3)
     x, k = ref("1.2")(lambda q: ref("1.1")(q, 0.0, *geometry)[0],
-                      lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.STUDY_SEED[:3])
-    solved = hs.solve_consecutive(hs.STUDY, (0.0, 0.0, 0.0), hs.STUDY_SEED)[0]
+                      lambda q: ref("1.1")(q, 0.0, *geometry)[1], hs.study.STUDY_SEED[:3])
+    solved = hs.solve_consecutive(hs.study.STUDY, (0.0, 0.0, 0.0), hs.study.STUDY_SEED).stages[0]
     assert k == solved.iterations == 4
     assert_allclose(x, solved.x, rtol=1e-13)
 
@@ -640,11 +697,11 @@ def test_references_of_chapter_3_agree_with_the_package():
 
 
 def test_references_of_chapter_4_agree_with_the_package():
-    geometry, lam = prr3.EXAMPLES["Table 6"]
+    geometry, lam = prr3.study.EXAMPLES["Table 6"]
     C = prr3.polynomial(geometry, lam)
     assert_allclose(np.sort_complex(np.linalg.eigvals(ref("4.1")(C))),
                     np.sort_complex(np.roots(C[::-1])), rtol=1e-9)
-    poses = prr3.forward(geometry, lam).poses
+    poses = prr3.forward(geometry, lam).x
     pose = poses[0] + np.array([0.01, -0.02, 0.03])
     errors = []
     for _ in range(6):
@@ -690,14 +747,14 @@ def test_references_of_chapter_6():
 
 def test_references_of_chapter_7_agree_with_the_package():
     for t in (0.1, 0.6):
-        kin = actuator.kinematics(actuator.ANNEX, t)
+        kin = actuator.kinematics(ANNEX, t)
         k2, k4 = ref("7.1")(float(kin.theta2), float(kin.theta4), float(kin.a),
-                            actuator.ANNEX.l, actuator.ANNEX.b)
+                            ANNEX.l, ANNEX.b)
         assert_allclose([k2, k4], [float(kin.k2), float(kin.k4)], rtol=1e-12)
         state = SimpleNamespace(**{name: float(getattr(kin, name)) for name in (
             "theta2", "theta4", "k2", "k4", "omega2", "omega4", "eps2", "eps4", "a", "a_dot",
             "a_ddot")})
-        assert_allclose(ref("7.2")(state, actuator.ANNEX, actuator.G_MATHCAD),
+        assert_allclose(ref("7.2")(state, ANNEX, G_MATHCAD),
                         float(actuator.virtual_power_force(kin)), rtol=1e-12)
 
 
@@ -745,3 +802,183 @@ def test_every_exercise_is_in_its_chapters_lecture_in_number_order():
         expected = sorted((n for n in exercises.CHECKS if n.split(".")[0] == chapter),
                           key=lambda n: int(n.split(".")[1]))
         assert starters == expected, (path.name, starters)
+
+
+# Issue 31: each check enforces its statement; each wrong answer below fails with its reason.
+def _named(number, function):
+    function.__name__ = ref(number).__name__
+    return exercises.check(number, function)
+
+
+def test_the_chapters_newton_loop_does_not_pass_exercise_1_2():
+    """The chapter's own "Newton in ten lines", run under the exercise's name, fails: the
+    exercise asks for the damping that the chapter only describes."""
+    cells = nbformat.read(ROOT / "book" / "01_newton_hacksaw.ipynb", as_version=4).cells
+    source = next(c.source for c in cells if c.source.startswith("def newton_loop("))
+    namespace = {"np": np, "norm": np.linalg.norm}
+    exec(source.split("\n\n\n")[0], namespace)
+    result = _named("1.2", namespace["newton_loop"])
+    assert not result.passed and "Likely mistake, no damping" in result.message
+
+
+def test_exercise_1_2_requires_its_runtime_error():
+    def returns_instead(F, J, x0, tol=1e-6, maxiter=50):
+        try:
+            return ref("1.2")(F, J, x0, tol, maxiter)
+        except RuntimeError:
+            return np.asarray(x0, float), maxiter
+
+    def raises_another(F, J, x0, tol=1e-6, maxiter=50):
+        try:
+            return ref("1.2")(F, J, x0, tol, maxiter)
+        except RuntimeError as error:
+            raise ValueError(str(error)) from None
+    for wrong, reason in ((returns_instead, "returned where it must raise RuntimeError"),
+                          (raises_another, "raised ValueError")):
+        result = _named("1.2", wrong)
+        assert not result.passed and reason in result.message, result.message
+        assert "maxiter = 2" in result.message
+
+
+@pytest.mark.parametrize("call", [
+    lambda A, b: np.linalg.lstsq(A, b, rcond=None)[0],
+    lambda A, b: np.linalg.pinv(A) @ b,
+    lambda A, b: np.linalg.solve(np.linalg.qr(A)[1], np.linalg.qr(A)[0].T @ b),
+    lambda A, b: __import__("scipy.linalg").linalg.lstsq(A, b)[0],
+    lambda A, b: (lambda u, s, vt: vt.T @ ((u.T @ b) / s))(*np.linalg.svd(A, False))],
+    ids=["lstsq", "pinv", "qr", "scipy lstsq", "svd"])
+def test_exercise_2_2_runs_the_answer_without_the_library_solvers(call):
+    result = _named("2.2", call)
+    assert not result.passed and "which this exercise rules out" in result.message
+
+
+def test_a_forbidden_call_cannot_hide_behind_its_own_name_or_an_except():
+    namespace = {"np": np}
+    exec("from numpy.linalg import lstsq\n"
+         "def lstsq_householder(A, b):\n"
+         "    try:\n"
+         "        return lstsq(A, b, rcond=None)[0]\n"
+         "    except Exception:\n"
+         "        return np.zeros(A.shape[1])\n", namespace)
+    result = exercises.check("2.2", namespace["lstsq_householder"])
+    assert not result.passed and "numpy.linalg.lstsq" in result.message
+    assert np.linalg.lstsq.__name__ == "lstsq"  # restored after the check
+    assert namespace["lstsq"] is np.linalg.lstsq
+
+
+def test_exercise_2_2_has_a_case_that_only_the_stable_sign_gets_right():
+    A, b = exercises.EXERCISES["2.2"].cases()[-1].args
+    exact = np.linalg.lstsq(A, b, rcond=None)[0]
+    assert np.abs(lstsq_cancelling(A, b) / exact - 1).max() > 1e3 * 1e-7  # the check's rtol
+    assert np.abs(ref("2.2")(A, b) / exact - 1).max() < 1e-3 * 1e-7
+
+
+def test_exercise_1_3_runs_the_answer_without_inverting():
+    def inverted(H, s, y):
+        B = np.linalg.inv(H)
+        return np.linalg.inv(B + np.outer(y - B @ s, s) / (s @ s))
+    result = _named("1.3", inverted)
+    assert not result.passed and "numpy.linalg.inv, which this exercise rules out" in \
+        result.message
+    H, s, y = exercises.EXERCISES["1.3"].cases()[0].args  # the reference meets the secant condition
+    assert_allclose(ref("1.3")(H, s, y) @ y, s, rtol=1e-12)
+
+
+def _prr3_loop(pose, lam, g):  # the three loop equations, F_i = |P_i - C_i|^2 - L^2
+    x, y, psi = pose
+    P = np.array([[x, y], [x + g.a * np.cos(psi), y + g.a * np.sin(psi)],
+                  [x + g.a * np.cos(psi + np.pi / 3), y + g.a * np.sin(psi + np.pi / 3)]])
+    C = np.array([[lam[0], 0.0], [g.B2 - lam[1], 0.0], [g.B3, g.H3 - lam[2]]])
+    return ((P - C) ** 2).sum(axis=1) - g.L ** 2
+
+
+@pytest.mark.parametrize("h", [1e-9, 1e-8, 1e-7, 1e-6])
+def test_exercise_4_2_accepts_a_forward_difference_jacobian(h):
+    """A Newton step with a forward-difference Jacobian passes, within 0.7 of the tolerance
+    (the margin the tolerance's docstring states); the mistakes miss it by more than 1e5."""
+    from mechnum.exercises._ch4 import STEP_ATOL, STEP_RTOL
+
+    def prr3_newton_step(pose, lam, g):
+        F = _prr3_loop(pose, lam, g)
+        J = np.column_stack([(_prr3_loop(pose + h * e, lam, g) - F) / h for e in np.eye(3)])
+        return pose - np.linalg.solve(J, F)
+    assert exercises.check("4.2", prr3_newton_step).passed
+    for case in exercises.EXERCISES["4.2"].cases():
+        exact = ref("4.2")(*case.args)
+        allowed = STEP_ATOL + STEP_RTOL * np.abs(exact)
+        assert (np.abs(prr3_newton_step(*case.args) - exact) < 0.7 * allowed).all()
+        for wrong in (prr3_transposed, prr3_no_two, prr3_sign):
+            assert (np.abs(wrong(*case.args) - exact) > 1e5 * allowed).any()
+
+
+def test_exercise_5_3_asks_for_outward_rounding():
+    """Rounded to nearest, K(X) misses the exact set at both ends on a case built for it, and
+    fails; so does a K(X) collapsed to a point."""
+    from fractions import Fraction
+
+    from mechnum_course.solutions._ch5 import exact_krawczyk
+    case = exercises.EXERCISES["5.3"].cases()[6]
+    exact = exact_krawczyk(*case.args)[1]
+    nearest = _K_nearest(*case.args)
+    assert Fraction(nearest[0]) > Fraction(exact[0]) and Fraction(nearest[1]) < Fraction(exact[1])
+    result = _named("5.3", krawczyk_nearest)
+    assert not result.passed and "does not enclose the exact K(X)" in result.message
+    assert "no outward rounding" in result.message
+
+    def collapsed(f, df, lo, hi):
+        verdict, K = ref("5.3")(f, df, lo, hi)
+        return verdict, (sum(K) / 2, sum(K) / 2)
+    result = _named("5.3", collapsed)
+    assert not result.passed and "a single point" in result.message
+
+
+def test_exercise_5_3_rejects_unique_where_k_touches_the_edge():
+    """With the tightest rounding and the closed interval's test, K(X) = [1.5, 2] of X = [1, 2]
+    is called "unique": the check says that it must be undecided."""
+    from mechnum_course.solutions._ch5 import exact_krawczyk
+
+    def tight_and_closed(f, df, lo, hi):
+        verdict, K = exact_krawczyk(f, df, lo, hi)
+        return ("unique" if lo <= K[0] and K[1] <= hi else verdict), K
+    result = _named("5.3", tight_and_closed)
+    assert not result.passed and "K(X) = [1.5, 2] exactly" in result.message
+    assert "the verdict is 'unique', expected 'undecided'" in result.message
+    assert "closed X" in result.message
+
+
+def test_exercise_5_3_cases_have_one_verdict_for_every_correct_rounding():
+    from mechnum_course.solutions._ch5 import exact_krawczyk
+    for case in exercises.EXERCISES["5.3"].cases() + mechnum_course.HIDDEN["5.3"]():
+        assert ref("5.3")(*case.args)[0] == exact_krawczyk(*case.args)[0], case.label
+
+
+@pytest.mark.parametrize("number, scale", [("1.2", 1 + 3e-7), ("3.2", 1 + 3e-7),
+                                           ("4.2", 1 + 2e-4)])
+def test_a_message_shows_the_digits_that_differ(number, scale):
+    """An answer off in the 6th or 7th digit is shown with the digits that tell it from the
+    expected one, and the difference."""
+    def off(*args):
+        value = ref(number)(*args)
+        if isinstance(value, tuple):
+            return (value[0] * scale, *value[1:])
+        return value * scale
+    message = _named(number, off).message
+    shown = re.search(r" is (\S+), expected (\S+) \(off by", message)
+    assert shown and shown[1] != shown[2], message
+
+
+@pytest.mark.parametrize("number, answer, said", [
+    ("1.2", lambda F, J, x0, tol=1e-6, maxiter=50: "converged",
+     "your answer is a str; it must be 2 values, x, the number of steps"),
+    ("1.2", lambda F, J, x0, tol=1e-6, maxiter=50: (ref("1.2")(F, J, x0, tol, maxiter)[0],
+                                                     4.0),
+     "the number of steps is 4.0, a float; it must be an integer"),
+    ("4.2", lambda pose, lam, g: list(ref("4.2")(pose, lam, g))[:2],
+     "the next pose has shape (2,); it must have shape (3,)"),
+    ("5.3", lambda f, df, lo, hi: ref("5.3")(f, df, lo, hi)[1],
+     "the verdict is a float64; it must be one of 'unique', 'none', 'undecided'"),
+])
+def test_a_wrong_type_gets_a_message_about_its_type(number, answer, said):
+    result = _named(number, answer)
+    assert not result.passed and said in result.message, result.message
+    assert "Likely mistake" not in result.message and "Hint" not in result.message

@@ -17,6 +17,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from hypothesis import HealthCheck, assume, example, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
+from published import check_row, read_registry  # noqa: E402
 
 from mechnum import newton  # noqa: E402
 from mechnum.errors import (  # noqa: E402
@@ -28,10 +29,19 @@ from mechnum.errors import (  # noqa: E402
 )
 from mechnum.mechanisms import hacksaw as hs  # noqa: E402
 from mechnum.mechanisms import prr3  # noqa: E402  (another mechanism, passed by mistake)
+from mechnum.mechanisms.hacksaw import study  # noqa: E402
+from mechnum.mechanisms.hacksaw._equations import (  # noqa: E402  (internal: the rates' pieces)
+    acceleration_residual,
+    rate_jacobian,
+    velocity_residual,
+)
+from mechnum.mechanisms.hacksaw._exact import solve_rates  # noqa: E402
+from mechnum.mechanisms.hacksaw._kernels import MODES  # noqa: E402
+from mechnum.mechanisms.hacksaw._model import FORMS  # noqa: E402
+from mechnum.mechanisms.hacksaw._solvers import MAX_POINTS, METHODS, PREDICTORS  # noqa: E402
 from mechnum.plotting import animate  # noqa: E402
-from mechnum.published import check_row, read_registry  # noqa: E402
 
-S = hs.STUDY
+S = study.STUDY
 T = hs.first_revolution_time()
 REGISTRY = {row["quantity"]: row for row in read_registry(
     Path(__file__).resolve().parents[1] / "book" / "published_values.csv", "01_newton_hacksaw")}
@@ -167,19 +177,19 @@ BAD_EVALUATOR_CALLS = [
      "not finite"),  # the eliminated form divides by sin(theta1) = 0
     (hs.position_jacobian, (S, np.ones(2)), "q must have shape"),
     (hs.position_jacobian, (S, np.ones(3), "elim"), "form must be one of"),
-    (hs.rate_jacobian, (S, [np.inf, 0, 0]), "q must be finite"),
-    (hs.velocity_residual, (S, np.ones((2, 3)), np.ones(3), 0.0, [1.0, 2.0, 3.0]),
+    (rate_jacobian, (S, [np.inf, 0, 0]), "q must be finite"),
+    (velocity_residual, (S, np.ones((2, 3)), np.ones(3), 0.0, [1.0, 2.0, 3.0]),
      "do not broadcast"),
-    (hs.velocity_residual, (S, np.ones(3), np.ones(3), 0.0, np.nan), "omega2 must be finite"),
-    (hs.velocity_residual, (S, np.full(3, 1e200), [1e200, 1, 1], 0.0, 1.0), "not finite"),
-    (hs.acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(2), 0, 0, 0), "q must have"),
-    (hs.acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(3), 0, 0, None),
+    (velocity_residual, (S, np.ones(3), np.ones(3), 0.0, np.nan), "omega2 must be finite"),
+    (velocity_residual, (S, np.full(3, 1e200), [1e200, 1, 1], 0.0, 1.0), "not finite"),
+    (acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(2), 0, 0, 0), "q must have"),
+    (acceleration_residual, (S, np.ones(3), np.ones(3), np.ones(3), 0, 0, None),
      "alpha2 must be numeric"),
     (hs.residual, (S, np.ones(8), 0, 0, 0), "x must have shape"),
     (hs.residual, (S, np.ones(9), 0, 0, np.inf), "alpha2 must be finite"),
     (hs.jacobian, (S, np.ones((3, 3))), "x must have shape"),
     (hs.jacobian, (S, np.full(9, 1e200)), "not finite"),
-    (hs.jacobian, (prr3.EXAMPLES["Table 3"][0], np.ones(9)), "mech must be a hacksaw"),
+    (hs.jacobian, (prr3.study.EXAMPLES["Table 3"][0], np.ones(9)), "mech must be a hacksaw"),
 ]
 
 
@@ -191,7 +201,7 @@ def test_evaluators_reject_bad_input(function, args, match):
 
 
 @EXAMPLES
-@given(g=geometries, state=motor_states, form=st.sampled_from(hs.FORMS),
+@given(g=geometries, state=motor_states, form=st.sampled_from(FORMS),
        batch=st.integers(0, 3))
 def test_position_residual_vanishes_on_the_closed_form(g, state, form, batch):
     try:
@@ -207,7 +217,7 @@ def test_position_residual_vanishes_on_the_closed_form(g, state, form, batch):
 
 @EXAMPLES
 @given(g=geometries, q=st.tuples(st.floats(-2, 2), angles, angles), th2=angles,
-       form=st.sampled_from(hs.FORMS))
+       form=st.sampled_from(FORMS))
 def test_position_jacobian_is_the_derivative(g, q, th2, form):
     q = np.array(q) * [max(g.r1y, g.r2, g.r3), 1, 1]
     assume(form == "loop" or abs(np.sin(q[1])) > 0.1)
@@ -227,9 +237,9 @@ def test_position_jacobian_is_the_derivative(g, q, th2, form):
        th2=angles, w2=rates)
 def test_velocity_residual_is_linear_with_the_rate_jacobian(g, q, v, th2, w2):
     q, v = np.array(q), np.array(v)
-    F = hs.velocity_residual(g, v, q, th2, w2)
-    F0 = hs.velocity_residual(g, np.zeros(3), q, th2, w2)
-    Jr = hs.rate_jacobian(g, q)
+    F = velocity_residual(g, v, q, th2, w2)
+    F0 = velocity_residual(g, np.zeros(3), q, th2, w2)
+    Jr = rate_jacobian(g, q)
     assert F.shape == (3,) and Jr.shape == (3, 3)
     size = np.abs(Jr).max() * np.abs(v).max() + np.abs(F0).max() + 1
     np.testing.assert_allclose(F - F0, Jr @ v, rtol=0, atol=1e-13 * size)
@@ -241,8 +251,8 @@ def test_velocity_residual_is_linear_with_the_rate_jacobian(g, q, v, th2, w2):
 def test_acceleration_residual_is_linear_with_the_position_jacobian(g, x, state):
     x = np.array(x)
     a, v, q = x[6:], x[3:6], x[:3]
-    F = hs.acceleration_residual(g, a, v, q, *state)
-    F0 = hs.acceleration_residual(g, np.zeros(3), v, q, *state)
+    F = acceleration_residual(g, a, v, q, *state)
+    F0 = acceleration_residual(g, np.zeros(3), v, q, *state)
     J = hs.position_jacobian(g, q)
     size = np.abs(J).max() * np.abs(a).max() + np.abs(F0).max() + 1
     np.testing.assert_allclose(F - F0, J @ a, rtol=0, atol=1e-13 * size)
@@ -340,14 +350,14 @@ def test_closed_form_solves_all_nine_equations_on_the_studys_branch(g, state):
 @given(g=geometries, state=motor_states)
 def test_forward_gives_both_assembly_modes_and_the_first_is_the_closed_form(g, state):
     try:
-        both = hs.forward(g, state)
+        both = hs.forward(g, state).x
     except MechnumError:
         with pytest.raises(MechnumError):
             hs.closed_form(g, motor_state=state)
         return
     assert both.shape == (2, 9)
     np.testing.assert_array_equal(both[0], hs.closed_form(g, motor_state=state))
-    for mode, x in zip(hs.MODES, both):
+    for mode, x in zip(MODES, both):
         assert np.all(scaled_residual(x, state, g) < 1e-10 / np.abs(np.cos(x[2])) ** 2)
         assert (np.cos(x[2]) > 0) == (mode == 1)  # mode 1: the coupler points forward
     # the two modes share the crank pin and the guide, and differ in the slider
@@ -356,7 +366,7 @@ def test_forward_gives_both_assembly_modes_and_the_first_is_the_closed_form(g, s
 
 
 def slider_x(g, theta2, mode):
-    return hs.joints(g, hs.forward(g, (theta2, 0 * theta2, 0 * theta2))[..., mode, :3],
+    return hs.joints(g, hs.forward(g, (theta2, 0 * theta2, 0 * theta2)).x[..., mode, :3],
                      theta2)[2][..., 0]
 
 
@@ -364,8 +374,8 @@ def slider_x(g, theta2, mode):
                                hs.Geometry(r1y=1e-3, r2=0.1, r3=0.3)])
 def test_limit_positions_are_where_the_slider_stops(g):
     points = hs.singular_points(g)
-    assert points.dead.size == 0 and points.limits.shape == (2, 2)
-    for mode in hs.MODES:
+    assert points.x.size == 0 and points.limits.shape == (2, 2)
+    for mode in MODES:
         # an independent location: the slider's extreme abscissae on a fine grid of the crank
         grid = np.linspace(0, 2 * np.pi, 200001)
         x = slider_x(g, grid, mode)
@@ -373,20 +383,20 @@ def test_limit_positions_are_where_the_slider_stops(g):
         assert np.all(np.min(np.abs(np.subtract.outer(points.limits[mode], turns) + np.pi)
                              % (2 * np.pi) - np.pi, axis=0) < 1e-4)
         # and the slider's velocity vanishes there (the rate equations, not the grid)
-        v = hs.forward(g, (points.limits[mode], np.ones(2), np.zeros(2)))[:, mode]
+        v = hs.forward(g, (points.limits[mode], np.ones(2), np.zeros(2))).x[:, mode]
         np.testing.assert_allclose(v[:, 3], 0.0, rtol=0, atol=1e-12)
 
 
 def test_dead_points_of_a_short_coupler_are_where_the_modes_meet():
     g = hs.Geometry(r3=0.1)  # r3 < r1y + r2 = 0.12: the crank cannot turn round
     points = hs.singular_points(g)
-    assert points.dead.size == 2 and points.limits.shape == (2, 1)  # only the extended one
-    for theta2 in points.dead:  # cos(theta3) = 0: r1y - r2 sin(theta2) = +-r3
+    assert points.x.size == 2 and points.limits.shape == (2, 1)  # only the extended one
+    for theta2 in points.x:  # cos(theta3) = 0: r1y - r2 sin(theta2) = +-r3
         np.testing.assert_allclose(abs(g.r1y - g.r2 * np.sin(theta2)), g.r3, rtol=1e-14)
         with pytest.raises(SingularJacobianError, match="dead point"):
             hs.forward(g, (theta2, 1.0, 0.0))
-    away = points.dead.mean() + np.pi  # the middle of the motion's range, between the two
-    assert hs.forward(g, (away, 0.0, 0.0)).shape == (2, 9)
+    away = points.x.mean() + np.pi  # the middle of the motion's range, between the two
+    assert hs.forward(g, (away, 0.0, 0.0)).x.shape == (2, 9)
 
 
 def test_singular_points_refuse_what_is_not_a_mechanism():
@@ -399,29 +409,29 @@ def test_singular_points_refuse_what_is_not_a_mechanism():
 X1 = hs.closed_form(S, 1.0)
 REST = (0.0, 0.0, 0.0)
 BAD_SOLVER_CALLS = [  # function, arguments, keyword arguments, error, message
-    (hs.solve_rates, (S, X1[:4], hs.motor(1.0)), {}, ValueError, "q must have shape"),
-    (hs.solve_rates, (S, X1[:3], (0.0, 1.0)), {}, ValueError, "motor_state must be"),
-    (hs.solve_rates, (hs.Geometry(r3=0.12), [0.045, np.pi / 2, np.pi / 2],
+    (solve_rates, (S, X1[:4], hs.motor(1.0)), {}, ValueError, "q must have shape"),
+    (solve_rates, (S, X1[:3], (0.0, 1.0)), {}, ValueError, "motor_state must be"),
+    (solve_rates, (hs.Geometry(r3=0.12), [0.045, np.pi / 2, np.pi / 2],
                       (-np.pi / 2, 1.0, 0.0)), {}, SingularJacobianError, "dead point"),
     # positions off the constraints (the closed form at another time): no configuration
-    (hs.solve_rates, (S, X1[:3], hs.motor(1.2)), {}, ValueError,
+    (solve_rates, (S, X1[:3], hs.motor(1.2)), {}, ValueError,
      "q must satisfy the position constraints"),
     (hs.solve_consecutive, (S, REST, np.zeros(8)), {}, ValueError, "seed must have shape"),
-    (hs.solve_consecutive, (S, REST, hs.STUDY_SEED), {"tol": -1.0}, ValueError,
+    (hs.solve_consecutive, (S, REST, study.STUDY_SEED), {"tol": -1.0}, ValueError,
      "tol must be positive"),
-    (hs.solve_consecutive, (S, REST, hs.STUDY_SEED), {"form": "x"}, ValueError, "form must be"),
-    (hs.solve_consecutive, (S, ([0.0, 1.0], 0.0, 0.0), np.tile(hs.STUDY_SEED, (3, 1))), {},
+    (hs.solve_consecutive, (S, REST, study.STUDY_SEED), {"form": "x"}, ValueError, "form must be"),
+    (hs.solve_consecutive, (S, ([0.0, 1.0], 0.0, 0.0), np.tile(study.STUDY_SEED, (3, 1))), {},
      ValueError, "do not broadcast"),
     (hs.solve_consecutive, (S, REST, np.full(9, np.nan)), {}, ValueError,
      "seed must be finite"),
-    (hs.solve_consecutive, (None, REST, hs.STUDY_SEED), {}, ValueError, "mech must be"),
+    (hs.solve_consecutive, (None, REST, study.STUDY_SEED), {}, ValueError, "mech must be"),
     (hs.solve_simultaneous, (S, REST, np.full(9, np.nan)), {}, ValueError,
      "seed must be finite"),
-    (hs.solve_simultaneous, (S, ([0.0, 1.0], 0.0, 0.0), hs.STUDY_SEED), {}, ValueError,
+    (hs.solve_simultaneous, (S, ([0.0, 1.0], 0.0, 0.0), study.STUDY_SEED), {}, ValueError,
      "three scalars"),
-    (hs.solve_simultaneous, (S, REST, np.tile(hs.STUDY_SEED, (2, 1))), {}, ValueError,
+    (hs.solve_simultaneous, (S, REST, np.tile(study.STUDY_SEED, (2, 1))), {}, ValueError,
      "seed must have 1 dimension"),
-    (hs.solve_simultaneous, (S, REST, hs.STUDY_SEED), {"tol": np.nan}, ValueError,
+    (hs.solve_simultaneous, (S, REST, study.STUDY_SEED), {"tol": np.nan}, ValueError,
      "tol must be"),
     # a seed with theta3 = pi/2 makes the Jacobian singular at the start
     (hs.solve_simultaneous, (S, REST, [-0.1, -0.5, np.pi / 2, 0, 0, 0, 0, 0, 0]), {},
@@ -447,7 +457,7 @@ def test_solve_rates_recovers_the_closed_form_rates(g, state, batch):
         x = hs.closed_form(g, motor_state=states)
     except MechnumError:
         return
-    v, a = hs.solve_rates(g, x[..., :3], states)
+    v, a = solve_rates(g, x[..., :3], states)
     assert v.shape == a.shape == (batch, 3)
     # two ways to the same rates agree to round-off times the condition number of J
     cond = np.linalg.cond(hs.position_jacobian(g, x[..., :3])).max(initial=1)
@@ -469,7 +479,7 @@ def test_newton_from_a_perturbed_state_converges_back(state, seed, size, simulta
         if simultaneous:
             x = hs.solve_simultaneous(S, state, x0, tol=tol).x
         else:
-            x = np.concatenate([r.x for r in hs.solve_consecutive(S, state, x0, tol=tol)])
+            x = hs.solve_consecutive(S, state, x0, tol=tol).x
     except (ConvergenceError, SingularJacobianError):
         assert size > 0.01  # only a far start may fail, and then by a named error
         return
@@ -477,7 +487,7 @@ def test_newton_from_a_perturbed_state_converges_back(state, seed, size, simulta
     if np.cos(x[2]) < 0 and x[0] < 0:  # the study's root, not another assembly
         x[1:3] = exact[1:3] + np.angle(np.exp(1j * (x[1:3] - exact[1:3])))  # whole turns off
         np.testing.assert_allclose(x, exact, rtol=1e-9, atol=1e-9)
-    assert np.all(scaled_residual(x, state, hs.STUDY) < 1e-10)
+    assert np.all(scaled_residual(x, state, study.STUDY) < 1e-10)
 
 
 @EXAMPLES
@@ -487,7 +497,7 @@ def test_batched_consecutive_solves_each_point(state, n, seed):
     exact = hs.closed_form(S, motor_state=states)
     scale = np.maximum(1, np.abs(exact))
     x0 = exact + 0.001 * np.random.default_rng(seed).normal(size=(n, 9)) * scale
-    stages = hs.solve_consecutive(S, states, x0, tol=1e-12 * scale.max(initial=1))
+    stages = hs.solve_consecutive(S, states, x0, tol=1e-12 * scale.max(initial=1)).stages
     assert [r.x.shape for r in stages] == [(n, 3)] * 3
     np.testing.assert_allclose(np.concatenate([r.x for r in stages], axis=-1), exact,
                                rtol=1e-9, atol=1e-9)
@@ -495,12 +505,13 @@ def test_batched_consecutive_solves_each_point(state, n, seed):
 
 def test_consecutive_and_simultaneous_at_rest_count_as_the_study():
     # the registry's rows: the study's counts (its acceleration count is a source error)
-    stages = hs.solve_consecutive(S, (0.0, 0.0, 0.0), hs.STUDY_SEED)
+    stages = hs.solve_consecutive(S, (0.0, 0.0, 0.0), study.STUDY_SEED).stages
     for stage, res in zip(("position", "velocity", "acceleration"), stages):
         check_row(REGISTRY[f"iterations, {stage} stage at rest"], res.iterations)
-    simultaneous = hs.solve_simultaneous(S, (0.0, 0.0, 0.0), hs.STUDY_SEED)
+    simultaneous = hs.solve_simultaneous(S, (0.0, 0.0, 0.0), study.STUDY_SEED)
     check_row(REGISTRY["iterations, simultaneous 9x9 at rest"], simultaneous.iterations)
-    eliminated = hs.solve_consecutive(S, (0.0, 0.0, 0.0), hs.STUDY_SEED, form="eliminated")
+    eliminated = hs.solve_consecutive(S, (0.0, 0.0, 0.0), study.STUDY_SEED,
+                                      form="eliminated").stages
     assert eliminated[0].iterations == 4
     for res in (stages[0], eliminated[0]):
         np.testing.assert_allclose(res.x, hs.closed_form(S, 0.0)[:3], rtol=0, atol=1e-11)
@@ -515,7 +526,7 @@ def test_consecutive_and_simultaneous_at_rest_count_as_the_study():
     ((S, np.linspace(0, 1, 5), "simultaneous"), {"tol": 0.0}, "tol must be positive"),
     ((S, [1.0, -1.0], "batched"), {}, "t must be non-negative"),
     ((None, [0.0], "batched"), {}, "mech must be"),
-    ((S, np.zeros(hs.MAX_POINTS + 1), "batched"), {}, "a bound on the work"),
+    ((S, np.zeros(MAX_POINTS + 1), "batched"), {}, "a bound on the work"),
 ])
 def test_sweep_rejects_bad_input(args, kwargs, match):
     with pytest.raises(ValueError, match=match):
@@ -552,10 +563,10 @@ def study_iterations(g, t, seed, method, predictor, tol):
             counts.append([
                 newton.solve(lambda z, m=m: hs.position_residual(g, z, m[0]), start[:3],
                              lambda z: hs.position_jacobian(g, z), **rule).iterations,
-                newton.solve(lambda z, m=m, q=q: hs.velocity_residual(g, z, q, *m[:2]),
-                             start[3:6], lambda z, q=q: hs.rate_jacobian(g, q),
+                newton.solve(lambda z, m=m, q=q: velocity_residual(g, z, q, *m[:2]),
+                             start[3:6], lambda z, q=q: rate_jacobian(g, q),
                              **rule).iterations,
-                newton.solve(lambda z, m=m, q=q, v=v: hs.acceleration_residual(g, z, v, q, *m),
+                newton.solve(lambda z, m=m, q=q, v=v: acceleration_residual(g, z, v, q, *m),
                              start[6:], lambda z, q=q: hs.position_jacobian(g, q),
                              **rule).iterations])
         x = exact[i]
@@ -564,7 +575,7 @@ def study_iterations(g, t, seed, method, predictor, tol):
 
 @FEW
 @given(start=st.floats(0.0, 10.0), steps=st.lists(st.floats(0.0, 0.05), max_size=6),
-       method=st.sampled_from(hs.METHODS), predictor=st.sampled_from(hs.PREDICTORS))
+       method=st.sampled_from(METHODS), predictor=st.sampled_from(PREDICTORS))
 def test_sweep_follows_the_closed_form(start, steps, method, predictor):
     # steps of at most 0.05 s (the crank turns at most 0.33 rad): the seed stays on the branch
     t = start + np.cumsum([0.0] + steps)[: len(steps)]
@@ -593,7 +604,7 @@ def test_sweep_follows_the_closed_form(start, steps, method, predictor):
 def test_velocity_predictor_saves_iterations_and_keeps_the_answer():
     t = np.linspace(0, 2 * T, 200)
     for method in ("consecutive", "simultaneous"):
-        previous, velocity = (hs.sweep(S, t, method, predictor=p) for p in hs.PREDICTORS)
+        previous, velocity = (hs.sweep(S, t, method, predictor=p) for p in PREDICTORS)
         assert velocity.iterations[:, 0].sum() < previous.iterations[:, 0].sum()
         np.testing.assert_allclose(velocity.x, previous.x, rtol=0, atol=1e-9)
         if method == "consecutive":
@@ -615,7 +626,7 @@ def test_a_coarse_sweep_stays_in_its_assembly_mode(method):
     np.testing.assert_allclose(np.cos(res.x[:, 2]), np.cos(exact[:, 2]), rtol=1e-9)
 
 
-@pytest.mark.parametrize("method", hs.METHODS)
+@pytest.mark.parametrize("method", METHODS)
 def test_a_sweep_that_cannot_keep_its_mode_says_where(method):
     # a seed of the study's mode (r1 < 0, cos(theta3) < 0) by a hair: theta3 = 1.58, next to
     # the coupler's vertical. Newton goes to the other mode; the sweep says so, not answers.
@@ -689,7 +700,7 @@ def test_draw_shows_the_joints_inside_the_limits_and_moves_them(t, legend):
     parts = hs.draw(_AX, S, (th2, x), artists=parts)
     O, A, B = hs.joints(S, x, th2)
     np.testing.assert_allclose(parts["coupler"].get_xydata(), [A, B], rtol=1e-14, atol=1e-15)
-    assert parts["guide"].get_ydata()[0] == hs.STUDY.r1y
+    assert parts["guide"].get_ydata()[0] == study.STUDY.r1y
     (x0, x1), (y0, y1) = _AX.get_xlim(), _AX.get_ylim()
     points = np.array([O, A, B])
     assert np.all((points[:, 0] > x0) & (points[:, 0] < x1))
@@ -703,61 +714,16 @@ def test_animate_moves_the_saw_through_its_states():
     assert html.count("data:image/png;base64") == 4
 
 
-# ------------------------------------------------------------------------ deprecated forms
-
-OLD_FORMS = [  # the old call, and the new one it must equal
-    (lambda: hs.closed_form(1.0), lambda: hs.closed_form(S, 1.0)),
-    (lambda: hs.closed_form(motor_state=(0.3, 1.0, 0.0), geometry=hs.Geometry(r3=0.2)),
-     lambda: hs.closed_form(hs.Geometry(r3=0.2), motor_state=(0.3, 1.0, 0.0))),
-    (lambda: hs.position_residual(X1[:3], 0.2), lambda: hs.position_residual(S, X1[:3], 0.2)),
-    (lambda: hs.position_jacobian(X1[:3], S, "eliminated"),
-     lambda: hs.position_jacobian(S, X1[:3], "eliminated")),
-    (lambda: hs.rate_jacobian(X1[:3]), lambda: hs.rate_jacobian(S, X1[:3])),
-    (lambda: hs.velocity_residual(X1[3:6], X1[:3], 0.1, 0.2),
-     lambda: hs.velocity_residual(S, X1[3:6], X1[:3], 0.1, 0.2)),
-    (lambda: hs.acceleration_residual(X1[6:], X1[3:6], X1[:3], 0.1, 0.2, 0.3),
-     lambda: hs.acceleration_residual(S, X1[6:], X1[3:6], X1[:3], 0.1, 0.2, 0.3)),
-    (lambda: hs.residual(X1, 0.1, 0.2, 0.3), lambda: hs.residual(S, X1, 0.1, 0.2, 0.3)),
-    (lambda: hs.jacobian(X1), lambda: hs.jacobian(S, X1)),
-    (lambda: hs.solve_rates(X1[:3], hs.motor(1.0)), lambda: hs.solve_rates(S, X1[:3],
-                                                                            hs.motor(1.0))),
-    (lambda: hs.solve_consecutive(REST, hs.STUDY_SEED)[0].x,
-     lambda: hs.solve_consecutive(S, REST, hs.STUDY_SEED)[0].x),
-    (lambda: hs.solve_simultaneous(REST, hs.STUDY_SEED, tol=1e-9).x,
-     lambda: hs.solve_simultaneous(S, REST, hs.STUDY_SEED, tol=1e-9).x),
-    (lambda: hs.sweep([0.0, 0.1], "consecutive", S, predictor="velocity").x,
-     lambda: hs.sweep(S, [0.0, 0.1], "consecutive", predictor="velocity").x),
-    (lambda: hs.joints(X1, 0.3), lambda: hs.joints(S, X1, 0.3)),
-]
-
-
-@pytest.mark.parametrize("old, new", OLD_FORMS)
-def test_old_forms_warn_and_give_the_new_forms_answer(old, new):
-    with pytest.warns(DeprecationWarning, match="deprecated and will be removed in 0.3"):
-        before = old()
-    np.testing.assert_array_equal(np.asarray(before), np.asarray(new()))
-
-
-def test_old_draw_warns_and_draws_the_same():
-    fig, (old, new) = plt.subplots(1, 2)
-    with pytest.warns(DeprecationWarning, match=r"draw\(ax, x, theta2, geometry\)"):
-        before = hs.draw(old, X1, 0.3, legend=False)
-    after = hs.draw(new, S, (0.3, X1), legend=False)
-    for name in after:
-        np.testing.assert_array_equal(before[name].get_xydata(), after[name].get_xydata())
-    plt.close(fig)
-
-
 # ----------------------------------------------------------------------------------- reproduce
 
 
 def test_reproduce_recomputes_the_studys_numbers():
-    values = hs.reproduce()
+    values = study.reproduce()
     assert all(np.isfinite(v) for v in values.values())
     np.testing.assert_allclose(
         [values[f"{n} at rest (simultaneous)"] for n in hs.NAMES[:3]],
         hs.closed_form(S, 0.0)[:3], rtol=1e-12)
-    stages = hs.solve_consecutive(S, (0.0, 0.0, 0.0), hs.STUDY_SEED)
+    stages = hs.solve_consecutive(S, (0.0, 0.0, 0.0), study.STUDY_SEED).stages
     assert [values[f"iterations, {s} stage at rest"] for s in ("position", "velocity",
                                                                 "acceleration")] == \
         [r.iterations for r in stages]
@@ -765,7 +731,7 @@ def test_reproduce_recomputes_the_studys_numbers():
 
 def test_the_evaluators_broadcast_a_batch_of_motor_rates():
     # it raised numpy's "all the input arrays must have same number of dimensions" before
-    x, (theta2, _, alpha2) = hs.closed_form(hs.STUDY, 1.0), hs.motor(1.0)
-    each = [hs.residual(hs.STUDY, x, theta2, w, alpha2) for w in (-1.0, 0.0, 2.0)]
+    x, (theta2, _, alpha2) = hs.closed_form(study.STUDY, 1.0), hs.motor(1.0)
+    each = [hs.residual(study.STUDY, x, theta2, w, alpha2) for w in (-1.0, 0.0, 2.0)]
     np.testing.assert_array_equal(
-        hs.residual(hs.STUDY, x, theta2, np.array([-1.0, 0.0, 2.0]), alpha2), each)
+        hs.residual(study.STUDY, x, theta2, np.array([-1.0, 0.0, 2.0]), alpha2), each)

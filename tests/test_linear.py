@@ -18,6 +18,7 @@ from mechnum.errors import (
     RelaxationFactorError,
     SingularJacobianError,
 )
+from mechnum.linear import _spectra, _stationary
 from mechnum.linear._checks import check_matrix
 from mechnum.linear._krylov import POISSON3D_LIMIT
 from mechnum.linear._spectra import OMEGA_GRID
@@ -94,7 +95,7 @@ def test_burden_faires_iteration_counts(method, iterations, last):
 def test_sor_textbook_solution_and_speed_up():
     # Burden and Faires, Example 7.4.3: 7 decimals, an absolute test
     sor = linear.sor(TRI_A, TRI_B, 1.25, seed=np.ones(3), tol=1e-7, relative=False)
-    gs = linear.gauss_seidel(TRI_A, TRI_B, seed=np.ones(3), tol=1e-7, relative=False)
+    gs = _stationary.gauss_seidel(TRI_A, TRI_B, seed=np.ones(3), tol=1e-7, relative=False)
     # the absolute step test with tol 1e-7 stops with an error of about rho / (1 - rho) times the
     # step (rho = omega - 1 = 0.25): 1e-6 bounds it
     assert_allclose(sor.x, [3, 4, -5], atol=1e-6, rtol=0)
@@ -127,7 +128,7 @@ def test_optimal_omega_numerical_is_a_minimum():
     assert best.spectral_radius <= linear.sor_spectral_radii(A, grid).min() + 1e-12
     # as above: the radius at the returned omega, recomputed, to round-off
     assert best.spectral_radius == pytest.approx(
-        linear.spectral_radius(linear.iteration_matrix(A, "sor", best.x)), rel=1e-12)
+        _spectra.spectral_radius(_spectra.iteration_matrix(A, "sor", best.x)), rel=1e-12)
 
 
 def test_condition_number_of_the_ill_conditioned_example():
@@ -186,8 +187,8 @@ def test_no_convergence_keeps_history():
 def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
     A = linear.poisson2d(4)
     b = np.ones(16)
-    assert linear.gauss_seidel(A, b).history is None
-    kept = linear.gauss_seidel(A, b, keep_history=True)
+    assert _stationary.gauss_seidel(A, b).history is None
+    kept = _stationary.gauss_seidel(A, b, keep_history=True)
     assert kept.history.shape == (kept.iterations + 1, 16)
     # the kept history is the iteration itself: from x0 to x, its steps and residuals recorded
     assert not kept.history[0].any() and np.array_equal(kept.history[-1], kept.x)
@@ -199,14 +200,14 @@ def test_history_of_a_sparse_solve_is_not_kept_unless_asked():
     assert_allclose(np.abs(b - kept.history @ A.T).max(axis=1), kept.residual_norms,
                     rtol=1e-9, atol=1e-15)
     with pytest.raises(ValueError, match="keep_history must be True or False"):
-        linear.gauss_seidel(A, b, keep_history="yes")
+        _stationary.gauss_seidel(A, b, keep_history="yes")
 
 
 def test_residual_criterion():
-    res = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=False)
+    res = _stationary.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=False)
     # the criterion itself: the first residual below tol = 1e-9 (absolute)
     assert res.residual_norms[-1] < 1e-9 <= res.residual_norms[-2]
-    relative = linear.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=True,
+    relative = _stationary.gauss_seidel(TRI_A, TRI_B, tol=1e-9, criterion="residual", relative=True,
                                    norm=2)
     # the criterion itself, relative: tol ||b||_2
     assert relative.residual_norms[-1] <= 1e-9 * np.linalg.norm(TRI_B)
@@ -228,7 +229,7 @@ def test_long_runs_cross_the_compiled_chunks():
 
 def test_zero_right_hand_side_converges_at_once():
     for relative in (False, True):
-        res = linear.gauss_seidel(TRI_A, np.zeros(3), relative=relative)
+        res = _stationary.gauss_seidel(TRI_A, np.zeros(3), relative=relative)
         assert res.iterations == 1 and res.converged and not res.x.any()
 
 
@@ -253,7 +254,7 @@ def test_poisson_sor_at_young_omega():
     omega = linear.young_omega(np.cos(np.pi / (m + 1)))
     b = np.ones(m * m)
     sor = linear.sor(A, b, omega, tol=1e-8, criterion="residual")
-    gs = linear.gauss_seidel(A, b, tol=1e-8, criterion="residual")
+    gs = _stationary.gauss_seidel(A, b, tol=1e-8, criterion="residual")
     assert sor.iterations * 10 < gs.iterations  # O(m) sweeps against O(m^2)
     cg = linear.conjugate_gradient(A, b, tol=1e-10)
     assert cg.iterations < sor.iterations
@@ -267,7 +268,7 @@ def test_poisson2d_structure():
     A = linear.poisson2d(7)
     assert A.shape == (49, 49) and A.nnz == 5 * 49 - 4 * 7
     assert abs(A - A.T).max() == 0
-    rho_j = linear.spectral_radius(linear.iteration_matrix(A.toarray(), "jacobi"))
+    rho_j = _spectra.spectral_radius(_spectra.iteration_matrix(A.toarray(), "jacobi"))
     # an eigenvalue of a symmetric 49 x 49 matrix: a few ulps, relative to its size (about 1)
     assert rho_j == pytest.approx(np.cos(np.pi / 8), rel=1e-12)
 
@@ -286,7 +287,7 @@ def test_poisson3d_structure_and_jacobi_radius():
     # eigvalsh of a symmetric matrix: errors of eps times its norm (12), a few ulps relative to the
     # largest eigenvalue
     assert eig.max() / 6 - 1 == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
-    rho_j = linear.spectral_radius(linear.iteration_matrix(dense, "jacobi"))
+    rho_j = _spectra.spectral_radius(_spectra.iteration_matrix(dense, "jacobi"))
     # as above: the Jacobi radius, an eigenvalue of I - D^-1 A
     assert rho_j == pytest.approx(np.cos(np.pi / (m + 1)), rel=1e-12)
     assert linear.poisson3d(1).toarray().tolist() == [[6.0]]
@@ -302,7 +303,7 @@ def test_a_sparse_matrix_is_never_made_dense(monkeypatch):
                  lambda: splitting(A, "sor", 1.2).sweep(np.zeros(9), np.ones(9))):
         call()
     with pytest.raises(ValueError, match="dense"):
-        linear.iteration_matrix(A, "jacobi")
+        _spectra.iteration_matrix(A, "jacobi")
 
 
 @HYPOTHESIS
@@ -318,7 +319,7 @@ def test_compiled_sweep_is_the_textbook_sweep(system, omega, method):
     # one sweep written two ways (vectorised and by components): round-off of O(1) numbers
     assert_allclose(split.sweep(x, b), expected, rtol=1e-12, atol=1e-12)
     # ... and the matrix form x <- M x + c, with c the sweep of x = 0
-    M = linear.iteration_matrix(A, method, omega)
+    M = _spectra.iteration_matrix(A, method, omega)
     # the sweep and its matrix form M x + c (M from an inverse of D - L): round-off amplified by
     # that inverse, for the drawn systems at most a few hundred ulps: 1e-10
     assert_allclose(split.sweep(x, b), M @ x + split.sweep(np.zeros(b.size), b),
@@ -367,7 +368,7 @@ def test_bad_systems(solver, A, b, error, message):
 @pytest.mark.parametrize("omega", [0.0, 2.0, -0.5, 2.5, np.nan, np.inf, None, "1.2", 1j, [1.0]])
 def test_omega_outside_open_interval(omega):
     for call in (lambda: linear.sor(TRI_A, TRI_B, omega),
-                 lambda: linear.iteration_matrix(TRI_A, "sor", omega),
+                 lambda: _spectra.iteration_matrix(TRI_A, "sor", omega),
                  lambda: splitting(TRI_A, "sor", omega),
                  lambda: linear.sor_spectral_radii(TRI_A, [1.0, omega]),
                  lambda: linear.sor_sweep(TRI_A, TRI_B, [omega]),
@@ -383,7 +384,7 @@ def test_omega_outside_open_interval(omega):
     (dict(norm=3), "norm"), (dict(norm="fro"), "norm"), (dict(relative="yes"), "relative"),
     (dict(seed=[1.0, 2.0]), "seed"), (dict(seed=[1, np.nan, 0]), "seed")])
 def test_bad_controls(kwargs, message):
-    for solver in (linear.gauss_seidel, linear.jacobi,
+    for solver in (_stationary.gauss_seidel, linear.jacobi,
                    lambda A, b, **k: linear.sor(A, b, 1.2, **k),
                    lambda A, b, **k: linear.sor_sweep(A, b, [1.2], **k)):
         with pytest.raises(ValueError, match=message):
@@ -391,13 +392,13 @@ def test_bad_controls(kwargs, message):
 
 
 @pytest.mark.parametrize("call, error, message", [
-    (lambda: linear.iteration_matrix(TRI_A, "richardson"), ValueError, "method"),
+    (lambda: _spectra.iteration_matrix(TRI_A, "richardson"), ValueError, "method"),
     (lambda: splitting(TRI_A, "sor_sweep"), ValueError, "method"),
     (lambda: linear.condition_number(TRI_A, 3), ValueError, "p must be"),
     (lambda: linear.condition_number([[1.0, 2.0]], 1), ValueError, "square"),
     (lambda: linear.condition_number(linear.poisson2d(2)), ValueError, "dense"),
-    (lambda: linear.spectral_radius([[1.0, 2.0]]), ValueError, "square"),
-    (lambda: linear.spectral_radius([[np.inf]]), ValueError, "finite"),
+    (lambda: _spectra.spectral_radius([[1.0, 2.0]]), ValueError, "square"),
+    (lambda: _spectra.spectral_radius([[np.inf]]), ValueError, "finite"),
     (lambda: linear.sor_spectral_radii(TRI_A, [[1.0]]), ValueError, "dimension"),
     (lambda: linear.sor_spectral_radii(np.ones((2, 2)) - np.eye(2), [1.0]),
      SingularJacobianError, "diagonal"),
@@ -629,7 +630,7 @@ def _exact_solution(A, b):
 @example(system=(np.array([[0.5]]), np.array([5e-324])), omega=1.5)  # a subnormal solution
 def test_sor_converges_on_spd_for_every_omega(system, omega):
     A, b = system
-    assert linear.spectral_radius(linear.iteration_matrix(A, "sor", omega)) < 1
+    assert _spectra.spectral_radius(_spectra.iteration_matrix(A, "sor", omega)) < 1
     res = linear.sor(A, b, omega, tol=1e-12, maxiter=200_000)
     expected = np.linalg.solve(A, b)
     # SOR stops on its relative step (1e-12); a contraction's error is then about the step times rho
@@ -681,7 +682,7 @@ def test_iteration_matrix_is_p_inverse_n(system, omega, method):
     A, _ = system
     D, L = np.diag(np.diag(A)), np.tril(A, -1)
     P = {"jacobi": D, "gauss_seidel": D + L, "sor": D / omega + L}[method]
-    M = linear.iteration_matrix(A, method, omega)
+    M = _spectra.iteration_matrix(A, method, omega)
     # P M = P - A holds exactly; computed, M carries round-off of P^-1 (diagonal dominance keeps P's
     # condition modest): 1e-9
     assert_allclose(P @ M, P - A, rtol=1e-9, atol=1e-9 * np.abs(A).max())
@@ -693,12 +694,12 @@ def test_iteration_matrix_is_p_inverse_n(system, omega, method):
 def test_spectral_radius_is_homogeneous_and_below_the_norm(values, c):
     n = int(round(np.sqrt(len(values))))
     M = np.array(values).reshape(n, n)
-    rho = linear.spectral_radius(M)
+    rho = _spectra.spectral_radius(M)
     # rho <= ||M||_2, with a few ulps of rounding in both (1e-300: M = 0)
     assert 0 <= rho <= np.linalg.norm(M, 2) * (1 + 1e-9) + 1e-300
     # the eigenvalues of c M are c times those of M; a defective eigenvalue (drawn matrices may
     # have one) is only determined to about sqrt(eps) = 1.5e-8 of the norm: 1e-6
-    assert linear.spectral_radius(c * M) == pytest.approx(abs(c) * rho, rel=1e-6, abs=1e-9)
+    assert _spectra.spectral_radius(c * M) == pytest.approx(abs(c) * rho, rel=1e-6, abs=1e-9)
 
 
 @HYPOTHESIS
@@ -706,7 +707,7 @@ def test_spectral_radius_is_homogeneous_and_below_the_norm(values, c):
 def test_sor_spectral_radii_match_the_iteration_matrices(system, ws):
     A, _ = system
     radii = linear.sor_spectral_radii(A, ws)
-    expected = [linear.spectral_radius(linear.iteration_matrix(A, "sor", w)) for w in ws]
+    expected = [_spectra.spectral_radius(_spectra.iteration_matrix(A, "sor", w)) for w in ws]
     # two ways of computing the same eigenvalue moduli (the batched closed form, and eigenvalues of
     # the matrix): round-off, with atol for radii near 0
     assert_allclose(radii, expected, rtol=1e-10, atol=1e-12)
@@ -716,7 +717,7 @@ def test_sor_spectral_radii_match_the_iteration_matrices(system, ws):
 @HYPOTHESIS
 @given(tridiagonal_spd())
 def test_young_omega_is_the_optimum_of_tridiagonal_spd(T):
-    rho_j = linear.spectral_radius(linear.iteration_matrix(T, "jacobi"))
+    rho_j = _spectra.spectral_radius(_spectra.iteration_matrix(T, "jacobi"))
     omega = linear.young_omega(rho_j)
     best = linear.optimal_omega(T)
     assert best.how == "young" and best.x == omega
@@ -854,7 +855,7 @@ def test_conjugate_gradient_meets_its_tolerance(system, power):
 
 
 def test_results_follow_the_contract():
-    res = linear.gauss_seidel(TRI_A, TRI_B)
+    res = _stationary.gauss_seidel(TRI_A, TRI_B)
     assert isinstance(res, Result) and res.status == "converged" and res.converged
     assert res.nfev == res.iterations + 1 and res.njev == 0 and "converged" in res.message
     with pytest.raises(ConvergenceError) as info:
@@ -870,7 +871,7 @@ def test_results_follow_the_contract():
 
 
 @pytest.mark.parametrize("call, message", [
-    (lambda: linear.gauss_seidel(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
+    (lambda: _stationary.gauss_seidel(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),
     (lambda: linear.sor_sweep(TRI_A, TRI_B, np.full(10_001, 1.2)), "bound on the work"),
     (lambda: linear.sor_spectral_radii(TRI_A, np.full(10_001, 1.2)), "bound on the work"),
     (lambda: linear.conjugate_gradient(TRI_A, TRI_B, maxiter=10 ** 8), "bound on the work"),

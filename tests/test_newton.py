@@ -924,3 +924,60 @@ def test_solve_all_roots_meet_the_tolerance(r, seed):
     # residuals of polished roots are round-off: about eps times the terms of the cubics, which grow
     # as the square of the roots' size
     assert np.all(found.residual_norms <= 1e-12 * (1 + np.abs(known).max()) ** 2)
+
+
+# --- what mutation testing found untested (bench/mutation.md) ------------------------------------
+
+SMALL = 2.0 ** -560  # a unit whose squares (2^-1120) are below the smallest float
+
+
+def small_circle_line(x):
+    """circle_line in a unit of 2^-560 (the same equations of y = x / SMALL, exactly), batched."""
+    y = x / SMALL
+    return np.stack([y[..., 0] ** 2 + y[..., 1] ** 2 - 1.0, y[..., 0] - y[..., 1]], axis=-1)
+
+
+def small_circle_line_jac(x):
+    y = x / SMALL
+    rows = [np.stack([2 * y[..., 0], 2 * y[..., 1]], axis=-1),
+            np.stack([np.ones_like(y[..., 0]), -np.ones_like(y[..., 0])], axis=-1)]
+    return np.stack(rows, axis=-2) / SMALL
+
+
+@pytest.mark.parametrize("method", [solve, broyden])
+def test_steps_whose_squares_underflow_are_still_measured(method):
+    # What it protects: the 2-norm of a step of size 2^-560 (its squares underflow to zero). It
+    # was 0, so the relative step test took the first step as converged, 25 % from the root; and
+    # Broyden's update divided by s^T s = 0 was skipped (a chord method, linear). The same
+    # problem in a unit of 2^-560 must take the same iterations to the same root.
+    big = method(circle_line, [1.0, 0.5], circle_line_jac, tol=1e-12)
+    small = method(small_circle_line, [SMALL, 0.5 * SMALL], small_circle_line_jac, tol=1e-12)
+    assert small.iterations == big.iterations
+    # powers of two scale every iterate exactly but for the norms' own round-off (Broyden's update
+    # divides by one): the roots agree to a few ulps
+    np.testing.assert_allclose(small.x / SMALL, big.x, rtol=1e-15)
+    batch = solve_batch(small_circle_line, np.array([[SMALL, 0.5 * SMALL]]), small_circle_line_jac,
+                        tol=1e-12)
+    if method is solve:  # the batch's step test on the same stack of tiny steps
+        assert batch.iterations[0] == big.iterations
+        np.testing.assert_allclose(batch.x[0] / SMALL, big.x, rtol=1e-15)  # as above
+
+
+def test_broyden_gives_up_after_100_iterations_by_default():
+    # exp(x) has no root: the iterates march to -inf with steps of ln 2 (documented default 100)
+    with pytest.raises(ConvergenceError, match="did not converge in 100 iterations") as info:
+        broyden(lambda x: np.exp(x), [0.0], lambda x: np.exp(x)[None])
+    assert info.value.result.iterations == 100
+
+
+def test_fd_jacobian_names_fun_and_x_in_its_errors():
+    # What it protects: a function well-behaved at x but not at x + h e_j is named as fun, with
+    # what it returned, and the non-finite differences show the x they were taken at
+    def wrong_shape_near(z):
+        return np.array([z[0] - 1.0]) if z[0] == 2.0 else np.array([z[0], 1.0])
+
+    with pytest.raises(ValueError, match=r"^fun returned shape \(2,\), expected \(1,\)$"):
+        fd_jacobian(wrong_shape_near, [2.0])
+    with pytest.raises(NonFiniteError, match=r"^the forward differences of fun are not finite at "
+                                             r"x = \[2\.\] \(fun is not finite near x"):
+        fd_jacobian(lambda z: np.array([0.0 if z[0] == 2.0 else np.inf]), [2.0])

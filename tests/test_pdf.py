@@ -35,9 +35,8 @@ import nbformat
 import pytest
 import yaml
 from lecture_pages import lectures
+from published import VERDICTS
 from test_student_edition import solution_code
-
-from mechnum.published import VERDICTS
 
 ROOT = Path(__file__).resolve().parents[1]
 EDITIONS = {"answer key": os.environ.get("MECHNUM_PDF"),

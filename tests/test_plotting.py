@@ -121,36 +121,15 @@ def test_animate_refuses_bad_input(kwargs, match):
         animate(**kwargs)
 
 
-def test_the_old_form_warns_and_still_animates():
-    fig, ax = plt.subplots()
-    (line,) = ax.plot([], [])
-    with pytest.warns(DeprecationWarning, match=r"animate\(fig, update, frames\)"):
-        html = animate(fig, lambda i: line.set_data([0, i], [0, i]), frames=3)
-    assert html.count("data:image/png;base64") == 3
-
-
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(fig=None, update=print, frames=3), "fig must be a matplotlib Figure"),  # R6
-    (dict(frames=-1), "frames must be an integer >= 0"),  # R6
-    (dict(frames=0), "1 to 200 frames"),  # accepted before: an empty animation
-    (dict(frames=2.5), "frames must be an integer"),
-    (dict(update="print"), "update must be callable"),
-])
-def test_the_old_form_refuses_bad_input(kwargs, match):
-    fig, ax = plt.subplots()
-    args = dict(fig=fig, update=lambda i: None, frames=3) | kwargs
-    with pytest.raises(ValueError, match=match), pytest.warns(DeprecationWarning):
-        animate(**args)
-    plt.close("all")
-
-
 def test_parts_refuse_bad_input():
     fig, ax = plt.subplots()
     drawn = parts(ax, {"bar": ([[0, 0], [1, 1]], {})})
     with pytest.raises(ValueError, match="artists must be the dict"):
         parts(ax, {"bar": ([[0, 0], [1, 1]], {}), "pin": ([[0, 0]], {})}, drawn)
     with pytest.raises(ValueError, match="kind of part 'bar' must be one of"):
-        parts(ax, {"bar": ([[0, 0]], {"kind": "arrow"})})
+        parts(ax, {"bar": ([[0, 0]], {"kind": "spline"})})
+    with pytest.raises(ValueError, match="arrow 'load' needs two points"):
+        parts(ax, {"load": ([[0, 0]], {"kind": "arrow"})})
     with pytest.raises(ValueError, match="ax must be a matplotlib Axes"):
         parts(None, {"bar": ([[0, 0]], {})})
     with pytest.raises(ValueError, match="ax must be"):

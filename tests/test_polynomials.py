@@ -220,3 +220,166 @@ def test_roots_beyond_the_companions_range_are_scaled_exactly(j, unit):
     assert_allclose(np.sort_complex(batch[0]), expected, rtol=1e-12)  # as above
     assert_allclose(np.sort_complex(batch[1]), np.sort_complex(poly.roots([2.0, -3.0, 1.0, 1.0])),
                     rtol=1e-12)
+
+
+# --- what mutation testing found untested (bench/mutation.md) ------------------------------------
+
+@pytest.mark.parametrize("call, message", [
+    # each message starts with the argument's own name, as the caller spelled it
+    (lambda: poly.companion([1.0]), r"^c must hold at least 2"),
+    (lambda: poly.roots([np.nan, 1.0]), r"^c must be finite"),
+    (lambda: poly.roots([1.0 + 1j, np.nan * 1j]), r"^c must be finite, got array\(\[ 1\. \+1\.j"),
+    (lambda: poly.sylvester(3.0, [1.0, 2.0]), r"^p must be a sequence of coefficients, got 3\.0$"),
+    (lambda: poly.sylvester([1.0, 2.0], 3.0), r"^q must be a sequence"),
+    (lambda: poly.sylvester([np.nan, 1.0], [1.0, 2.0]), r"^p must be finite, got \[nan, 1\.0\]$"),
+    (lambda: poly.sylvester([1.0, 2.0], [np.nan, 1.0]), r"^q must be finite, got \[nan, 1\.0\]$"),
+    # a list of lists is not a polynomial (it is not flattened): the message shows the entry
+    (lambda: poly.sylvester([[1.0, 2.0]], [1.0, 2.0]),
+     r"^p must hold numbers or sympy expressions, got \[1\.0, 2\.0\] \(list\)$"),
+    # a 0-d array is one number, not a polynomial of degree >= 1
+    (lambda: poly.sylvester(np.array(2.0), [1.0, 2.0]), r"degree >= 1, got 1 and 2"),
+    (lambda: poly.root_condition([2.0, -3.0, 1.0], ["a"]), r"^r must be numeric, got \['a'\]$"),
+    (lambda: poly.root_condition([2.0, -3.0, 1.0], [np.nan]), r"^r must be finite, got \[nan"),
+    (lambda: poly.bezout_bound([{(1,): 1}]), r"got list$"),
+    (lambda: poly.mixed_volume("ab"), r"got 'ab'$"),
+    (lambda: poly.mixed_volume([[(0, 0), (np.nan, 1)], [(0, 0), (1, 0)]]),
+     r"^each support must be finite"),
+    # a support must be a 2-D array of exponent rows, not one flat row
+    (lambda: poly.mixed_volume([[0, 1], [1, 0]]), r"^each support must have 2 dimension"),
+    (lambda: PolynomialSystem.from_dicts([{("a",): 1}]),
+     r"^equation 0: exponents must be tuples of integers >= 0 and coefficients numbers, "
+     r"got \{\('a',\): 1\}$"),
+    # exponents that are plain integers, not tuples
+    (lambda: PolynomialSystem.from_dicts([{1: 1, 0: -1}]),
+     r"^equation 0: exponents must be tuples of integers >= 0, got \[1, 0\]$"),
+    (lambda: PolynomialSystem.from_dicts([{(0, 0): 1}, {(-1, 0): 1}]),
+     r"^equation 1: exponents must be tuples of integers >= 0, got \[\(-1, 0\)\]$"),
+])
+def test_bad_input_messages_name_the_argument_and_show_the_value(call, message):
+    # What it protects: the words a student reads, the argument's name and the value it passed,
+    # not only the exception's type (the tests above match a few words).
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_sylvester_keeps_double_precision_and_complex_coefficients():
+    # What it protects: the matrix's dtype comes from both polynomials' coefficients, as Python
+    # numbers: float32 input still gives a float64 matrix, and a complex coefficient in either
+    # polynomial gives a complex one (no imaginary part dropped).
+    S = poly.sylvester(np.array([-1.0, 1.0], dtype=np.float32), [2.0, -3.0, 1.0])
+    assert S.dtype == np.float64
+    for p, q in (([1j, 1.0], [1.0, 1.0]), ([1.0, 1.0], [1j, 1.0])):
+        S = poly.sylvester(p, q)
+        assert S.dtype == complex and S.tolist() == [[p[1], p[0]], [q[1], q[0]]]
+
+
+def test_root_condition_of_complex_roots():
+    # t^2 + 1 at +-i: kappa = (|c_0| + |c_2| |r|^2) / |2 r| = 2 / 2 = 1, exactly in floating point
+    assert poly.root_condition([1.0, 0.0, 1.0], [1j, -1j]).tolist() == [1.0, 1.0]
+
+
+def test_roots_of_a_polynomial_with_zero_coefficients_and_tiny_roots():
+    # What it protects: the scaled route with zero coefficients (they have no exponent: they
+    # must not decide the scale). 2^30 t^3 - 2^-1000: the companion's entry 2^-1030 is
+    # subnormal, the roots are 2^(-1030/3) times the cube roots of unity.
+    # 2^-40 t^3 - 2^-1070 has the same roots; there a zero coefficient's exponent (0) taken as
+    # if it were a coefficient would ask for a scale of 2^39 and push 2^-1070 below the floats.
+    expected = 2.0 ** (-1030 / 3) * np.exp(2j * np.pi * np.arange(3) / 3)
+    for c in ([-(2.0 ** -1000), 0.0, 0.0, 2.0 ** 30], [-(2.0 ** -1070), 0.0, 0.0, 2.0 ** -40]):
+        found = poly.roots(c)
+        # the scaled polynomial is u^3 - 1/2 (times a power of two): the eigenvalues of its 3 x 3
+        # companion matrix, to some dozens of ulps (LAPACK's QR on a non-normal matrix)
+        assert_allclose(np.sort_complex(found), np.sort_complex(expected), rtol=1e-13)
+
+
+def test_a_batch_is_scaled_row_by_row():
+    # What it protects: each polynomial of a batch gets its own scale. Roots of size 2^673 beside
+    # an ordinary cubic whose coefficients are 2^-100: one scale for both would push the small
+    # row's coefficients below the smallest float.
+    small = 2.0 ** -100 * np.array([2.0, -3.0, 1.0, 1.0])
+    found = poly.roots(np.stack([[2.0 ** 1020, 0.0, 0.0, 2.0 ** -1000], small]))
+    # the ordinary cubic on its own companion matrix, and scaled by powers of two: round-off
+    assert_allclose(np.sort_complex(found[1]), np.sort_complex(poly.roots(small / 2.0 ** -100)),
+                    rtol=1e-12)
+    # roots of t^3 + 2^2020: 2^(2020/3) times the cube roots of -1, to round-off
+    expected = 2.0 ** (2020 / 3) * np.exp(1j * np.pi * (2 * np.arange(3) + 1) / 3)
+    assert_allclose(np.sort_complex(found[0]), np.sort_complex(expected), rtol=1e-12)
+
+
+def test_roots_under_numpy_floating_point_errors_as_exceptions():
+    # What it protects: roots handles its own overflow and underflow (errstate), so a caller
+    # who turned numpy's floating-point warnings into exceptions still gets the roots.
+    with np.errstate(all="raise"):
+        assert_allclose(np.sort(poly.roots([1e300, 1.0, 1e-10]).imag), [-1e155, 1e155],
+                        rtol=1e-12)  # as in test_roots_of_badly_scaled_polynomials
+        # the companion's entry 2^-1030 / 3 is subnormal and rounded: an underflow
+        assert np.abs(poly.roots([-(2.0 ** -1000) / 3, 0.0, 0.0, 2.0 ** 30])).min() > 0
+        with pytest.raises(NonFiniteError):
+            poly.roots([1e300, 1e-300])
+        with pytest.raises(NonFiniteError):   # 1j times the infinite imaginary part: NaN
+            poly.roots([1e300j, 1e-300])
+
+
+def test_system_evaluation_is_in_complex_floating_point():
+    # What it protects: integer points are not evaluated in integer arithmetic, where x^2 with
+    # x = 2^33 would wrap around silently, and so would the derivative 3 x^2 of x^3; the
+    # exponents are stored as integers (the documented type), so a power is a product, not
+    # exp(e log x). Every value here is a float exactly (2^99 - 3 rounds to 2^99).
+    system = PolynomialSystem.from_dicts([{(3, 0): 1, (0, 1): -1}, {(1, 1): 1}])
+    assert all(e.dtype.kind == "i" for e, _ in system.terms)
+    x = np.array([2 ** 33, 3])
+    assert system(x).tolist() == [2.0 ** 99 - 3, 3.0 * 2 ** 33]
+    assert system.jacobian(x).tolist() == [[3.0 * 2 ** 66, -1.0], [3.0, 2.0 ** 33]]
+
+
+@MANY
+@given(seed=st.integers(0, 10 ** 6), scale=st.floats(0.5, 2.0))
+def test_homogenized_system_is_homogeneous_of_each_equations_degree(seed, scale):
+    # What it protects: x0's exponent, degree minus the term's degree: H(s y) = s^d H(y)
+    rng = np.random.default_rng(seed)
+    eqs = [{tuple(rng.integers(0, 3, 2)): rng.normal() for _ in range(3)} for _ in range(2)]
+    system = PolynomialSystem.from_dicts(eqs)
+    H = system.homogenized()
+    y = rng.normal(size=3) + 1j * rng.normal(size=3)
+    # the same sums with every term multiplied by s^d: round-off of the terms' size
+    assert_allclose(H(scale * y), scale ** np.array(system.degrees) * H(y),
+                    atol=1e-12 * (1 + np.abs(H(y)).max()) * 4 ** max(system.degrees), rtol=0)
+
+
+def test_mixed_volume_in_one_and_in_six_unknowns():
+    # one unknown: the mixed volume is the length of the support's segment, the degree of a
+    # polynomial whose constant term is non-zero (t^3 + t + 1 has 3 roots)
+    assert poly.mixed_volume([[(0,), (1,), (3,)]]) == 3
+    # six unknowns (the most allowed): the unit simplex, MV = 6! vol = 1 (a linear system)
+    simplex = np.vstack([np.zeros(6, int), np.eye(6, dtype=int)])
+    assert poly.mixed_volume([simplex] * 6) == 1
+
+
+def test_a_monomial_equation_has_a_mixed_volume_of_zero():
+    # a single-term support (x y = 0 has no solution with both coordinates non-zero): MV = 0
+    assert poly.mixed_volume([[(1, 1)], [(0, 0), (1, 0)]]) == 0
+
+
+def test_minkowski_points_limit_bounds_the_work(monkeypatch):
+    # What it protects: the bound on one Minkowski sum's candidate points, at its edge; with the
+    # limit lowered to 12, a sum of 3 x 4 vertices is computed and one of 4 x 4 is refused
+    monkeypatch.setattr(poly, "MINKOWSKI_POINTS_LIMIT", 12)
+    triangle, square = [(0, 0), (1, 0), (0, 1)], [(0, 0), (1, 0), (0, 1), (1, 1)]
+    assert poly.mixed_volume([triangle, square]) == 2   # x + y + 1, with x y: 2 solutions
+    with pytest.raises(ValueError, match=r"^a Minkowski sum of 16 candidate points exceeds 12 "):
+        poly.mixed_volume([square, square])
+
+
+def test_the_integer_check_of_the_mixed_volume(monkeypatch):
+    # What it protects: the inclusion-exclusion sum is accepted within 1e-6 of its size of an
+    # integer (qhull's round-off) and refused beyond. The hull's volumes are perturbed here (the
+    # only way to reach the guard: integer supports give integer sums to round-off).
+    hull = poly._hull
+    dense = [[(i, j) for i in range(33) for j in range(33 - i)]] * 2   # MV = 32 * 32 = 1024
+    monkeypatch.setattr(poly, "_hull", lambda p: (hull(p)[0], hull(p)[1] * (1 + 1e-9)))
+    assert poly.mixed_volume(dense) == 1024     # off by about 1e-9 * 4000 = 4e-6, below 1e-3
+    # two segments spanning the plane, MV 1 = vol(A + B) - vol(A) - vol(B) = 1 - 0 - 0; each
+    # volume off by 0.25 makes the sum 1 + 0.25 - 2 * 0.25
+    monkeypatch.setattr(poly, "_hull", lambda p: (hull(p)[0], hull(p)[1] + 0.25))
+    with pytest.raises(ArithmeticError, match=r"^mixed volume 0\.75 is not an integer"):
+        poly.mixed_volume([[(0, 0), (1, 0)], [(0, 0), (0, 1)]])

@@ -5,7 +5,6 @@ here every function is checked by a defining property (a round trip, a residual,
 with hypothesis over the valid domain and just outside it.
 """
 
-import sys
 
 import matplotlib
 import numpy as np
@@ -18,14 +17,16 @@ from scipy.optimize import brentq
 
 from mechnum.errors import GeometryError
 from mechnum.mechanisms import hacksaw, prr3
-from mechnum.mechanisms.prr3 import EXAMPLES, Geometry, annex_i
+from mechnum.mechanisms.prr3 import Geometry, _geometry
+from mechnum.mechanisms.prr3 import _annex_i as annex_i
+from mechnum.mechanisms.prr3 import _direct as DIRECT
+from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, annex_i_terms, reproduce
 from mechnum.newton import fd_jacobian
 from mechnum.plotting import animate
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 
-DIRECT = sys.modules["mechnum.mechanisms.prr3.direct"]
 FIG = plt.subplots()  # the axes of the drawing tests, closed at the end of the module
 MANY = settings(max_examples=200, deadline=None,
                 suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
@@ -104,9 +105,11 @@ def test_bad_geometry_is_refused_by_name(kwargs, error, name):
 @MANY
 @given(g=geometries, poses=st.lists(st.tuples(*[st.floats(-1e3, 1e3)] * 3), max_size=4))
 def test_vertices_form_the_platform_triangle(g, poses):
-    v = prr3.vertices(g, np.reshape(poses, (-1, 3)))
+    v = _geometry.vertices(g, np.reshape(poses, (-1, 3)))
     assert v.shape == (len(poses), 3, 2)
     sides = np.linalg.norm(v - np.roll(v, 1, axis=1), axis=-1)
+    # the sides of a rotated and shifted triangle: round-off of the rotation and of the shift
+    # (poses up to 1e3 m), relative to the side and to the coordinates' size
     assert_allclose(sides, g.a, rtol=1e-9, atol=1e-12 * (1 + np.abs(v).max(initial=0)))
     assert_allclose(v[:, 0], np.reshape(poses, (-1, 3))[:, :2], rtol=0)
     if len(poses):  # counter-clockwise: P3 to the left of P1 P2
@@ -117,7 +120,7 @@ def test_vertices_form_the_platform_triangle(g, poses):
 @MANY
 @given(g=geometries, lam=st.tuples(*[st.floats(-1e6, 1e6)] * 3))
 def test_sliders_sit_on_their_guides_at_their_inputs(g, lam):
-    c = prr3.sliders(g, lam)
+    c = _geometry.sliders(g, lam)
     assert c[0, 1] == c[1, 1] == 0 and c[2, 0] == g.B3
     assert_allclose([c[0, 0], g.B2 - c[1, 0], g.H3 - c[2, 1]], lam, rtol=0,
                     atol=1e-9 * (1 + abs(g.B2)
@@ -130,9 +133,9 @@ def test_every_inverse_solution_closes_the_loops_and_the_radicands_say_so(case):
     g, pose = case
     lam = prr3.inverse(g, pose)
     assert lam.shape == (8, 3)  # no leg tangent: radicands >= 1e-3 L^2
-    assert_allclose(prr3.loop_residuals(g, pose, lam), 0, atol=1e-12 * g.L ** 2)
-    bars = prr3.bars(g, pose, lam)
-    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, prr3.loop_residuals(g, pose, lam),
+    assert_allclose(_geometry.loop_residuals(g, pose, lam), 0, atol=1e-12 * g.L ** 2)
+    bars = _geometry.bars(g, pose, lam)
+    assert_allclose(np.sum(bars ** 2, -1) - g.L ** 2, _geometry.loop_residuals(g, pose, lam),
                     rtol=0, atol=1e-13)
     rad = prr3.radicands(g, pose)  # the bar's component across its guide is sqrt(L^2 - rad)
     across = np.abs([bars[0, 0, 1], bars[0, 1, 1], bars[0, 2, 0]])
@@ -149,7 +152,7 @@ def test_branch_inputs_close_the_loops_where_the_legs_reach(case, signs):
     reach = prr3.radicands(g, poses) >= 0
     assert np.array_equal(np.isfinite(lam), reach)
     if reach[0].all():
-        assert_allclose(prr3.loop_residuals(g, pose, lam[0]), 0, atol=1e-12)
+        assert_allclose(_geometry.loop_residuals(g, pose, lam[0]), 0, atol=1e-12)
         assert any(np.allclose(lam[0], row, atol=1e-12) for row in prr3.inverse(g, pose))
 
 
@@ -169,11 +172,11 @@ def test_jacobians_match_finite_differences(case, k):
     g, pose = case
     lam = prr3.branch_inputs(g, pose, SIGNS[k])
     assume(np.all(np.isfinite(lam)))
-    J = prr3.direct_jacobian(g, pose, lam)
-    assert_allclose(J, fd_jacobian(lambda p: prr3.loop_residuals(g, p, lam), pose), rtol=0,
+    J = _geometry.direct_jacobian(g, pose, lam)
+    assert_allclose(J, fd_jacobian(lambda p: _geometry.loop_residuals(g, p, lam), pose), rtol=0,
                     atol=1e-6)
-    Ji = prr3.inverse_jacobian(g, pose, lam)
-    assert_allclose(Ji, fd_jacobian(lambda q: prr3.loop_residuals(g, pose, q), lam), rtol=0,
+    Ji = _geometry.inverse_jacobian(g, pose, lam)
+    assert_allclose(Ji, fd_jacobian(lambda q: _geometry.loop_residuals(g, pose, q), lam), rtol=0,
                     atol=1e-6)
     assert np.count_nonzero(Ji - np.diag(np.diag(Ji))) == 0
 
@@ -191,7 +194,7 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
                     prr3.jacobian_dets(g, pose, lam), rtol=0, atol=1e-9)
     inverse_det, direct_det = prr3.jacobian_dets(g, pose, lam)
     assert_allclose(inverse_det * (2 * g.L) ** 3,
-                    np.linalg.det(prr3.inverse_jacobian(g, pose, lam)),
+                    np.linalg.det(_geometry.inverse_jacobian(g, pose, lam)),
                     rtol=1e-9, atol=1e-12)
 
 
@@ -199,7 +202,7 @@ def test_jacobian_dets_are_dimensionless(case, k, scale):
 @given(x=st.floats(-1e300, 1e300), y=st.floats(-1e300, 1e300), psi=st.floats(-1e6, 1e6))
 def test_workspace_agrees_with_inverse_even_far_away(x, y, psi):
     g = TABLE_5
-    reach = prr3.workspace(g, x, y, psi)
+    reach = prr3.workspace(g, np.stack(np.broadcast_arrays(x, y, psi), axis=-1))
     assert reach.shape == () and reach == (len(prr3.inverse(g, [x, y, psi])) > 0)
 
 
@@ -207,11 +210,11 @@ def test_workspace_is_vectorised_and_takes_empty_grids():
     g = TABLE_5
     x, y, psi = np.meshgrid(np.linspace(-1, 4, 11), np.linspace(-1, 2, 7), [0.0, 1.0],
                             indexing="ij")
-    reach = prr3.workspace(g, x, y, psi)
+    reach = prr3.workspace(g, np.stack(np.broadcast_arrays(x, y, psi), axis=-1))
     assert reach.shape == (11, 7, 2) and reach.any() and not reach.all()
     expected = [len(prr3.inverse(g, p)) > 0 for p in np.stack([x, y, psi], -1).reshape(-1, 3)]
     assert np.array_equal(reach.ravel(), expected)
-    assert prr3.workspace(g, [], [], []).shape == (0,)
+    assert prr3.workspace(g, np.empty((0, 3))).shape == (0,)
 
 
 # --- the polynomial -----------------------------------------------------------------------
@@ -226,7 +229,7 @@ def test_polynomial_vanishes_at_every_true_pose_and_at_plus_minus_i(case, k):
     assume(abs(np.cos(pose[2] / 2)) > 0.05)  # t = tan(psi/2) of order 1
     # a self-motion (the polynomial vanishes identically but for round-off; make explore found
     # two): forward reports a continuum, and no relative bound on C's values can hold
-    if prr3.forward(g, lam).continuum:
+    if prr3.forward(g, lam).status == "singular":
         assert scale <= 1e-12 * (1 + np.ptp(lam) + g.L + g.a) ** 8
         return
     t = np.tan(pose[2] / 2)
@@ -287,7 +290,7 @@ def test_annex_i_as_printed_against_the_expansion():
                              - L ** 2 * D ** 2), t)
     names = {str(v): v for v in (*K, *Q, L, lam)}
     wrong = {}
-    for k, printed in prr3.annex_i_terms().items():
+    for k, printed in annex_i_terms().items():
         expansion = sp.Poly(poly.coeff_monomial(t ** k), *names.values())
         assert len(printed) == len(expansion.terms())
         monomials = [sp.Mul(*(names[n] ** p for n, p in powers.items()))
@@ -332,12 +335,12 @@ def test_direct_returns_the_pose_of_every_inverse_solution(case):
     assert np.all(sol.residuals <= 1e-6)
     # the loops close to 1e-6 L^2 (in m^2): near a direct singularity, where the polish stops,
     # that is all (L = 2, pose (1.750846179, 0, 2^-9): 2.9e-6 m^2 = 7e-7 L^2)
-    assert_allclose(prr3.loop_residuals(g, sol.poses, lam[sol.input_index]), 0,
+    assert_allclose(_geometry.loop_residuals(g, sol.x, lam[sol.input_index]), 0,
                     atol=1e-6 * g.L ** 2)
-    assert np.all((sol.poses[:, 2] >= 0) & (sol.poses[:, 2] < 2 * np.pi))
+    assert np.all((sol.x[:, 2] >= 0) & (sol.x[:, 2] < 2 * np.pi))
     for k in range(8):  # the pose itself, unless it is near a direct singularity, where two
         if abs(prr3.jacobian_dets(g, pose, lam[k])[1]) > REGULAR:  # roots nearly merge
-            assert pose_gap(sol.poses[sol.input_index == k], pose, g.L).min() < 1e-9
+            assert pose_gap(sol.x[sol.input_index == k], pose, g.L).min() < 1e-9
 
 
 @MANY
@@ -346,11 +349,11 @@ def test_direct_on_a_batch_equals_direct_on_each_input(lam):
     g = TABLE_5
     batch = np.reshape(lam, (-1, 3))
     sol = prr3.forward(g, batch)
-    assert sol.poses.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
+    assert sol.x.shape == (sol.counts.sum(), 3) and sol.counts.shape == (len(batch),)
     for k, one in enumerate(batch):
         alone = prr3.forward(g, one)
         assert alone.counts.shape == () and alone.counts == sol.counts[k]
-        assert_allclose(alone.poses, sol.poses[sol.input_index == k], rtol=0, atol=1e-12)
+        assert_allclose(alone.x, sol.x[sol.input_index == k], rtol=0, atol=1e-12)
         assert np.all(alone.residuals <= 1e-6)
 
 
@@ -367,7 +370,7 @@ def test_direct_finds_as_many_real_poses_as_the_homotopy(k):
     lam = prr3.inverse(g, pose)[rng.integers(8)]
     found = homotopy.solve(prr3.equations(g, lam), rng=k)
     real = prr3.solutions_from_equations(g, found.real(1e-7))
-    poses = prr3.forward(g, lam).poses
+    poses = prr3.forward(g, lam).x
     assert len(poses) == len(real) >= 2
     for p in real:
         assert pose_gap(poses, p).min() < 1e-7
@@ -377,7 +380,7 @@ def test_far_apart_sliders_have_no_pose_even_at_1e300():
     g = EXAMPLES["Table 6"][0]
     sol = prr3.forward(g, [[1e100, 0.0, 0.0], [1e300, -1e300, 1e300], [0.4, 0.1, 0.6]])
     assert sol.counts.tolist() == [0, 0, 2]
-    c = prr3.sliders(g, [1e100, 0.0, 0.0])  # no pose: sliders 1 and 2 are 1e100 apart
+    c = _geometry.sliders(g, [1e100, 0.0, 0.0])  # no pose: sliders 1 and 2 are 1e100 apart
     assert np.linalg.norm(c[0] - c[1]) > 2 * g.L + g.a
 
 
@@ -386,8 +389,8 @@ def test_direct_does_not_depend_on_the_unit_of_length(scale):
     g, lam = EXAMPLES["Table 6"]
     big = Geometry(L=g.L * scale, a=g.a * scale, B2=g.B2 * scale, B3=g.B3 * scale,
                    H3=g.H3 * scale)
-    base = prr3.forward(g, lam).poses
-    poses = prr3.forward(big, np.multiply(lam, scale)).poses
+    base = prr3.forward(g, lam).x
+    poses = prr3.forward(big, np.multiply(lam, scale)).x
     assert_allclose(poses[:, :2] / scale, base[:, :2], rtol=0, atol=1e-12)
     assert_allclose(poses[:, 2], base[:, 2], rtol=0, atol=1e-12)
 
@@ -396,7 +399,7 @@ def test_pose_at_psi_pi_is_found_whatever_the_leading_coefficient():
     g = EXAMPLES["Table 3"][0]
     pose = np.array([1.25, -0.75, np.pi])
     for lam in prr3.inverse(g, pose):
-        assert pose_gap(prr3.forward(g, lam).poses, pose).min() < 1e-12
+        assert pose_gap(prr3.forward(g, lam).x, pose).min() < 1e-12
 
 
 def test_pose_where_the_elimination_is_singular_is_still_found():
@@ -405,16 +408,16 @@ def test_pose_where_the_elimination_is_singular_is_still_found():
     lam = prr3.inverse(g, pose)[0]
     assert lam[0] + lam[1] == pytest.approx(g.B2 - g.a)
     sol = prr3.forward(g, lam)
-    hit = np.argmin(pose_gap(sol.poses, pose))
-    assert pose_gap(sol.poses, pose)[hit] < 1e-9
+    hit = np.argmin(pose_gap(sol.x, pose))
+    assert pose_gap(sol.x, pose)[hit] < 1e-9
     assert sol.elimination_singular[hit] and not sol.singular[hit]
 
 
 def test_a_pose_at_a_direct_singularity_is_found_and_flagged():
     pose, lam = singular_pose()
     sol = prr3.forward(TABLE_5, lam)
-    hit = np.argmin(pose_gap(sol.poses, pose))
-    assert pose_gap(sol.poses, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
+    hit = np.argmin(pose_gap(sol.x, pose))
+    assert pose_gap(sol.x, pose)[hit] < 1e-6  # a double root: about sqrt(eps)
     assert sol.singular[hit]
 
 
@@ -424,9 +427,9 @@ def test_a_self_motion_is_reported_as_a_continuum():
     scale = np.abs(prr3.polynomial(g, [2.0, 0.5, 0.2])).max()
     assert np.abs(prr3.polynomial(g, lam)).max() < 1e-12 * scale  # zero but for round-off
     for psi in (0.3, 2.0, 4.0):
-        assert_allclose(prr3.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
+        assert_allclose(_geometry.loop_residuals(g, [2.5, 0.0, psi], lam), 0, atol=1e-14)
     sol = prr3.forward(g, [lam, [2.0, 0.5, 0.2]])
-    assert sol.continuum.tolist() == [True, False] and sol.counts.tolist() == [0, 2]
+    assert sol.status.tolist() == ["singular", "converged"] and sol.counts.tolist() == [0, 2]
 
 
 def test_polish_leaves_a_singular_pose_and_far_jumps_alone():
@@ -448,7 +451,7 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     seeds = np.vstack([pose + rng.normal(0, 1e-3, 3), np.column_stack(
         [rng.uniform(-1, 5, 20), rng.uniform(-2, 3, 20), rng.uniform(0, 2 * np.pi, 20)])])
     newton = prr3.forward_by_newton(g, lam, seeds)
-    poly = prr3.forward(g, lam).poses
+    poly = prr3.forward(g, lam).x
     assume(abs(prr3.jacobian_dets(g, pose, lam)[1]) > REGULAR)  # else Newton is only linear
     assert pose_gap(newton, pose).min() < 1e-8  # the start next to the pose converges to it
     for p in newton:
@@ -463,15 +466,15 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     lambda g: prr3.inverse(g, [0.6, 0.4, 0.0], tol=np.nan),
     lambda g: prr3.branch_inputs(g, [0.6, 0.4, 0.0], (1, 0, 1)),
     lambda g: prr3.branch_inputs(g, [0.6, 0.4]),
-    lambda g: prr3.workspace(g, [0.0, 1.0], [0.0, 1.0, 2.0], 0.0),
-    lambda g: prr3.workspace(g, 0.0, np.nan, 0.0),
-    lambda g: prr3.workspace(g, 0.0, 0.0, 0.0, tol=0.0),
-    lambda g: prr3.vertices(g, [1.0, 2.0]),
-    lambda g: prr3.sliders(g, [1.0, 2.0j, 3.0]),
+    lambda g: prr3.workspace(g, [[0.0, 1.0], [0.0, 1.0]]),
+    lambda g: prr3.workspace(g, [0.0, np.nan, 0.0]),
+    lambda g: prr3.workspace(g, [0.0, 0.0, 0.0], tol=0.0),
+    lambda g: _geometry.vertices(g, [1.0, 2.0]),
+    lambda g: _geometry.sliders(g, [1.0, 2.0j, 3.0]),
     lambda g: prr3.radicands(g, "pose"),
-    lambda g: prr3.loop_residuals(g, [0.0, 0.0, 0.0], [[1.0, 2.0]]),
-    lambda g: prr3.direct_jacobian(g, [0.0, 0.0, np.nan], [0.0, 0.0, 0.0]),
-    lambda g: prr3.inverse_jacobian(g, [0.0, 0.0, 0.0], [0.0, 0.0]),
+    lambda g: _geometry.loop_residuals(g, [0.0, 0.0, 0.0], [[1.0, 2.0]]),
+    lambda g: _geometry.direct_jacobian(g, [0.0, 0.0, np.nan], [0.0, 0.0, 0.0]),
+    lambda g: _geometry.inverse_jacobian(g, [0.0, 0.0, 0.0], [0.0, 0.0]),
     lambda g: prr3.jacobian_dets(g, [0.0, 0.0, 0.0], [np.inf, 0.0, 0.0]),
     lambda g: prr3.polynomial(g, [1.0, 2.0]),
     lambda g: prr3.polynomial(g, [1e300, 0.0, 0.0]),
@@ -491,22 +494,22 @@ def test_newton_from_many_starts_finds_only_poses_of_the_polynomial(case, seed):
     lambda g: prr3.draw(FIG[1], g, [0.6, 0.4, 0.0]),
     lambda g: prr3.draw(FIG[1], g, ([1.5, 0.5, 0.2], [0.6, 0.4, 0.0]), guides=1),
     # R4: poses and inputs that do not broadcast; D13: NaN where a solution must be
-    lambda g: prr3.loop_residuals(g, np.zeros((2, 3)), np.zeros((3, 3))),
-    lambda g: prr3.bars(g, np.zeros((2, 3)), np.zeros((4, 3))),
+    lambda g: _geometry.loop_residuals(g, np.zeros((2, 3)), np.zeros((3, 3))),
+    lambda g: _geometry.bars(g, np.zeros((2, 3)), np.zeros((4, 3))),
     lambda g: prr3.jacobian_dets(g, np.zeros((2, 3)), np.zeros((3, 3))),
     lambda g: prr3.solutions_from_equations(g, [[np.nan, 0.0, 1.0, 0.0]]),
     lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0, 1.0]]),  # cos^2 + sin^2 = 2
     lambda g: prr3.solutions_from_equations(g, [[0.5, 0.5, 1.0]]),
     # R6: no geometry, or another mechanism's
     lambda g: prr3.forward(None, [0.4, 0.1, 0.6]),
-    lambda g: prr3.vertices(None, [0.6, 0.4, 0.0]),
-    lambda g: prr3.radicands(hacksaw.STUDY, [0.6, 0.4, 0.0]),
+    lambda g: _geometry.vertices(None, [0.6, 0.4, 0.0]),
+    lambda g: prr3.radicands(hacksaw.Geometry(), [0.6, 0.4, 0.0]),
     lambda g: prr3.inverse(None, [0.6, 0.4, 0.0]),
-    lambda g: prr3.singular_points(None, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5]),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], kind="both"),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3], (1, -1, -1)),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, 2, -1)),
-    lambda g: prr3.singular_points(g, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], samples=10 ** 7),
+    lambda g: prr3.singular_points(None, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]]),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], kind="both"),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3]], signs=(1, -1, -1)),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], signs=(1, 2, -1)),
+    lambda g: prr3.singular_points(g, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]], samples=10 ** 7),
     lambda g: prr3.mode_change_path(g, [2.2, 0.5, 3.0], [2.3, 0.5, 3.2], (1, 1, 1),
                                     bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(2000, 2000, 2)),
 ])
@@ -521,11 +524,11 @@ def test_an_empty_batch_is_valid_everywhere():
     g = TABLE_5
     empty = np.empty((0, 3))
     sol = prr3.forward(g, empty)
-    assert sol.poses.shape == (0, 3) and sol.counts.shape == (0,)
+    assert sol.x.shape == (0, 3) and sol.counts.shape == (0,)
     assert prr3.branch_inputs(g, empty).shape == (0, 3)
     assert prr3.radicands(g, empty).shape == (0, 3)
-    assert prr3.loop_residuals(g, empty, empty).shape == (0, 3)
-    assert prr3.direct_jacobian(g, empty, empty).shape == (0, 3, 3)
+    assert _geometry.loop_residuals(g, empty, empty).shape == (0, 3)
+    assert _geometry.direct_jacobian(g, empty, empty).shape == (0, 3, 3)
     assert prr3.jacobian_dets(g, empty, empty)[1].shape == (0,)
     assert prr3.polynomial(g, empty).shape == (0, 9)
     assert prr3.forward_by_newton(g, [0.4, 0.1, 0.6], empty).shape == (0, 3)
@@ -543,19 +546,16 @@ def test_draw_draws_the_guides_bars_sliders_and_platform():
                                                                guides=False)) + 3
     artists = prr3.draw(ax, g, (lam, pose), guides=False)
     legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]  # C_i, P_i and a break
-    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, lam), rtol=1e-15, atol=1e-15)
-    np.testing.assert_allclose(legs[:, 1], prr3.vertices(g, pose), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 0], _geometry.sliders(g, lam), rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(legs[:, 1], _geometry.vertices(g, pose), rtol=1e-15, atol=1e-15)
     assert_allclose(np.linalg.norm(legs[:, 1] - legs[:, 0], axis=1), g.L, rtol=1e-12)
-    assert_allclose(artists["platform"].get_xy()[:3], prr3.vertices(g, pose), rtol=1e-15)
+    assert_allclose(artists["platform"].get_xy()[:3], _geometry.vertices(g, pose), rtol=1e-15)
     other = prr3.inverse(g, pose)[5]  # another working mode: the drawing moves, nothing added
     count = len(ax.lines) + len(ax.patches)
     assert prr3.draw(ax, g, (other, pose), artists=artists, guides=False) is artists
     assert len(ax.lines) + len(ax.patches) == count
     legs = artists["bars"].get_xydata().reshape(3, 3, 2)[:, :2]
-    np.testing.assert_allclose(legs[:, 0], prr3.sliders(g, other), rtol=1e-15, atol=1e-15)
-    with pytest.warns(DeprecationWarning, match=r"draw\(ax, pose, lambdas, geometry\)"):
-        old = prr3.draw(ax, pose, lam, g)
-    assert sorted(old) == sorted(prr3.draw(ax, g, (lam, pose)))
+    np.testing.assert_allclose(legs[:, 0], _geometry.sliders(g, other), rtol=1e-15, atol=1e-15)
     plt.close(fig)
 
 
@@ -568,7 +568,7 @@ def test_animate_moves_the_platform_along_a_path():
 
 
 def test_reproduce_gives_every_quantity_of_the_chapter():
-    values = prr3.reproduce()
+    values = reproduce()
     assert all(np.isfinite(v) for v in values.values())
     assert values["Table 3 number of solutions"] == 8 == values["Table 4 number of solutions"]
 
@@ -588,10 +588,10 @@ def test_mode_change_path_joins_two_assembly_modes_of_one_input():
     g, signs = TABLE_5, (1, 1, 1)
     lam0 = np.array([3.1266, 1.8887, 3.6427])
     sol = prr3.forward(g, lam0)
-    start, end = sol.poses[1], sol.poses[3]  # the same working mode and sign of det J
-    assert_allclose(prr3.branch_inputs(g, sol.poses[[1, 3]], signs), [lam0, lam0], rtol=0,
+    start, end = sol.x[1], sol.x[3]  # the same working mode and sign of det J
+    assert_allclose(prr3.branch_inputs(g, sol.x[[1, 3]], signs), [lam0, lam0], rtol=0,
                     atol=1e-9)
-    path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]])
+    path = prr3.mode_change_path(g, start, end, signs, bounds=[[-0.5, 4.5], [-1.0, 1.0]]).x
     assert_allclose(path[[0, -1]], [start, end], rtol=0, atol=1e-12)
     _assert_singularity_free(path, g, signs)
 
@@ -615,11 +615,14 @@ SAME_SIGN_POSES = _assemblable_poses()
 
 @settings(max_examples=200, deadline=None)
 @given(side=st.integers(0, 1), i=st.integers(0, 10 ** 6), j=st.integers(0, 10 ** 6))
-def test_mode_change_path_is_singularity_free_or_none(side, i, j):
+def test_mode_change_path_is_singularity_free_or_undecided(side, i, j):
     g, signs, pool = TABLE_5, (1, 1, 1), SAME_SIGN_POSES[side]
     a, b = pool[i % len(pool)], pool[j % len(pool)]
-    path = prr3.mode_change_path(g, a, b, signs, bounds=[[1.5, 3.5], [0.0, 1.0]], shape=(12, 6, 24))
-    if path is not None:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
+    found = prr3.mode_change_path(g, a, b, signs, bounds=[[1.5, 3.5], [0.0, 1.0]],
+                                  shape=(12, 6, 24))
+    assert found.status in ("converged", "undecided") and found.converged == (len(found.x) > 0)
+    path = found.x
+    if found.converged:  # psi is unwrapped along the path: equal modulo 2 pi at the ends
         assert pose_gap(path[0], a)[0] < 1e-12 and pose_gap(path[-1], b)[0] < 1e-12
         _assert_singularity_free(path, g, signs)
 
@@ -672,7 +675,8 @@ def test_direct_emits_no_overflow_far_away():
 
 def test_singular_points_find_the_direct_singularity_that_brentq_finds():
     pose, lam = singular_pose()  # brentq on the determinant, in this file
-    found = prr3.singular_points(TABLE_5, [3.0, 0.3, 0.5], [3.4, 0.3, 0.5], (1, -1, -1))
+    found = prr3.singular_points(TABLE_5, [[3.0, 0.3, 0.5], [3.4, 0.3, 0.5]],
+                                 signs=(1, -1, -1))
     assert found.shape == (1, 3)
     assert_allclose(found[0], pose, rtol=1e-14)
     assert abs(prr3.jacobian_dets(TABLE_5, found[0], lam)[1]) < 1e-12
@@ -683,7 +687,7 @@ def test_singular_points_find_the_direct_singularity_that_brentq_finds():
 def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, seed):
     g, pose = case
     end = pose + np.random.default_rng(seed).normal(0, 0.3, 3)
-    found = prr3.singular_points(g, pose, end, signs, samples=50)
+    found = prr3.singular_points(g, [pose, end], signs=signs, samples=50)
     s = np.linspace(0, 1, 2001)  # an independent count on a finer grid of the segment
     line = pose + np.outer(s, end - pose)
     lam = prr3.branch_inputs(g, line, signs)
@@ -697,44 +701,11 @@ def test_singular_points_are_the_sign_changes_of_the_determinant(case, signs, se
 
 
 def test_inverse_singular_points_are_where_a_leg_turns_tangent():
-    ws = prr3.WORKSPACE_GEOMETRY
-    found = prr3.singular_points(ws, [0.5, 0.0, 0.3], [0.5, 1.5, 0.3], kind="inverse")
+    ws = WORKSPACE_GEOMETRY
+    found = prr3.singular_points(ws, [[0.5, 0.0, 0.3], [0.5, 1.5, 0.3]], kind="inverse")
     assert len(found) >= 1
     for p in found:  # some radicand vanishes there
         assert np.abs(prr3.radicands(ws, p)).min() < 1e-12
-
-
-# --- deprecated forms -------------------------------------------------------------------------
-
-G6, LAM6 = EXAMPLES["Table 6"]
-POSE3 = EXAMPLES["Table 3"][1]
-OLD_FORMS = [  # the old call, and the new one it must equal
-    (lambda: prr3.direct(LAM6, G6).poses, lambda: prr3.forward(G6, LAM6).poses),
-    (lambda: prr3.direct(LAM6, geometry=G6, imag_tol=1e-5).poses,
-     lambda: prr3.forward(G6, LAM6, imag_tol=1e-5).poses),
-    (lambda: prr3.direct(G6, LAM6).poses, lambda: prr3.forward(G6, LAM6).poses),
-    (lambda: prr3.direct_by_newton(LAM6, G6, [[1.2, 0.6, 0.2]]),
-     lambda: prr3.forward_by_newton(G6, LAM6, [[1.2, 0.6, 0.2]])),
-    (lambda: prr3.direct_by_newton(LAM6, G6, starts=[[1.2, 0.6, 0.2]], tol=1e-10),
-     lambda: prr3.forward_by_newton(G6, LAM6, seeds=[[1.2, 0.6, 0.2]], tol=1e-10)),
-    (lambda: prr3.inverse(POSE3, G6), lambda: prr3.inverse(G6, POSE3)),
-    (lambda: prr3.branch_inputs(POSE3, G6, (1, 1, 1)), lambda: prr3.branch_inputs(
-        G6, POSE3, (1, 1, 1))),
-    (lambda: prr3.workspace(0.6, 0.4, 0.0, G6), lambda: prr3.workspace(G6, 0.6, 0.4, 0.0)),
-    (lambda: prr3.polynomial(LAM6, G6), lambda: prr3.polynomial(G6, LAM6)),
-    (lambda: prr3.loop_residuals(POSE3, LAM6, G6), lambda: prr3.loop_residuals(G6, POSE3, LAM6)),
-    (lambda: prr3.jacobian_dets(POSE3, LAM6, G6), lambda: prr3.jacobian_dets(G6, POSE3, LAM6)),
-    (lambda: prr3.vertices(POSE3, G6), lambda: prr3.vertices(G6, POSE3)),
-    (lambda: prr3.solutions_from_equations([[0.5, 0.25, 0.0, 1.0]], G6),
-     lambda: prr3.solutions_from_equations(G6, [[0.5, 0.25, 0.0, 1.0]])),
-]
-
-
-@pytest.mark.parametrize("old, new", OLD_FORMS)
-def test_old_forms_warn_and_give_the_new_forms_answer(old, new):
-    with pytest.warns(DeprecationWarning, match="deprecated and will be removed in 0.3"):
-        before = old()
-    np.testing.assert_array_equal(np.asarray(before), np.asarray(new()))
 
 
 def test_the_drawing_figure_closes():

@@ -1,4 +1,5 @@
-"""Tests of mechnum.published: the printed-digits rules, the registry and its one table."""
+"""Tests of the book's registry rules (book/published.py): the printed-digits rules, the registry
+and its one table."""
 
 from decimal import Decimal
 
@@ -6,8 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from mechnum.published import (
+from published import (
     COLUMNS,
     agrees,
     below,

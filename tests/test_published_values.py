@@ -2,9 +2,10 @@
 
 Each chapter's mechanism module has ``reproduce() -> dict[str, float]``, keyed by the
 ``quantity`` column of that chapter's rows. This test recomputes every row and checks, with
-:func:`mechnum.published.check_row`, what the row says: the ``computed`` column is what the
-package computes today (to the digits the column prints, or below the bound ``<1e-13`` that it
-stores for a round-off-level value, whose digits vary from machine to machine), and the verdict
+``published.check_row`` (the book's ``book/published.py``), what the row says: the ``computed``
+column is what the package computes today (to the digits the column prints, or below the
+bound ``<1e-13`` that it stores for a round-off-level value, whose digits vary from machine to
+machine), and the verdict
 holds in both directions (an agreeing row agrees with ``published`` to the study's printed
 digits, any other row does not).
 """
@@ -15,19 +16,18 @@ from functools import cache
 from pathlib import Path
 
 import pytest
-
-from mechnum.published import VERDICTS, check_row, read_findings, read_registry
+from published import VERDICTS, check_row, read_findings, read_registry
 
 BOOK = Path(__file__).resolve().parents[1] / "book"
 REGISTRY = BOOK / "published_values.csv"
 MODULES = {  # chapter (notebook stem) -> module holding its reproduce()
-    "01_newton_hacksaw": "mechnum.mechanisms.hacksaw",
-    "02_linear_systems_finger": "mechnum.mechanisms.finger",
-    "03_elastica": "mechnum.mechanisms.elastica",
-    "04_rigid_3prr": "mechnum.mechanisms.prr3",
-    "05_flexible_2rfr": "mechnum.mechanisms.rfr2",
-    "06_flexible_3pfr": "mechnum.mechanisms.pfr3",
-    "07_actuator_force": "mechnum.mechanisms.actuator",
+    "01_newton_hacksaw": "mechnum.mechanisms.hacksaw.study",
+    "02_linear_systems_finger": "mechnum.mechanisms.finger.study",
+    "03_elastica": "mechnum.mechanisms.elastica.study",
+    "04_rigid_3prr": "mechnum.mechanisms.prr3.study",
+    "05_flexible_2rfr": "mechnum.mechanisms.rfr2.study",
+    "06_flexible_3pfr": "mechnum.mechanisms.pfr3.study",
+    "07_actuator_force": "mechnum.mechanisms.actuator.study",
 }
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 BOUND = re.compile(r"^<\d(\.\d*)?[eE]-\d+$")  # a round-off-level value: "<1e-13"

@@ -14,10 +14,11 @@ from scipy.optimize import minimize_scalar
 from mechnum import rods
 from mechnum.continuation import pseudo_arclength
 from mechnum.errors import ConvergenceError, MechnumError
-from mechnum.mechanisms import elastica
-from mechnum.rods import NoEquilibriumError, shooting
-from mechnum.rods import rod as rod_module
-from mechnum.rods.growing import START_TOL
+from mechnum.mechanisms.elastica import study as elastica
+from mechnum.rods import NoEquilibriumError
+from mechnum.rods import _rod as rod_module
+from mechnum.rods import _shooting as shooting
+from mechnum.rods._pinned import START_TOL
 
 PI = np.pi
 EPS = np.finfo(float).eps
@@ -563,9 +564,9 @@ SKETCH = rods.Rod(np.linspace(0, 1, 5), np.linspace(0, 0.8, 5), np.zeros(5), np.
     (lambda: rods.shoot_cantilever(1.0, 1.0, [0, 1], m0=[1.0, 2.0]), "broadcast"),
     (lambda: rods.shoot_cantilever([1.0, 2.0], 1.0, [0, 1]), "EI must have 0 dimension"),
     (lambda: rods.shoot_pinned(1.0, 1.0, [1.0, 0.5]), "farther than L"),
-    (lambda: rods.shoot_pinned(1.0, 1.0, [0.5, 0.5], [0, 0]), "guess must have a last axis"),
+    (lambda: rods.shoot_pinned(1.0, 1.0, [0.5, 0.5], [0, 0]), "seed must have a last axis"),
     (lambda: rods.shoot_pinned(1.0, 1.0, [0.5, np.nan]), "tip must be finite"),
-    (lambda: rods.shoot_pinned_multiple(1.0, 1.0, [0.5, 0.5], "line"), "guess must be a Rod"),
+    (lambda: rods.shoot_pinned_multiple(1.0, 1.0, [0.5, 0.5], "line"), "seed must be a Rod"),
     (lambda: rods.shoot_pinned_multiple(1.0, 2.0, [0.5, 0.5], SKETCH), "equally spaced"),
     (lambda: rods.shoot_pinned_multiple(1.0, 1.0, [0.5, 0.5], SKETCH, segments=5), "at most"),
     (lambda: rods.shoot_pinned_multiple(1.0, 1.0, [1.5, 0.5], SKETCH), "farther than L"),
@@ -647,6 +648,13 @@ def test_imperfect_column_folds_at_the_closed_form_least_load():
 
 # --- The package's structure --------------------------------------------------------------
 
+def _same_subpackage(module, target):
+    """Whether ``target`` belongs to ``module``'s subpackage (mechnum.rods, or the elastica
+    mechanism), whose private names are its own."""
+    home = ".".join(module.split(".")[:2 if module.startswith("mechnum.rods") else 3])
+    return target.startswith(home + ".")
+
+
 def _rods_imports():
     """``{module: set of mechnum.rods modules it imports}`` and every private name a module of
     mechnum.rods (or the elastica mechanism) takes from another module, by reading the code
@@ -656,7 +664,8 @@ def _rods_imports():
 
     root = pathlib.Path(rods.__file__).parent
     files = {f"mechnum.rods.{p.stem}": p for p in root.glob("*.py") if p.stem != "__init__"}
-    files["mechnum.mechanisms.elastica"] = root.parent / "mechanisms" / "elastica.py"
+    for p in (root.parent / "mechanisms" / "elastica").glob("*.py"):
+        files[f"mechnum.mechanisms.elastica.{p.stem}"] = p
     graph, private = {}, []
     for name, path in files.items():
         tree = ast.parse(path.read_text())
@@ -668,14 +677,16 @@ def _rods_imports():
                     module = target if target in files else node.module
                     if module in files and module != name:
                         graph[name].add(module)
-                    if alias.name.startswith("_") and alias.name != "_validate":
+                    if (alias.name.startswith("_") and alias.name != "_validate"
+                            and not _same_subpackage(name, target)):
                         private.append((name, target))
                     aliases[alias.asname or alias.name] = target
         for node in ast.walk(tree):   # module._private, for a module imported by name
             if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
                     and node.attr.startswith("_") and not node.attr.startswith("__")
                     and aliases.get(node.value.id, "").startswith("mechnum.")
-                    and node.value.id != "_validate"):
+                    and node.value.id != "_validate"
+                    and not _same_subpackage(name, aliases[node.value.id])):
                 private.append((name, f"{aliases[node.value.id]}.{node.attr}"))
     return graph, private
 
@@ -696,7 +707,7 @@ def test_rods_modules_import_no_loop_and_no_private_name():
 
     for module in graph:
         visit(module)
-    assert "mechnum.rods.shooting" not in graph["mechnum.rods.elliptic"]   # the old loop
+    assert "mechnum.rods._shooting" not in graph["mechnum.rods._elliptic"]  # the old loop
 
 
 def test_no_rods_module_exceeds_500_lines():

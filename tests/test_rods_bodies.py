@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from mechnum.rods.bodies import constrained_index_with_body
-from mechnum.rods.stability import constrained_eigenvalues, rod_block
+from mechnum.rods._bodies import constrained_index_with_body
+from mechnum.rods._stability import constrained_eigenvalues, rod_block
 
 
 def _dense(blocks, D):

@@ -1,5 +1,5 @@
 """Tests of the co-refined search (mechnum.rods._leaves, _tuples, _corefine, _cosearch,
-_cocertificate; mechnum.certify._clusters): its enclosures and tests never drop a box or a tuple
+_cocertificate; mechnum.rods._clusters): its enclosures and tests never drop a box or a tuple
 that holds a known equilibrium, its clusters, Table 7's complete count, and its certificate,
 re-checked and refused when tampered with."""
 
@@ -9,15 +9,18 @@ import numpy as np
 import pytest
 
 from mechnum import certify, rods
-from mechnum.certify._clusters import clusters, hulls
 from mechnum.mechanisms import pfr3, rfr2
 from mechnum.mechanisms.pfr3 import certified as pfr3_certified
-from mechnum.mechanisms.pfr3.model import clamps
+from mechnum.mechanisms.pfr3 import clamps
+from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
 from mechnum.mechanisms.rfr2 import certified as rfr2_certified
-from mechnum.rods import _corefine, _leaves, _tuples, regular
+from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+from mechnum.rods import _clusters, _corefine, _leaves, _tuples, certified
+from mechnum.rods import _regular as regular
+from mechnum.rods._clusters import clusters, hulls
 
-TABLE7_ROOTS = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0).chart
-TABLE8_ROOTS = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0).chart
+TABLE7_ROOTS = rfr2.forward(TABLE7, TABLE7_THETA, rng=0).x
+TABLE8_ROOTS = pfr3.forward(TABLE8, TABLE8_LAMBDAS, rng=0).x
 
 
 def _box_around(psi, t, rng):
@@ -84,8 +87,8 @@ def _tuples_around(roots, rods_of, n, rng):
 
 def test_no_test_drops_a_tuple_that_holds_a_table7_root():
     rng = np.random.default_rng(4)
-    chart = rfr2_certified.chart_rods(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    assembly = rfr2_certified.assembly(rfr2.TABLE7)
+    chart = rfr2_certified._chart_rods(TABLE7, TABLE7_THETA)
+    assembly = rfr2_certified._assembly(TABLE7)
     D = _tuples_around(TABLE7_ROOTS, chart, 400, rng)
     assert not np.any(_tuples.tuple_codes(assembly, D))
     for k in range(2):
@@ -94,12 +97,12 @@ def test_no_test_drops_a_tuple_that_holds_a_table7_root():
 
 def test_no_test_drops_a_triple_that_holds_a_table8_root():
     rng = np.random.default_rng(5)
-    chart = pfr3_certified.chart_rods(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
-    origins = clamps(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    chart = pfr3_certified._chart_rods(TABLE8, TABLE8_LAMBDAS)
+    origins = clamps(TABLE8, TABLE8_LAMBDAS)
     assert np.array_equal([rod.origin for rod in chart], origins)
-    assembly = pfr3_certified.assembly(pfr3.TABLE8)
+    assembly = pfr3_certified._assembly(TABLE8)
     # the pins' distances from their coordinates: rounding of a hypot only
-    assert [m[2] for m in assembly.meets] == pytest.approx([pfr3.TABLE8.a] * 3, rel=1e-12)
+    assert [m[2] for m in assembly.meets] == pytest.approx([TABLE8.a] * 3, rel=1e-12)
     D = _tuples_around(TABLE8_ROOTS, chart, 400, rng)
     assert not np.any(_tuples.tuple_codes(assembly, D))
     for k in range(3):
@@ -110,23 +113,23 @@ def test_a_corefinement_certificate_has_scope_all_only(table7):
     _, data = table7
     cert = rods.CoCertificate.from_json(json.dumps(data))
     with pytest.raises(certify.CertificateError, match="'existence'"):
-        rfr2_certified.verify_certificate(cert, rfr2.TABLE7, rfr2.TABLE7_THETA,
+        rfr2_certified.verify_certificate(cert, TABLE7, TABLE7_THETA,
                                           scope="existence")
     with pytest.raises(certify.CertificateError, match="'existence'"):
-        pfr3_certified.verify_certificate(cert, pfr3.TABLE8, pfr3.TABLE8_LAMBDAS,
+        pfr3_certified.verify_certificate(cert, TABLE8, TABLE8_LAMBDAS,
                                           scope="existence")
-    inputs = pfr3_certified.certificate_inputs(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+    inputs = pfr3_certified.certificate_inputs(TABLE8, TABLE8_LAMBDAS)
     again = pfr3.Mechanism(inputs["origins"], inputs["guide_angles"], inputs["clamp_angles"],
                            inputs["a"], force=inputs["force"], moment=inputs["moment"])
-    assert np.array_equal(again.vertices, pfr3.TABLE8.vertices)
+    assert np.array_equal(again.vertices, TABLE8.vertices)
 
 
 def test_the_tests_drop_tuples_far_from_any_root():
     """The tests have teeth: boxes a little away from the roots are dropped, each reason
     seen."""
     rng = np.random.default_rng(6)
-    chart = rfr2_certified.chart_rods(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    assembly = rfr2_certified.assembly(rfr2.TABLE7)
+    chart = rfr2_certified._chart_rods(TABLE7, TABLE7_THETA)
+    assembly = rfr2_certified._assembly(TABLE7)
     shifted = TABLE7_ROOTS + rng.uniform(-0.05, 0.05, (len(TABLE7_ROOTS), 4))
     codes = []
     for _ in range(20):
@@ -160,9 +163,9 @@ def test_clusters_are_the_connected_components():
 
 @pytest.fixture(scope="module")
 def table7():
-    result = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    cert = result.certificate(rfr2_certified.certificate_inputs(rfr2.TABLE7,
-                                                               rfr2.TABLE7_THETA))
+    result = rfr2.certify_forward(TABLE7, TABLE7_THETA)
+    cert = result.certificate(rfr2_certified.certificate_inputs(TABLE7,
+                                                               TABLE7_THETA))
     return result, json.loads(cert.to_json())
 
 
@@ -179,12 +182,12 @@ def test_table7_has_exactly_three_equilibria_all_proven_stable(table7):
 def test_the_certificate_verifies_from_its_inputs(table7):
     _, data = table7
     verified = rfr2_certified.verify_certificate(
-        rods.CoCertificate.from_json(json.dumps(data)), rfr2.TABLE7, rfr2.TABLE7_THETA)
+        rods.CoCertificate.from_json(json.dumps(data)), TABLE7, TABLE7_THETA)
     assert verified.count == 3 and verified.complete and verified.scope == "all"
-    other = rfr2.Mechanism(origins=rfr2.TABLE7.origins, force=[0.3, -0.2])
+    other = rfr2.Mechanism(origins=TABLE7.origins, force=[0.3, -0.2])
     with pytest.raises(certify.CertificateError, match="round 0"):
         rfr2_certified.verify_certificate(rods.CoCertificate.from_json(json.dumps(data)),
-                                          other, rfr2.TABLE7_THETA)
+                                          other, TABLE7_THETA)
 
 
 def _tampered(data, change):
@@ -207,8 +210,8 @@ def _flip(text, i):
 def test_a_tampered_certificate_is_refused_early(table7, change, match):
     _, data = table7
     with pytest.raises(certify.CertificateError, match=match):
-        rfr2_certified.verify_certificate(_tampered(data, change), rfr2.TABLE7,
-                                          rfr2.TABLE7_THETA)
+        rfr2_certified.verify_certificate(_tampered(data, change), TABLE7,
+                                          TABLE7_THETA)
 
 
 def _drop_settled(data):
@@ -235,25 +238,25 @@ def _settle_twice(data):
 def test_a_tampered_certificate_is_refused(table7, change, match):
     _, data = table7
     with pytest.raises(certify.CertificateError, match=match):
-        rfr2_certified.verify_certificate(_tampered(data, change), rfr2.TABLE7,
-                                          rfr2.TABLE7_THETA)
+        rfr2_certified.verify_certificate(_tampered(data, change), TABLE7,
+                                          TABLE7_THETA)
 
 
 def test_a_certificate_that_leaves_tuples_unsettled_is_not_complete():
     """Two rounds whose live tuples no box settles, with an empty (complete) Krawczyk search:
     consistent, but not a proof."""
-    chart = rfr2_certified.chart_rods(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    assembly = rfr2_certified.assembly(rfr2.TABLE7)
+    chart = rfr2_certified._chart_rods(TABLE7, TABLE7_THETA)
+    assembly = rfr2_certified._assembly(TABLE7)
     state = _corefine.Refinement(chart, assembly, grid=(4, 2))
     state.step()
     state.step()
     assert len(state.live)
-    f, J, _, exclude = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
+    f, J, _, exclude = rfr2_certified.system(TABLE7, TABLE7_THETA)
     empty = certify.roots(f, J, np.zeros((0, 4, 2)))
     cert = rods.CoCertificate(state.grid, tuple(state.dims), tuple(state.resolved),
                               tuple(state.history), empty.certificate(), 0, True)
     with pytest.raises(certify.CertificateError, match="tuples left"):
-        rods.verify_corefined(cert, chart, assembly, f, J, exclude)
+        certified.verify_corefined(cert, chart, assembly, f, J, exclude)
 
 
 @pytest.mark.parametrize("text", ["", "[]", '{"format": "other"}',
@@ -264,9 +267,9 @@ def test_a_malformed_certificate_is_refused(text):
         rods.CoCertificate.from_json(text)
 
 
-CHART = rfr2_certified.chart_rods(rfr2.TABLE7, rfr2.TABLE7_THETA)
-ASSEMBLY = rfr2_certified.assembly(rfr2.TABLE7)
-SYSTEM = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
+CHART = rfr2_certified._chart_rods(TABLE7, TABLE7_THETA)
+ASSEMBLY = rfr2_certified._assembly(TABLE7)
+SYSTEM = rfr2_certified.system(TABLE7, TABLE7_THETA)
 
 
 @pytest.mark.parametrize("call, match", [
@@ -278,18 +281,18 @@ SYSTEM = rfr2_certified.system(rfr2.TABLE7, rfr2.TABLE7_THETA)
     (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, max_rounds=10**9), "max_rounds"),
     (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, max_live=0), "max_live"),
     (lambda: rods.corefine(CHART, ASSEMBLY, SYSTEM, grid=(0, 4)), "grid"),
-    (lambda: rods.verify_corefined("a", CHART, ASSEMBLY, *SYSTEM), "CoCertificate"),
-    (lambda: rods.ChartRod(1.0, -1.0, 1, (0.0, 0.0), 0.0), "L"),
-    (lambda: rods.ChartRod(1.0, 1.0, 0, (0.0, 0.0), 0.0), "mode"),
-    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, np.nan), 0.0), "origin"),
-    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, t_max=2.0), "t_max"),
-    (lambda: rods.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, lam_max=-1.0), "lam_max"),
-    (lambda: rods.Assembly([], (0.0, 0.0)), "meet"),
-    (lambda: rods.Assembly(((0, 0, 0.0),), (0.0, 0.0)), "meet"),
-    (lambda: rods.Assembly(((0, 1, -1.0),), (0.0, 0.0)), "distance"),
-    (lambda: certify.hulls(np.zeros((2, 1, 2)), [0, -1]), "labels"),
-    (lambda: certify.clusters(np.zeros((2, 1, 2)), keys=[0]), "keys"),
-    (lambda: certify.subtract([[1.0, 0.0]], np.zeros((0, 1, 2))), "lo <= hi"),
+    (lambda: certified.verify_corefined("a", CHART, ASSEMBLY, *SYSTEM), "CoCertificate"),
+    (lambda: certified.ChartRod(1.0, -1.0, 1, (0.0, 0.0), 0.0), "L"),
+    (lambda: certified.ChartRod(1.0, 1.0, 0, (0.0, 0.0), 0.0), "mode"),
+    (lambda: certified.ChartRod(1.0, 1.0, 1, (0.0, np.nan), 0.0), "origin"),
+    (lambda: certified.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, t_max=2.0), "t_max"),
+    (lambda: certified.ChartRod(1.0, 1.0, 1, (0.0, 0.0), 0.0, lam_max=-1.0), "lam_max"),
+    (lambda: certified.Assembly([], (0.0, 0.0)), "meet"),
+    (lambda: certified.Assembly(((0, 0, 0.0),), (0.0, 0.0)), "meet"),
+    (lambda: certified.Assembly(((0, 1, -1.0),), (0.0, 0.0)), "distance"),
+    (lambda: _clusters.hulls(np.zeros((2, 1, 2)), [0, -1]), "labels"),
+    (lambda: _clusters.clusters(np.zeros((2, 1, 2)), keys=[0]), "keys"),
+    (lambda: _clusters.subtract([[1.0, 0.0]], np.zeros((0, 1, 2))), "lo <= hi"),
 ])
 def test_bad_input_is_refused(call, match):
     with pytest.raises(ValueError, match=match):

@@ -1,5 +1,5 @@
 """Tests of mechnum.rods._index: the free and pinned indices of a clamped-pinned rod in closed
-form, proven in balls, against the discretised second variation (mechnum.rods.stability) at two
+form, proven in balls, against the discretised second variation (mechnum.rods._stability) at two
 resolutions; the verdict of a mechanism."""
 
 import numpy as np
@@ -8,18 +8,19 @@ from flint import arb
 from scipy.linalg import eigvalsh_tridiagonal
 
 from mechnum import rods
-from mechnum.rods import _index, regular, stability
+from mechnum.rods import _index
+from mechnum.rods import _regular as regular
 
 
 def _discretised(psi, t, mode, segments):
     """The free and pinned indices of the rod ``(psi, t)`` (``EI = L = 1``) by
-    :mod:`mechnum.rods.stability`."""
-    rod = regular.shape(1.0, 1.0, psi, t, mode, nodes=2 * segments + 1)
+    :mod:`mechnum.rods._stability`."""
+    rod = rods.shape(1.0, 1.0, psi, t, mode, nodes=2 * segments + 1)
     force = regular.clamped_pinned_regular(1.0, 1.0, psi, t, mode, jacobian=False).force
-    block = stability.rod_block(1.0, 1.0, rod.theta[1::2], force)
+    block = rods.rod_block(1.0, 1.0, rod.theta[1::2], force)
     free = len(eigvalsh_tridiagonal(block.diagonal, block.off_diagonal, select="v",
                                     select_range=(-np.inf, 0.0)))
-    return free, stability.constrained_index([block], block.tip_gradient)
+    return free, rods.constrained_index([block], block.tip_gradient)
 
 
 def _point_box(psi, t, width=1e-9):
@@ -34,7 +35,7 @@ def test_indices_agree_with_the_discretised_second_variation():
         mode = int(rng.integers(1, 4))
         psi, t = rng.uniform(0.05, 2 * np.pi - 0.05), rng.uniform(-0.97, 0.97)
         sign = 1 if t > 0 else -1
-        free = rods.free_index(1.0, 1.0, _point_box(psi, t), mode, sign)
+        free = _index.free_index(1.0, 1.0, _point_box(psi, t), mode, sign)
         pinned = rods.pinned_index(1.0, 1.0, _point_box(psi, t), mode, sign)
         coarse, fine = _discretised(psi, t, mode, 400), _discretised(psi, t, mode, 1600)
         if free is None or pinned is None or coarse != fine:
@@ -62,13 +63,13 @@ def test_the_chapter5_rods_are_proven_stable_with_their_tips_pinned():
     for psi, t in eq:
         box = _point_box(psi, t, 1e-7)
         assert rods.pinned_index(0.0522, 1.0, box, 1, 1 if t > 0 else -1) == 0
-    assert rods.free_index(0.0522, 1.0, _point_box(*eq[0], 1e-7), 1, -1) == 1
+    assert _index.free_index(0.0522, 1.0, _point_box(*eq[0], 1e-7), 1, -1) == 1
 
 
 def test_wide_boxes_and_boxes_across_a_sign_change_are_undecided():
-    assert rods.free_index(1.0, 1.0, [[0.5, 6.0], [0.1, 0.9]], 1, 1) is None
+    assert _index.free_index(1.0, 1.0, [[0.5, 6.0], [0.1, 0.9]], 1, 1) is None
     psi, t0, t1 = 1.96, -0.9, -0.01            # S changes sign in between
-    assert rods.free_index(1.0, 1.0, [[psi, psi + 1e-6], [t0, t1]], 1, -1) is None
+    assert _index.free_index(1.0, 1.0, [[psi, psi + 1e-6], [t0, t1]], 1, -1) is None
 
 
 @pytest.mark.parametrize("box, sign", [([[0.0, 1.0], [0.2, 0.3]], 1),
@@ -77,7 +78,7 @@ def test_wide_boxes_and_boxes_across_a_sign_change_are_undecided():
                                        ([[1.0, 2.0], [0.2, 0.3]], 0)])
 def test_boxes_outside_the_chart_are_refused(box, sign):
     with pytest.raises(ValueError):
-        rods.free_index(1.0, 1.0, box, 1, sign)
+        _index.free_index(1.0, 1.0, box, 1, sign)
 
 
 def test_stiffness_index_counts_negative_eigenvalues():

@@ -10,8 +10,9 @@ from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 from mechnum import rods
-from mechnum.mechanisms import elastica as el
-from mechnum.rods import pinned, regular
+from mechnum.mechanisms.elastica import study as el
+from mechnum.rods import _pinned as pinned
+from mechnum.rods import _regular as regular
 
 THESIS = np.array([0.8, 0.1])         # the thesis's pinned point, EI = L = 1
 

@@ -5,7 +5,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import ellipj
 
-from mechnum.rods import profile, regular
+from mechnum.rods import _profile as profile
+from mechnum.rods import _regular as regular
 
 
 def test_amplitude_matches_scipy_away_from_k_1():
@@ -32,7 +33,7 @@ def test_amplitude_near_k_1_from_the_complement():
 def test_shape_agrees_with_regular_for_moderate_rods():
     rng = np.random.default_rng(1)
     psi, t, mode = rng.uniform(0.1, 6.2, 40), rng.uniform(-0.95, 0.95, 40), rng.integers(1, 4, 40)
-    a, b = regular.shape(1.0, 1.0, psi, t, mode, nodes=51), profile.shape(1.0, 1.0, psi, t,
+    a, b = profile.shape(1.0, 1.0, psi, t, mode, nodes=51), profile.shape(1.0, 1.0, psi, t,
                                                                            mode, nodes=51)
     # two closed forms of the same rods at 51 nodes: round-off of O(1) coordinates
     assert np.abs(a.x - b.x).max() < 1e-12 and np.abs(a.y - b.y).max() < 1e-12

@@ -5,7 +5,9 @@ import numpy as np
 import pytest
 
 from mechnum import rods
-from mechnum.rods import crossing, regular, stability
+from mechnum.rods import _crossing as crossing
+from mechnum.rods import _regular as regular
+from mechnum.rods import _stability as stability
 
 EI, L = 0.0522, 1.0
 
@@ -55,6 +57,49 @@ def test_analytic_jacobian_matches_central_differences():
     # central differences with h = 1e-6 err by h^2 times the third derivatives (about 1e-12) and
     # round-off eps / h ~ 1e-10: 1e-6 relative to 1 + |J| is wide
     assert np.max(np.abs(fd - rod.jacobian) / scale) < 1e-6
+
+
+@pytest.mark.parametrize("jacobian", [True, False])
+def test_closed_form_computes_each_integral_once_on_the_rows_that_need_it(monkeypatch,
+                                                                         jacobian):
+    """Carlson integrals per rod: every rod needs R_F and R_D of its partial wave; the others
+    than mode 1 on its growing branch K and E(k) (two more); the growing branch R_D(1, w, X)
+    for its rates, and R_F once more where its excess's series does not serve (a large load).
+    Counted, row by row, in one batch that mixes them all."""
+    from mechnum.rods import _growing as growing
+
+    evaluated = {"rows": 0}
+
+    def counted(integral):
+        def call(*args):
+            out = integral(*args)
+            evaluated["rows"] += np.size(out)
+            return out
+        return call
+
+    for module in (regular, growing):
+        for name in ("elliprf", "elliprd"):
+            monkeypatch.setattr(module, name, counted(getattr(module, name)))
+    # (psi, t, mode): a = cos(psi/2) > 0 for psi < pi, so t > 0 there is the growing branch
+    rows = [(1.0, 1e-3, 1), (2.0, 2e-4, 1),          # growing, small load: series
+            (1.0, 0.9, 1), (2.5, 0.7, 1),           # growing, large load
+            (1.0, -0.5, 1), (4.0, 0.5, 1), (1.0, 0.5, 2), (5.0, -0.3, 3)]   # the others
+    need = [2 + jacobian] * 2 + [3 + jacobian] * 2 + [4] * 4
+    psi, t, mode = (np.array(c, dtype=float) for c in zip(*rows))
+    regular.closed_form(EI, L, psi, t, mode, jacobian=jacobian)
+    assert evaluated["rows"] == sum(need)
+    for row, count in zip(rows, need):                  # and one rod at a time
+        evaluated["rows"] = 0
+        regular.closed_form(EI, L, *row, jacobian=jacobian)
+        assert evaluated["rows"] == count, row
+
+
+def test_one_rod_of_several_stiffnesses_broadcasts():
+    # EI of shape (3,) against one (psi, t): three rods, the force and Jacobian scale with EI
+    rod = regular.closed_form(np.array([1.0, 2.0, 4.0]), L, 2.0, 0.5)
+    one = regular.closed_form(1.0, L, 2.0, 0.5)
+    assert rod.force.shape == (3, 2) and rod.jacobian.shape == (3, 5, 2)
+    np.testing.assert_allclose(rod.jacobian[2, 2:], 4.0 * one.jacobian[2:], rtol=1e-15)
 
 
 def test_chart_stays_accurate_in_near_straight_tension():

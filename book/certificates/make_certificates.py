@@ -1,8 +1,8 @@
 """Recompute every stored certificate of the book (``make certify``).
 
-Each file is a :class:`~mechnum.certify.certificate.Certificate` as JSON: its scope, the search
+Each file is a :class:`~mechnum.certify.Certificate` as JSON: its scope, the search
 that made it, the inputs, the searched boxes, the leaves with the test each passed, the root
-enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify.verify`, the
+enclosures and the work done. Re-check one with :func:`~mechnum.certify.verify`, the
 residual of the same ``system`` and the chart as the domain
 (:func:`~mechnum.rods.certified.branch_boxes`; see each entry below).
 
@@ -23,8 +23,8 @@ residual of the same ``system`` and the chart as the domain
   searched by co-refinement too (:func:`~mechnum.mechanisms.pfr3.certified.certify_forward`
   without ``around``, its rounds printed: live triples, boxes, time, the live share of the
   domain), and ``ch6_table8_all_modes111.json`` stored if the search is complete. It is not:
-  the default bound on the live triples (``rods.MAX_LIVE``, 2 million) stops it after round 2
-  (2.9 million); allowed 6 million, it reaches 8.9 million in round 6, after 300 s of CPU.
+  the default bound on the live triples (``rods.certified.MAX_LIVE``, 2 million) stops it after
+  round 2 (2.9 million); allowed 6 million, it reaches 8.9 million in round 6, after 300 s of CPU.
   Cutting one rod per round instead of all three does not help: after each rod is cut once the
   same triples are live (1,678,829 against 1,678,833), after more tests (4.7 million against
   4.0 million). After round 1 fewer than 0.05 % of the live triples have a rod whose load is
@@ -61,38 +61,40 @@ def main():
         store(f"ch3_pinned_mode{mode}.json", part,
               {"function": "mechnum.rods.certified.pinned_system", "EI": 1.0, "L": 1.0,
                "target": [0.8, 0.1], "mode": mode, "unknowns": ["psi", "t"]})
-    sampled = rfr2.forward_elliptic(rfr2.TABLE7, rfr2.TABLE7_THETA, rng=0)
-    table7 = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA, around=sampled.chart)
+    sampled = rfr2.forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, rng=0)
+    table7 = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA, around=sampled.x)
     store("ch5_table7_modes11.json", table7.parts[0],
           {"function": "mechnum.mechanisms.rfr2.certified.system", "mechanism": "TABLE7",
-           "theta": rfr2.TABLE7_THETA.tolist(), "modes": [1, 1],
+           "theta": rfr2.study.TABLE7_THETA.tolist(), "modes": [1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
-           "around": sampled.chart.tolist(), "unknowns": ["psi1", "t1", "psi2", "t2"]})
-    table7 = rfr2.certify_forward(rfr2.TABLE7, rfr2.TABLE7_THETA)
-    cert = table7.certificate(rfr2_certified.certificate_inputs(rfr2.TABLE7,
-                                                                rfr2.TABLE7_THETA))
+           "around": sampled.x.tolist(), "unknowns": ["psi1", "t1", "psi2", "t2"]})
+    table7 = rfr2.certify_forward(rfr2.study.TABLE7, rfr2.study.TABLE7_THETA)
+    cert = table7.certificate(rfr2_certified.certificate_inputs(rfr2.study.TABLE7,
+                                                                rfr2.study.TABLE7_THETA))
     cert.save(HERE / "ch5_table7_all_modes11.json")
     print(f"ch5_table7_all_modes11.json: {table7.message}; stable {table7.stable} "
           f"({table7.seconds:.1f} s)")
-    sampled = pfr3.forward_elliptic(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, rng=0)
-    table8 = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, around=sampled.chart)
+    sampled = pfr3.forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, rng=0)
+    table8 = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS, around=sampled.x)
     store("ch6_table8_modes111.json", table8.parts[0],
           {"function": "mechnum.mechanisms.pfr3.certified.system", "mechanism": "TABLE8",
-           "lambdas": pfr3.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
+           "lambdas": pfr3.study.TABLE8_LAMBDAS.tolist(), "modes": [1, 1, 1],
            "searched": "boxes around the sampled equilibria (a lower bound of the count)",
-           "around": sampled.chart.tolist(),
+           "around": sampled.x.tolist(),
            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]})
-    print(f"ch6: the nine proven stable: "
-          f"{pfr3_certified.stability(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS, table8.roots)}")
+    stable = pfr3_certified.certify_stability(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS,
+                                              table8.roots)
+    print(f"ch6: the nine proven stable: {stable}")
     if os.environ.get("MECHNUM_CERTIFY_FULL") == "1":
-        whole = pfr3.certify_forward(pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)
+        whole = pfr3.certify_forward(pfr3.study.TABLE8, pfr3.study.TABLE8_LAMBDAS)
         for r, h in enumerate(whole.corefined.rounds):
             print(f"  round {r}: {h['live']} live triples, {h['boxes']} boxes, "
                   f"{h['seconds']:.0f} s, live share {h['volume']:.1e}")
         print(f"ch6 whole chart: {whole.message} ({whole.seconds:.0f} s)")
         if whole.complete:
-            whole.certificate(pfr3_certified.certificate_inputs(
-                pfr3.TABLE8, pfr3.TABLE8_LAMBDAS)).save(HERE / "ch6_table8_all_modes111.json")
+            inputs = pfr3_certified.certificate_inputs(pfr3.study.TABLE8,
+                                                       pfr3.study.TABLE8_LAMBDAS)
+            whole.certificate(inputs).save(HERE / "ch6_table8_all_modes111.json")
     print(f"all certificates in {time.perf_counter() - start:.0f} s")
     return 0
 

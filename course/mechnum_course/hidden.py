@@ -22,7 +22,8 @@ from mechnum.exercises._ch5 import Polynomial
 from mechnum.exercises._ch6 import column, platform
 from mechnum.exercises._ch7 import OTHER, state
 from mechnum.exercises._harness import Case
-from mechnum.mechanisms import actuator, hacksaw
+from mechnum.mechanisms import hacksaw
+from mechnum.mechanisms.actuator.study import ANNEX
 
 
 def _loop():
@@ -49,6 +50,16 @@ def _newton():
                  (*saw(4.0, (0.045, 0.075, 0.17)), np.array([-0.1, -0.5, 3.0]), 1e-12, 50)),
             Case("a 3 x 3 system from (1.2, 0.9, 0.4), tol = 1e-11",
                  (*three, np.array([1.2, 0.9, 0.4]), 1e-11, 30))]
+
+
+def _update():
+    rng = np.random.default_rng(131)
+    B = rng.normal(size=(5, 5)) + 5 * np.eye(5)
+    scaled = np.diag([100.0, 1.0, 0.01]) + 0.001 * rng.normal(size=(3, 3))
+    return [Case("a random 5 x 5 matrix, step and change",
+                 (np.linalg.inv(B), rng.normal(size=5), rng.normal(size=5))),
+            Case("a 3 x 3 matrix of rows of sizes 100, 1 and 0.01",
+                 (np.linalg.inv(scaled), rng.normal(size=3), rng.normal(size=3)))]
 
 
 def _sweep():
@@ -147,8 +158,8 @@ def _rigid():
 def _coefficients():
     third = dataclasses.replace(OTHER, o2=0.2, b=0.3, l=0.45)
     cases = []
-    for mech, t, label in ((actuator.ANNEX, 0.35, "the chapter's mechanism at t = 0.35 s"),
-                           (actuator.ANNEX, 0.85, "the chapter's mechanism at t = 0.85 s"),
+    for mech, t, label in ((ANNEX, 0.35, "the chapter's mechanism at t = 0.35 s"),
+                           (ANNEX, 0.85, "the chapter's mechanism at t = 0.85 s"),
                            (third, 0.55, "a mechanism with b = 0.3 m, l = 0.45 m at t = 0.55 s")):
         s = state(mech, t)
         cases.append(Case(label, (s.theta2, s.theta4, s.a, mech.l, mech.b)))
@@ -156,14 +167,14 @@ def _coefficients():
 
 
 def _force():
-    heavy = dataclasses.replace(actuator.ANNEX, m2=4.0, g3=0.25)
+    heavy = dataclasses.replace(ANNEX, m2=4.0, g3=0.25)
     return [Case("the chapter's mechanism at t = 0.45 s, g = 9.81 m/s^2",
-                 (state(actuator.ANNEX, 0.45), actuator.ANNEX, 9.81)),
+                 (state(ANNEX, 0.45), ANNEX, 9.81)),
             Case("a mechanism with m2 = 4 kg, g3 = 0.25 m at t = 0.9 s, g = 1.62 m/s^2",
                  (state(heavy, 0.9), heavy, 1.62))]
 
 
-HIDDEN = {"1.1": _loop, "1.2": _newton, "2.1": _sweep, "2.2": _lstsq, "3.1": _step,
+HIDDEN = {"1.1": _loop, "1.2": _newton, "1.3": _update, "2.1": _sweep, "2.2": _lstsq, "3.1": _step,
           "3.2": _shooting, "4.1": _companion, "4.2": _prr3_step, "5.1": _tip, "5.2": _pin,
           "5.3": _krawczyk, "6.1": _index, "6.2": _rigid, "7.1": _coefficients, "7.2": _force}
 """The hidden cases of each self-checked exercise, by its number (functions that build them)."""

@@ -5,7 +5,7 @@ Layers, each importing only the ones below it:
 * methods: :mod:`mechnum.newton`, :mod:`mechnum.linear`, :mod:`mechnum.ode`,
   :mod:`mechnum.continuation`, :mod:`mechnum.homotopy`, :mod:`mechnum.polynomials`,
   :mod:`mechnum.certify` and :mod:`mechnum.rods` (the elastica, and
-  :mod:`mechnum.rods.assembly`, what every mechanism built of rods shares);
+  :mod:`mechnum.mechanisms._assembly`, what every mechanism built of rods shares);
 * mechanisms: :mod:`mechnum.mechanisms`, one subpackage per mechanism of the source studies.
 
 Beside them: :mod:`mechnum.results` (the result contract), :mod:`mechnum.errors`,

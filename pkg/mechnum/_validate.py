@@ -38,7 +38,6 @@ def shown(value: object) -> str:
     return text if len(text) <= 80 else text[:77] + "..."
 
 
-_shown = shown  # the name other modules used before it was public
 
 
 def array(value: ArrayLike, name: str, *, ndim: int | tuple | None = None,

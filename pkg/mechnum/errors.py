@@ -5,6 +5,10 @@ Every failure to produce the one answer a function promises raises a subclass of
 ill-shaped input raises the built-in :class:`ValueError` at the entry point instead.
 """
 
+__all__ = ["ConvergenceError", "DivergenceError", "GeometryError", "MechnumError",
+           "NonFiniteError", "RelaxationFactorError", "SingularJacobianError",
+           "UnreachablePoseError"]
+
 
 class MechnumError(Exception):
     """Base class of every error that :mod:`mechnum` raises on purpose.

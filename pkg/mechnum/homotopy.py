@@ -48,7 +48,7 @@ from mechnum.errors import ConvergenceError
 from mechnum.polynomials import PolynomialSystem, bezout_bound
 from mechnum.results import Result, status_counts
 
-__all__ = ["ENDS", "HomotopyResult", "TrackResult", "solve", "track"]
+__all__ = ["ENDS", "solve", "track"]
 
 # Newton's corrector may take this many steps at each s: more means the predictor went too far.
 _CORRECTOR_STEPS = 3

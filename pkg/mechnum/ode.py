@@ -26,7 +26,7 @@ from mechnum import _validate, newton
 from mechnum.errors import NonFiniteError
 from mechnum.results import Result
 
-__all__ = ["BVPSolution", "multiple_shooting", "rk4"]
+__all__ = ["multiple_shooting", "rk4"]
 
 _STEP = 1e-30  # complex step: f(x + i h) = f(x) + i h f'(x) + O(h^2), with no cancellation
 OUTPUT_LIMIT = 100_000_000

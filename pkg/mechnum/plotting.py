@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechnum import _deprecated
+__all__ = ["JSAnimation", "animate", "check_axes", "parts", "use_book_style"]
 
 STYLE = Path(__file__).with_name("book.mplstyle")
 """The book's Matplotlib style file: text sizes of 9 pt and more (CONTRIBUTING.md)."""
@@ -27,7 +27,7 @@ MAX_FRAMES = 200
 make a page of several megabytes (a chapter keeps to a few dozen)."""
 MAX_DPI = 300
 """The highest resolution of an animation's frames (the work and the size grow as its square)."""
-_KINDS = ("line", "fill", "hline", "vline")
+_KINDS = ("line", "fill", "hline", "vline", "arrow")
 
 # Matplotlib's animation controls use Font Awesome icons loaded from a CDN, and the book works
 # offline; plain characters such as U+23EE are missing from common fonts (empty boxes). So the
@@ -93,8 +93,9 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
     shapes : dict
         ``{name: (points, style)}``: ``points`` of shape ``(k, 2)`` (NaN rows break a line), and
         the artist's Matplotlib ``style``, whose ``"kind"`` is ``"line"`` (the default: a
-        Line2D), ``"fill"`` (a polygon), or ``"hline"``/``"vline"`` (a fixed guide across the
-        axes at the first point's y or x; it is not moved later).
+        Line2D), ``"fill"`` (a polygon), ``"arrow"`` (from the first point to the second, an
+        annotation whose ``style`` is its ``arrowprops``), or ``"hline"``/``"vline"`` (a fixed
+        guide across the axes at the first point's y or x; it is not moved later).
     artists : dict, optional
         What an earlier call returned, to move.
 
@@ -132,15 +133,21 @@ def parts(ax: object, shapes: dict, artists: dict | None = None) -> dict:
         kind = style.pop("kind", "line")
         if kind not in _KINDS:
             raise ValueError(f"the kind of part {name!r} must be one of {_KINDS}, got {kind!r}")
+        if kind == "arrow" and len(xy) != 2:
+            raise ValueError(f"the arrow {name!r} needs two points (tail, head), got {len(xy)}")
         if artists is not None:
             if kind == "line":
                 out[name].set_data(xy[:, 0], xy[:, 1])
             elif kind == "fill":
                 out[name].set_xy(xy)
+            elif kind == "arrow":
+                out[name].xy, out[name].xyann = tuple(xy[1]), tuple(xy[0])
         elif kind == "line":
             (out[name],) = ax.plot(xy[:, 0], xy[:, 1], **style)
         elif kind == "fill":
             (out[name],) = ax.fill(xy[:, 0], xy[:, 1], **style)
+        elif kind == "arrow":
+            out[name] = ax.annotate("", xy=xy[1], xytext=xy[0], arrowprops=style)
         else:
             out[name] = (ax.axhline(xy[0, 1], **style) if kind == "hline"
                          else ax.axvline(xy[0, 0], **style))
@@ -222,37 +229,9 @@ def _frame_count(count, name):
     return count
 
 
-def _old_animate(fig, update, frames, *, interval=80, dpi=72):
-    """The deprecated form ``animate(fig, update, frames)``: ``update(i)`` redraws frame i."""
-    from matplotlib.figure import Figure
-
-    from mechnum import _validate
-
-    if not isinstance(fig, Figure):
-        raise ValueError(f"fig must be a matplotlib Figure, got {fig!r:.80}")
-    if not callable(update):
-        raise ValueError(f"update must be callable, got {update!r:.80}")
-    if isinstance(frames, (int, np.integer, float, np.floating)):
-        frames = range(_validate.maxiter(frames, "frames", minimum=0))
-    frames = list(frames)
-    _frame_count(len(frames), "frames")
-    return _render(fig, update, frames, *_controls(interval, dpi))
-
-
-def _is_new(args, kwargs):
-    """Whether a call of :func:`animate` is of the new form (no figure, no update)."""
-    from matplotlib.figure import Figure
-
-    return not ({"fig", "update", "frames"} & set(kwargs)) and not (
-        args and isinstance(args[0], Figure))
-
-
-@_deprecated.old_form(lambda *args, **kwargs: (args, kwargs), target=_old_animate,
-                      old="animate(fig, update, frames)", new="animate(draw, mech, states)",
-                      is_new=_is_new)
 def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None,
             titles: Sequence[str] | None = None, interval: float = 80, dpi: float = 72,
-            **options) -> JSAnimation:
+            **options: object) -> JSAnimation:
     """Animate any mechanism: ``draw(ax, mech, state)`` over ``states``, as HTML that plays offline.
 
     The first state is drawn anew (``draw(ax, mech, states[0], **options)``), every other one
@@ -264,9 +243,6 @@ def animate(draw: Callable, mech: object, states: Sequence, *, ax: object = None
     the first frame, so that no label or title is cropped, and keeps that layout in every frame.
     The figure is closed, so it is not displayed again as a still. The HTML is the same
     whenever the frames are: its element ids are a hash of the content.
-
-    The form ``animate(fig, update, frames)`` of version 0.1 (``update(i)`` redraws frame
-    ``i``) is deprecated; it still works, with a :class:`DeprecationWarning`.
 
     Parameters
     ----------

@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike
 
 from mechnum import _validate
 
-__all__ = ["STATUSES", "Result", "StoppingRule", "status_counts"]
+__all__ = ["STATUSES", "Assemblies", "Result", "StoppingRule", "status_counts"]
 
 STATUSES = (
     "converged",
@@ -111,7 +111,11 @@ class Result:
     njev: int
 
     def __post_init__(self):
-        unknown = set(np.ravel(self.status).tolist()) - set(STATUSES)
+        status = np.ravel(self.status)
+        # a batch whose systems all ended alike (the usual one) is one word to check
+        words = ({str(status[0])} if status.size and (status == status[0]).all()
+                 else set(status.tolist()))
+        unknown = words - set(STATUSES)
         if unknown:
             raise ValueError(f"status must be one of {STATUSES}, not {sorted(unknown)}")
 
@@ -120,6 +124,46 @@ class Result:
         """bool, or ndarray of bool for a batch: whether the status is ``"converged"``."""
         converged = np.asarray(self.status) == "converged"
         return bool(converged) if converged.ndim == 0 else converged
+
+
+@dataclass(frozen=True, kw_only=True)
+class Assemblies(Result):
+    """Every assembly mode of a rigid mechanism at its inputs, from a closed form.
+
+    What ``forward(mech, inputs)`` returns where a mechanism's forward problem has a closed
+    form (the hacksaw, the finger, the actuator): each input gives the same number of
+    assembly modes, or none (then the function raises
+    :class:`~mechnum.errors.UnreachablePoseError`, naming the input).
+
+    Attributes
+    ----------
+    x : ndarray, shape (..., modes, n), or (..., modes) for one unknown
+        The ``n`` unknowns of every assembly mode (the study's mode first) at every input.
+    status : str
+        ``"converged"``: a closed form.
+    message : str
+        How many inputs and modes.
+    iterations, nfev, njev : int
+        Zero: nothing is iterated.
+    inputs : ndarray, shape (...) or (..., k)
+        The inputs, as the mechanism names them.
+
+    Examples
+    --------
+    >>> out = Assemblies(x=np.zeros((4, 2, 3)), status="converged", message="4 inputs, 2 modes",
+    ...                  iterations=0, nfev=0, njev=0, inputs=np.arange(4.0))
+    >>> out.x[:, 0].shape, out.converged
+    ((4, 3), True)
+    """
+
+    inputs: np.ndarray
+
+    @classmethod
+    def of(cls, x: np.ndarray, inputs: np.ndarray, count: int, modes: int) -> "Assemblies":
+        """The result of a closed form's unknowns ``x`` at ``count`` inputs ``inputs``,
+        ``modes`` assembly modes at each."""
+        return cls(x=x, status="converged", iterations=0, nfev=0, njev=0, inputs=inputs,
+                   message=f"{modes} assembly modes at each of {count} inputs, in closed form")
 
 
 CRITERIA = ("step", "residual")

@@ -70,7 +70,8 @@ def run_function(number, name, source, folder, keep=()):
     shutil.copy(HERE.parent / "hidden.py", folder / "hidden.py")
     (folder / "job.json").write_text(json.dumps({
         "number": number, "name": name, "source": source,
-        "forbidden": list(SOLUTIONS[number].forbidden)}), encoding="utf-8")
+        "forbidden": list(dict.fromkeys([*exercise.forbidden,
+                                         *SOLUTIONS[number].forbidden]))}), encoding="utf-8")
     confinement = _sandbox.config(folder, cpu=RUNNER_CPU, memory=RUNNER_MEMORY,
                                   file_size=10 * 2 ** 20)
     (folder / "sandbox.json").write_text(json.dumps(confinement), encoding="utf-8")

@@ -106,6 +106,18 @@ def _transposed_r(A, b):
     return np.linalg.solve(R.T, Q.T @ b)
 
 
+def _cancelling(A, b):  # v_0 = x_0 - sign(x_0) ||x||: cancels where x is nearly e_1
+    R, y = np.array(A, dtype=float), np.array(b, dtype=float)
+    m, n = R.shape
+    for k in range(n):
+        v = R[k:, k].copy()
+        v[0] -= np.copysign(np.linalg.norm(v), v[0])
+        v /= np.linalg.norm(v)
+        R[k:, k:] -= 2 * np.outer(v, v @ R[k:, k:])
+        y[k:] -= 2 * v * (v @ y[k:])
+    return np.linalg.solve(np.triu(R[:n]), y[:n])
+
+
 SOLUTIONS = {
     "2.1": Solution(one_sor_sweep, {"a Jacobi sweep": _jacobi,
                                     "the relaxation without (1 - omega) x_i": _unrelaxed_old_value,
@@ -114,7 +126,9 @@ SOLUTIONS = {
                     forbidden=("mechnum.linear.sweep_by_components",)),
     "2.2": Solution(lstsq_householder, {"the normal equations": _normal_equations,
                                         "b left without its reflections": _no_qt,
-                                        "a transposed R": _transposed_r},
+                                        "a transposed R": _transposed_r,
+                                        "the cancelling sign": _cancelling},
                     forbidden=("numpy.linalg.qr", "numpy.linalg.lstsq", "numpy.linalg.pinv",
-                               "scipy.linalg.qr", "scipy.linalg.lstsq", "scipy.linalg.pinv")),
+                               "scipy.linalg.qr", "scipy.linalg.lstsq", "scipy.linalg.pinv",
+                               "numpy.linalg.svd", "scipy.linalg.svd")),
 }

@@ -13,13 +13,10 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ----------
     EI, L : float
         Bending stiffness (N m^2) and length (m).
-    psi : float
-        Direction of the tip force from the clamped tangent,
-        ``0 < psi < 2 pi``.
-    k_rel : float
-        Relative modulus, ``0 < |k_rel| < 1``.
-    mode : int
-        Buckling mode, ``>= 1``.
+    psi, k_rel, mode : float, float, int
+        The tip force's direction from the clamped tangent,
+        ``0 < psi < 2 pi``; the relative modulus, ``0 < |k_rel| < 1``; the
+        buckling mode, ``>= 1``.
 
     Returns
     -------
@@ -150,19 +147,47 @@ def _no_origins(tips, forces, origins, theta, load):
 
 
 
+def exact_krawczyk(f, df, lo, hi):
+    """The verdict and the tightest floating-point enclosure of the exact ``K(X)`` of the
+    statement (``m`` and ``y`` the statement's floats), by rational arithmetic: the expected
+    answer, which any correct outward rounding encloses."""
+    from fractions import Fraction
+
+    def times(a, b):
+        products = [u * v for u in a for v in b]
+        return min(products), max(products)
+    m = lo + (hi - lo) / 2
+    d_lo, d_hi = df(lo, hi)
+    y = 2 / (d_lo + d_hi)
+    F, Y, M = [Fraction(v) for v in f(m)], Fraction(y), Fraction(m)
+    yf = times((Y, Y), F)
+    yd = times((Y, Y), (Fraction(d_lo), Fraction(d_hi)))
+    spread = times((1 - yd[1], 1 - yd[0]), (Fraction(lo) - M, Fraction(hi) - M))
+    K = (M - yf[1] + spread[0], M - yf[0] + spread[1])
+    out = [float(K[0]), float(K[1])]  # rounded to nearest, then outwards if need be
+    out[0] = float(np.nextafter(out[0], -np.inf)) if Fraction(out[0]) > K[0] else out[0]
+    out[1] = float(np.nextafter(out[1], np.inf)) if Fraction(out[1]) < K[1] else out[1]
+    if lo < K[0] and K[1] < hi:
+        return "unique", tuple(out)
+    return ("none" if K[1] < lo or K[0] > hi else "undecided"), tuple(out)
+
+
 # Typical mistakes of 5.3
-def _krawczyk_variant(sign=-1, centred=True, enclosed=True, overlap="undecided"):
+def _krawczyk_variant(sign=-1, centred=True, enclosed=True, overlap="undecided",
+                      outward=True, closed=False):
+    out = _out if outward else (lambda values: (min(values), max(values)))
+
     def test(f, df, lo, hi):
         m = lo + (hi - lo) / 2
         d_lo, d_hi = df(lo, hi)
         y = 2 / (d_lo + d_hi)
-        yf = _out([y * v for v in f(m)])
-        newton = _out([m + sign * v for v in yf])
-        slope = _out([1 - y * d for d in (d_lo, d_hi)])
-        X = _out([lo - m, hi - m]) if centred else (lo, hi)
-        spread = _out([a * b for a in slope for b in X]) if enclosed else (0.0, 0.0)
-        K = _out([newton[0] + spread[0]])[0], _out([newton[1] + spread[1]])[1]
-        if lo < K[0] and K[1] < hi:
+        yf = out([y * v for v in f(m)])
+        newton = out([m + sign * v for v in yf])
+        slope = out([1 - y * d for d in (d_lo, d_hi)])
+        X = out([lo - m, hi - m]) if centred else (lo, hi)
+        spread = out([a * b for a in slope for b in X]) if enclosed else (0.0, 0.0)
+        K = out([newton[0] + spread[0]])[0], out([newton[1] + spread[1]])[1]
+        if (lo <= K[0] and K[1] <= hi) if closed else (lo < K[0] and K[1] < hi):
             return "unique", K
         return ("none" if K[1] < lo or K[0] > hi else overlap), K
     return test
@@ -179,8 +204,10 @@ SOLUTIONS = {
                     forbidden=()),
     "5.3": Solution(krawczyk_1d, {
         "the Newton point without its enclosure": _krawczyk_variant(enclosed=False),
+        "no outward rounding": _krawczyk_variant(outward=False),
+        "'unique' on the closed X": _krawczyk_variant(outward=False, closed=True),
         "a sign": _krawczyk_variant(sign=1),
         "X instead of X - m": _krawczyk_variant(centred=False),
         "'none' for an undecided box": _krawczyk_variant(overlap="none")},
-        forbidden=()),
+        forbidden=(), expected=exact_krawczyk),
 }

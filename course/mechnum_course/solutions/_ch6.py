@@ -91,7 +91,7 @@ SOLUTIONS = {
     "6.1": Solution(constrained_index, {"the constraints ignored": _unconstrained,
                                         "the row space for the null space": _row_space,
                                         "zero counted as negative": _non_positive},
-                    forbidden=("mechnum.rods.stability.constrained_eigenvalues",)),
+                    forbidden=("mechnum.rods.constrained_eigenvalues",)),
     "6.2": Solution(rigid_residual, {"the side lengths": _side_lengths,
                                      "the pins in clockwise order":
                                          _variant(beta=(-30.0, -150.0, 90.0)),

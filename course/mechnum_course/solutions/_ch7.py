@@ -37,8 +37,8 @@ def force_by_virtual_power(kin, mech, g):
         them: ``a, a_dot, a_ddot, theta2, theta4, k2, k4, omega2, omega4,
         eps2, eps4`` (SI units, angles in rad).
     mech : object
-        The mechanism, as ``actuator.ANNEX``: ``m2, m3, m4, g2, g3, g4``
-        and ``inertias`` (``I_G2, I_G3, I_G4``), in SI units.
+        The mechanism, as ``actuator.study.ANNEX``: ``m2, m3, m4, g2,
+        g3, g4`` and ``inertias`` (``I_G2, I_G3, I_G4``), in SI units.
     g : float
         Gravity (m/s^2).
     """

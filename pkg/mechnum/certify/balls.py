@@ -20,21 +20,30 @@ Examples
 (True, 0.168014)
 """
 
+from __future__ import annotations
+
 import functools
 import math
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from flint import acb, arb
+from numpy.typing import ArrayLike
 
 from mechnum._validate import shown
-from mechnum.certify import guard
+from mechnum.certify import _guard as guard
+from mechnum.certify._guard import interval
+
+# What the rods' and the mechanisms' enclosures use (the rest serves certify's own modules).
+__all__ = ["PI", "ball", "bounds", "cos", "ends", "guarded", "interval", "meet", "monotone",
+           "mul", "sin", "span", "sqrt"]
 
 PI = arb.pi()
 
 
 def _accepts_balls(function):
     """Let ``function`` take the guarded balls a residual is handed
-    (:class:`mechnum.certify.guard.Ball`): it computes on plain balls (it is audited: its
+    (:class:`mechnum.certify.Ball`): it computes on plain balls (it is audited: its
     comparisons and bounds are of enclosures), and a result from guarded balls is guarded."""
     @functools.wraps(function)
     def call(*args):
@@ -44,7 +53,7 @@ def _accepts_balls(function):
     return call
 
 
-def ball(lo, hi=None):
+def ball(lo: object, hi: object = None) -> arb:
     """The ball that contains the interval ``[lo, hi]`` of floats (a point if ``hi`` is None).
 
     Examples
@@ -70,20 +79,20 @@ def ball(lo, hi=None):
     return arb(mid, rad)
 
 
-def guarded(box) -> list:
-    """The :class:`~mechnum.certify.guard.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
+def guarded(box: ArrayLike) -> list:
+    """The :class:`~mechnum.certify.Ball`\\ s of a float box ``[[lo, hi], ...]``, each
     knowing its ends: what a residual is handed.
 
     Examples
     --------
-    >>> from mechnum.certify.guard import interval
+    >>> from mechnum.certify._guard import interval
     >>> [interval(x) for x in guarded([[0.0, 1.0], [2.0, 2.0]])]
-    [(0.0, 1.0), (2.0, 2.0)]
+    [(0, 1.00000000000000), (2.00000000000000, 2.00000000000000)]
     """
     return [guard.Ball(ball(lo, hi), box=(float(lo), float(hi))) for lo, hi in box]
 
 
-def bounds(x):
+def bounds(x: object) -> tuple[float, float]:
     """Floats ``(lo, hi)`` with ``lo <= x <= hi`` for every point of the ball ``x``
     (``-inf, inf`` where ``x`` is not finite)."""
     if isinstance(x, guard.Ball):
@@ -95,12 +104,12 @@ def bounds(x):
             math.nextafter(float(x.upper()), math.inf))
 
 
-def ends(x):
+def ends(x: object) -> tuple[arb, arb]:
     """The endpoints of the ball ``x`` as exact balls (points)."""
     return x.lower(), x.upper()
 
 
-def monotone(f, *args):
+def monotone(f: Callable, *args: object) -> arb:
     """Enclosure of ``f`` over balls on which it is monotone in each argument.
 
     ``args`` are ``(ball, direction)`` pairs (or ``((lo, hi), direction)`` with the endpoints
@@ -127,7 +136,7 @@ def monotone(f, *args):
     return a.union(b)
 
 
-def span(x, lo=None, hi=None):
+def span(x: object, lo: object = None, hi: object = None) -> arb:
     """The endpoints of the ball ``x`` as exact balls, cut to ``[lo, hi]`` (floats or balls):
     the interval of a quantity known to lie there, whose ball's rounding pokes beyond (a
     ball from 0 to 0.3 has the centre 0.15 and a radius rounded up, below 0)."""
@@ -148,7 +157,7 @@ def _extrema_between(lo, hi, period, phase):
 
 
 @_accepts_balls
-def cos(x):
+def cos(x: object) -> arb:
     """``cos`` over the ball ``x``: the endpoints' values and, where they fall inside, the
     extrema ``+1`` (at ``2 k pi``) and ``-1`` (at ``pi + 2 k pi``)."""
     if x.rad() == 0 or x.rad() < 1e-8:
@@ -165,7 +174,7 @@ def cos(x):
 
 
 @_accepts_balls
-def sin(x):
+def sin(x: object) -> arb:
     """``sin`` over the ball ``x`` (as :func:`cos` of ``x - pi / 2``)."""
     if x.rad() == 0 or x.rad() < 1e-8:
         return x.sin()
@@ -173,23 +182,23 @@ def sin(x):
 
 
 @_accepts_balls
-def exp(x):
+def exp(x: object) -> arb:
     return monotone(lambda y: y.exp(), (x, 1))
 
 
 @_accepts_balls
-def expm1(x):
+def expm1(x: object) -> arb:
     return monotone(lambda y: y.expm1(), (x, 1))
 
 
 @_accepts_balls
-def sqrt(x):
+def sqrt(x: object) -> arb:
     """``sqrt`` over the ball ``x``, whose negative part (rounding of a square) is cut at 0."""
     return monotone(lambda y: y.sqrt(), (span(x, 0), 1))
 
 
 @_accepts_balls
-def nonnegative(x):
+def nonnegative(x: object) -> arb:
     """``x`` with its negative part removed (for quantities known to be ``>= 0``)."""
     lo, hi = ends(x)
     return arb(0).union(hi) if bool(lo < 0) else x
@@ -203,26 +212,26 @@ def _carlson(f, direction, args):
 
 
 @_accepts_balls
-def rf(x, y, z):
+def rf(x: object, y: object, z: object) -> arb:
     """Carlson's ``R_F(x, y, z)`` over balls of non-negative arguments: it decreases in each
     (DLMF 19.16.1), so two evaluations enclose it."""
     return _carlson(acb.elliptic_rf, -1, (x, y, z))
 
 
 @_accepts_balls
-def rd(x, y, z):
+def rd(x: object, y: object, z: object) -> arb:
     """Carlson's ``R_D(x, y, z) = R_J(x, y, z, z)``, decreasing in each argument."""
     return _carlson(lambda a, b, c: acb.elliptic_rj(a, b, c, c), -1, (x, y, z))
 
 
 @_accepts_balls
-def rg(x, y, z):
+def rg(x: object, y: object, z: object) -> arb:
     """Carlson's ``R_G(x, y, z)``, increasing in each argument (DLMF 19.16.3)."""
     return _carlson(acb.elliptic_rg, 1, (x, y, z))
 
 
 @_accepts_balls
-def mul(x, y):
+def mul(x: object, y: object) -> arb:
     """``x * y`` from the four products of the endpoints: Arb's midpoint-radius product adds
     ``|mid(x)| rad(y) + |mid(y)| rad(x)`` to the radius, which for wide balls (a force from 10
     to 1e5 N times a direction cosine from 0.96 to 1) loses the sign of the product."""
@@ -233,7 +242,7 @@ def mul(x, y):
 
 
 @_accepts_balls
-def meet(x, y):
+def meet(x: object, y: object) -> arb:
     """The intersection of two balls known to hold the same number (each an enclosure of it);
     a NaN ball where they are disjoint (which a correct pair never is)."""
     if not x.is_finite():
@@ -245,7 +254,7 @@ def meet(x, y):
     return arb("nan") if bool(lo > hi) else lo.union(hi)
 
 
-def hull(values):
+def hull(values: Sequence) -> arb:
     """The union of balls."""
     out = values[0]
     for v in values[1:]:
@@ -253,7 +262,7 @@ def hull(values):
     return out
 
 
-def as_array(box):
+def as_array(box: Sequence) -> np.ndarray:
     """A box ``(n, 2)`` of floats, checked: finite, ``lo <= hi``."""
     box = np.asarray(box, dtype=float)
     if box.ndim != 2 or box.shape[1] != 2 or not np.all(np.isfinite(box)):
@@ -263,6 +272,6 @@ def as_array(box):
     return box
 
 
-def balls(box):
+def balls(box: ArrayLike) -> list:
     """A box ``(n, 2)`` of floats as a list of ``n`` balls."""
     return [ball(lo, hi) for lo, hi in box]

@@ -33,7 +33,11 @@ Examples
 ([1.0, 2.0, 3.0], ['converged', 'converged', 'converged'])
 """
 
-from mechnum.continuation._arclength import Branch, pseudo_arclength
-from mechnum.continuation._natural import PathResult, solve_path
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.continuation._arclength import Branch as Branch
+from mechnum.continuation._arclength import pseudo_arclength
+from mechnum.continuation._natural import PathResult as PathResult
+from mechnum.continuation._natural import solve_path
 
-__all__ = ["Branch", "PathResult", "pseudo_arclength", "solve_path"]
+__all__ = ["pseudo_arclength", "solve_path"]

@@ -7,7 +7,7 @@ stored right ones:
 
 >>> from mechnum import exercises
 >>> sorted(exercises.CHECKS)[:3]
-['1.1', '1.2', '2.1']
+['1.1', '1.2', '1.3']
 >>> def rk4_step(f, s, y, h):
 ...     return y + h * f(s, y)          # Euler's method, not RK4
 >>> result = exercises.check("3.1", rk4_step)
@@ -40,9 +40,9 @@ __all__ = ["CHECKS", "EXERCISES", "ROLES", "TIME_LIMIT", "Result", "cells", "che
            "check_cases", "check_code", "starter", "statement"]
 
 EXERCISES = {e.number: e for e in (
-    _ch1.LOOP, _ch1.NEWTON, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING, _ch4.COMPANION,
-    _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK, _ch6.INDEX, _ch6.RIGID,
-    _ch7.COEFFICIENTS, _ch7.FORCE)}
+    _ch1.LOOP, _ch1.NEWTON, _ch1.UPDATE, _ch2.SOR, _ch2.LSTSQ, _ch3.RK4, _ch3.SHOOTING,
+    _ch4.COMPANION, _ch4.PRR3_NEWTON, _ch5.ELLIPTIC, _ch5.PIN, _ch5.KRAWCZYK, _ch6.INDEX,
+    _ch6.RIGID, _ch7.COEFFICIENTS, _ch7.FORCE)}
 """Every self-checked exercise by its number: its statement, starter, public cases, the form
 of its answer, its typical mistakes and its points."""
 
@@ -62,7 +62,7 @@ def _exercise(number):
     return EXERCISES[number]
 
 
-def check(number, answer):
+def check(number: str, answer: object) -> Result:
     """Run the check of exercise ``number`` on the student's ``answer`` (a function).
 
     Parameters
@@ -103,7 +103,7 @@ def check(number, answer):
                           probe_mistakes)
 
 
-def check_cases(number, answer, cases, expected):
+def check_cases(number: str, answer: object, cases: list, expected: list) -> Result:
     """Run the student's ``answer`` on the given ``cases`` of exercise ``number`` and compare it
     with their ``expected`` answers (as :func:`check` does with the public ones): an nbgrader
     test cell holds an exercise's hidden cases and their answers, and calls this.
@@ -131,7 +131,7 @@ def check_cases(number, answer, cases, expected):
     return _harness.judge(exercise, outcomes, list(expected), lambda k: {})
 
 
-def starter(number):
+def starter(number: str) -> str:
     """The starter cell of exercise ``number``: signature, docstring, and ``...`` for the body.
 
     Examples
@@ -145,7 +145,7 @@ def starter(number):
     return _exercise(number).starter
 
 
-def statement(number):
+def statement(number: str) -> str:
     """The statement of exercise ``number`` (Markdown, for the ``{exercise}`` directive).
 
     Examples
@@ -157,32 +157,32 @@ def statement(number):
     return _exercise(number).statement
 
 
-def check_code(number):
+def check_code(number: str) -> str:
     """The check cell of exercise ``number``.
 
     Examples
     --------
     >>> from mechnum import exercises
     >>> exercises.check_code("1.2")
-    'exercises.check("1.2", newton_study)'
+    'exercises.check("1.2", newton_damped)'
     """
     return f'exercises.check("{number}", {_exercise(number).name})'
 
 
-def markdown_cell(number, source, part):
+def markdown_cell(number: str, source: str, part: str) -> dict:
     """A Markdown cell of exercise ``number`` (a dictionary in the notebook format)."""
     return {"cell_type": "markdown", "id": f"ex{number.replace('.', '-')}-{part}",
             "metadata": {}, "source": source}
 
 
-def code_cell(number, source, role):
+def code_cell(number: str, source: str, role: str) -> dict:
     """A code cell of exercise ``number`` with its role in the metadata."""
     return {"cell_type": "code", "id": f"ex{number.replace('.', '-')}-{role}",
             "execution_count": None, "metadata": {"mechnum": {"exercise": number, "role": role}},
             "source": source.rstrip("\n"), "outputs": []}
 
 
-def cells(number):
+def cells(number: str) -> list[dict]:
     """The cells of exercise ``number`` that a student sees, in order, as dictionaries in the
     notebook format (``nbformat.from_dict`` accepts them): the exercise, the starter, the
     check. (The book's chapters also hold the gated solution between the starter and the

@@ -18,6 +18,20 @@ import pickle
 import numpy as np
 
 
+class Raises:
+    """The expected outcome of a case on which the statement asks for an exception: its class's
+    name (``Raises("RuntimeError")``)."""
+
+    def __init__(self, name):
+        self.name = name
+
+    def __eq__(self, other):
+        return isinstance(other, Raises) and other.name == self.name
+
+    def __repr__(self):
+        return f"Raises({self.name!r})"
+
+
 class WrongForm(Exception):
     """An answer that is not of the documented kind; its message says what it is instead."""
 
@@ -65,6 +79,8 @@ class Array:
     float64; ``shape`` (optional) is checked by the comparison, which knows the expected one."""
 
     def convert(self, value, what):
+        if isinstance(value, (str, bytes, bool, dict, set)) or value is None:
+            raise WrongForm(f"{what} is {_describe(value)}, not an array of real numbers")
         if type(value) in (list, tuple):
             flat = list(value)
             while flat:
@@ -75,7 +91,11 @@ class Array:
                     flat.extend(self.convert(item, what).ravel().tolist())
                 else:
                     _number(item, f"an entry of {what}")
-            value = np.array(value, dtype=float) if value else np.zeros(0)
+            try:
+                value = np.array(value, dtype=float) if value else np.zeros(0)
+            except ValueError:  # entries of different shapes
+                raise WrongForm(f"{what} is a {type(value).__name__} of {len(value)} items of "
+                                "different shapes, not an array") from None
         if type(value) is not np.ndarray:
             return np.array(_number(value, what))
         if value.dtype.kind == "c":
@@ -157,14 +177,32 @@ def loads(data):
     return _Unpickler(io.BytesIO(data)).load()
 
 
+def differ(got, expected):
+    """``got`` and ``expected`` with the digits that tell them apart, and their difference.
+
+    Examples
+    --------
+    >>> differ(1.24586371, 1.24586123)
+    '1.245864, expected 1.245861 (off by 2.5e-06)'
+    >>> differ(2.0, 3.0)
+    '2, expected 3 (off by 1)'
+    """
+    digits = 6
+    while digits < 17 and f"{got:.{digits}g}" == f"{expected:.{digits}g}":
+        digits += 1
+    return (f"{got:.{digits}g}, expected {expected:.{digits}g} "
+            f"(off by {abs(got - expected):.2g})")
+
+
 def close(expected, got, *, rtol, atol, what):
     """``None`` when the float arrays agree within ``atol + rtol |expected|``, else the largest
-    difference in words; ``got`` is converted first (:class:`Array`), so NaN, complex values or
-    objects that are not numbers never agree."""
+    difference in words, with the digits that tell the two values apart; ``got`` is converted
+    first (:class:`Array`), so NaN, complex values or objects that are not numbers never
+    agree."""
     expected = np.asarray(expected, dtype=float)
     got = Array().convert(got, what)
-    if got.shape != expected.shape:
-        return f"{what} has shape {got.shape}, expected {expected.shape}"
+    if got.shape != expected.shape:  # the answer's form: a message about it, and no hint
+        raise WrongForm(f"{what} has shape {got.shape}; it must have shape {expected.shape}")
     if not np.all(np.isfinite(got)):
         return f"{what} is not finite: {np.array2string(got, precision=4)}"
     error = np.abs(got - expected)
@@ -172,4 +210,4 @@ def close(expected, got, *, rtol, atol, what):
         return None
     worst = np.unravel_index(np.argmax(error - rtol * np.abs(expected)), error.shape)
     at = f" at index {tuple(int(i) for i in worst)}" if expected.ndim else ""
-    return f"{what}{at} is {float(got[worst]):.6g}, expected {float(expected[worst]):.6g}"
+    return f"{what}{at} is " + differ(float(got[worst]), float(expected[worst]))

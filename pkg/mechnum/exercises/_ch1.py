@@ -1,5 +1,6 @@
-"""Chapter 1, Newton on the power hacksaw: the loop equations with their Jacobian (1.1), and
-Newton's method with the study's stopping test (1.2)."""
+"""Chapter 1, Newton on the power hacksaw: the loop equations with their Jacobian (1.1),
+Newton's method with Armijo's backtracking and the study's stopping test (1.2), and Broyden's
+update of the inverse matrix (1.3)."""
 
 import numpy as np
 
@@ -17,49 +18,32 @@ def loop_equations(q, theta2, r1y, r2, r3):
     ----------
     q : ndarray, shape (3,)
         The unknowns ``(r1, theta1, theta3)`` (m, rad, rad).
-    theta2 : float
-        The crank angle (rad).
-    r1y, r2, r3 : float
-        The guide's height, the crank and the coupler (m).
+    theta2, r1y, r2, r3 : float
+        The crank angle (rad); the guide's height, crank, coupler (m).
 
     Returns
     -------
-    F : ndarray, shape (3,)
-        ``(F_c, F_x, F_y)``, in the chapter's order.
-    J : ndarray, shape (3, 3)
-        ``J[i, j] = dF_i / dq_j``.
+    F, J : ndarray, shapes (3,) and (3, 3)
+        ``(F_c, F_x, F_y)`` in the chapter's order; ``J[i, j] = dF_i/dq_j``.
     """
     ...
 '''
 
 NEWTON_STARTER = '''\
-def newton_study(F, J, x0, tol=1e-6, maxiter=50):
-    """Newton's method, stopped by the study's rule.
+def newton_damped(F, J, x0, tol=1e-6, maxiter=50):
+    """Newton's method with Armijo's backtracking and the study's stop.
 
-    Parameters
-    ----------
-    F, J : callable
-        The residual ``F(x)``, shape (n,), and its Jacobian ``J(x)``,
-        shape (n, n).
-    x0 : ndarray, shape (n,)
-        The seed.
-    tol : float
-        Stop after the first step whose 2-norm is below ``tol``.
-    maxiter : int
-        At most this many steps.
-
-    Returns
-    -------
-    x : ndarray, shape (n,)
-        The iterate after the step that passed the test.
-    iterations : int
-        The number of steps taken, that step included.
-
-    Raises
-    ------
-    RuntimeError
-        If no step passes the test within ``maxiter`` steps.
+    Returns ``(x, iterations)``: the iterate after the first Newton step
+    shorter than ``tol``, and the steps taken. Raises ``RuntimeError``
+    after ``maxiter`` steps, or when no step length passes Armijo's test.
     """
+    ...
+'''
+
+UPDATE_STARTER = '''\
+def broyden_inverse_update(H, s, y):
+    """The inverse of ``B + (y - B s) s^T / (s^T s)``, given ``H = B^-1``,
+    the step ``s`` and the change ``y`` of ``F`` along it."""
     ...
 '''
 
@@ -108,19 +92,27 @@ def _newton_cases():
                 lambda q: hacksaw.position_jacobian(mech, q))
     two = (lambda x: np.array([x[0] ** 2 + x[0] * x[1] - 3.0, np.exp(x[0] - 1) + x[1] ** 3 - 9.0]),
            lambda x: np.array([[2 * x[0] + x[1], x[0]], [np.exp(x[0] - 1), 3 * x[1] ** 2]]))
-    seed = np.array([-0.1, -0.5, 3.0])
+    no_root = (lambda x: np.array([x[0] ** 2 + 1.0, x[1]]),
+               lambda x: np.array([[2 * x[0], 0.0], [0.0, 1.0]]))
+    seed, leap = np.array([-0.1, -0.5, 3.0]), np.array([-0.1, -0.45, 1.82])
     return [Case("the hacksaw at rest from the study's seed, tol = 1e-6",
                  (*saw(0.0), seed, 1e-6, 50)),
+            Case("the hacksaw at rest from (-0.1, -0.45, 1.82), where undamped Newton leaps to "
+                 "the other assembly mode, tol = 1e-6", (*saw(0.0), leap, 1e-6, 50)),
+            Case("the same start with a loose tol = 1, where the first step is damped to a "
+                 "quarter of Newton's", (*saw(0.0), leap, 1.0, 50)),
             Case("the hacksaw at theta2 = 2 rad from the study's seed, tol = 1e-10",
                  (*saw(2.0), seed, 1e-10, 50)),
-            Case("a saw with r3 = 0.13 m at theta2 = -1 rad, tol = 1e-8",
-                 (*saw(-1.0, (0.045, 0.075, 0.13)), seed, 1e-8, 50)),
             Case("a 2 x 2 system with a non-symmetric Jacobian from (1.5, 1.5), tol = 1e-9",
-                 (*two, np.array([1.5, 1.5]), 1e-9, 50))]
+                 (*two, np.array([1.5, 1.5]), 1e-9, 50)),
+            Case("the hacksaw at rest from the study's seed with maxiter = 2 (it needs 4 steps)",
+                 (*saw(0.0), seed, 1e-6, 2)),
+            Case("F(x) = (x_0^2 + 1, x_1), which has no root, from (0.75, 1)",
+                 (*no_root, np.array([0.75, 1.0]), 1e-6, 50))]
 
 
 def _newton_probes():  # one step only, on the 2 x 2 system: where each mistake shows
-    return [Case("one step", (*_newton_cases()[-1].args[:3], np.inf, 1))]
+    return [Case("one step", (*_newton_cases()[4].args[:3], np.inf, 1))]
 
 
 def _newton_compare(expected, got):
@@ -131,22 +123,76 @@ def _newton_compare(expected, got):
 
 
 NEWTON = Exercise(
-    number="1.2", label="ch1-ex-newton-study",
-    title="Newton's method with the study's stopping test",
+    number="1.2", label="ch1-ex-newton-damped",
+    title="damped Newton with the study's stopping test",
     statement=(
-        "**Implement it yourself.** Write `newton_study(F, J, x0, tol, maxiter)`: Newton's "
-        "method that solves $J(x_k)\\,\\Delta x_k = -F(x_k)$ with `np.linalg.solve`, stops after "
-        "the first step with $\\|\\Delta x_k\\|_2 <$ `tol` (the study's rule, that step counted) "
-        "and returns the iterate after that step and the number of steps; it raises "
-        "`RuntimeError` after `maxiter` steps. Run it on your `loop_equations` at rest from the "
-        "study's seed: the chapter's table says how many steps to expect."),
+        "**Implement it yourself.** Write `newton_damped(F, J, x0, tol, maxiter)`, the rescue "
+        "of the chapter's basins: Newton's step $\\Delta x_k$ solves "
+        "$J(x_k)\\,\\Delta x_k = -F(x_k)$, and $x_{k+1} = x_k + \\lambda\\Delta x_k$ takes the "
+        "first $\\lambda = 1, \\frac12, \\frac14, \\dots, 2^{-20}$ that passes Armijo's test "
+        "$\\|F(x_k + \\lambda\\Delta x_k)\\|_2 \\le (1 - 10^{-4}\\lambda)\\,\\|F(x_k)\\|_2$. Stop "
+        "by the study's rule, after the first Newton step with $\\|\\Delta x_k\\|_2 <$ `tol` "
+        "(that step counted), and return the iterate after it and the number of steps. Raise "
+        "`RuntimeError` when no $\\lambda$ passes, and after `maxiter` steps. From the start of "
+        "the chapter's figure where plain Newton leaves the study's mode, yours must reach the "
+        "study's pose, as `newton.solve(..., damping=True)` does."),
     starter=NEWTON_STARTER, cases=_newton_cases, compare=_newton_compare,
     returns=Tuple(Array(), Integer(), names=("x", "the number of steps")),
     probes=_newton_probes,
-    mistakes=(Mistake("a stopping test on the residual", "the study stops on the step "
-                      "||dx|| < tol, tested after the step is taken, not on ||F(x)||."),
+    mistakes=(Mistake("no damping", "this is the chapter's undamped loop: halve the step until "
+                      "Armijo's test holds before you take it."),
+              Mistake("the test on the damped step", "test Newton's full step dx, not the "
+                      "shortened lambda dx: a short damped step does not mean convergence."),
+              Mistake("a stopping test on the residual", "the study stops on Newton's full "
+                      "step, ||dx|| < tol, not on ||F(x)||."),
+              Mistake("plain decrease for Armijo's test", "Armijo asks for a decrease of at "
+                      "least 1e-4 lambda ||F||, not any decrease."),
               Mistake("an uncounted last step", "the step that passes the test is taken and "
-                      "counted."),
-              Mistake("a transposed Jacobian", "solve J(x) dx = -F(x) with J itself, not J.T.")),
-    hint="print ||dx|| at each step and compare with the chapter's table at rest; check the "
-         "sign of the step (x + dx with J dx = -F).")
+                      "counted.")),
+    hint="print lambda, ||F|| and ||dx|| at each step and compare with newton.solve(F, x0, J, "
+         "tol=tol, relative=False, damping=True).")
+
+
+def _update_cases():
+    rng = np.random.default_rng(13)
+    mech, x0 = hacksaw.Geometry(*STUDY), np.array([-0.1, -0.5, 3.0])
+    F, B = hacksaw.position_residual(mech, x0, 0.0), hacksaw.position_jacobian(mech, x0)
+    s = -np.linalg.solve(B, F)
+    y = hacksaw.position_residual(mech, x0 + s, 0.0) - F
+    cases = [Case("the hacksaw's first Broyden step at rest, from the study's seed",
+                  (np.linalg.inv(B), s, y))]
+    for n in (2, 4):
+        B = rng.normal(size=(n, n)) + n * np.eye(n)
+        cases.append(Case(f"a random {n} x {n} matrix, step and change",
+                          (np.linalg.inv(B), rng.normal(size=n), rng.normal(size=n))))
+    return cases
+
+
+UPDATE = Exercise(
+    number="1.3", label="ch1-ex-broyden-inverse", title="Broyden's update of the inverse",
+    statement=(
+        "**Implement it yourself.** Broyden's method solves $B_k\\,\\Delta x = -F(x_k)$ at "
+        "every step. With $H_k = B_k^{-1}$ at hand, a step is a product, "
+        "$\\Delta x = -H_k F(x_k)$, and needs no solve. Write "
+        "`broyden_inverse_update(H, s, y)`, which returns the inverse of the chapter's "
+        "$B + (y - Bs)\\,s^{\\mathsf T}/(s^{\\mathsf T}s)$ given $H = B^{-1}$, in $O(n^2)$ "
+        "operations and without inverting or solving anything (the check runs your function "
+        "without `inv`, `solve`, `pinv` and `lstsq`): derive it by the Sherman-Morrison "
+        "formula, $(A + uv^{\\mathsf T})^{-1} = A^{-1} - A^{-1}u\\,v^{\\mathsf T}"
+        "A^{-1}/(1 + v^{\\mathsf T}A^{-1}u)$. Then check the secant condition "
+        "$H_{k+1}\\,y = s$ on your answer."),
+    starter=UPDATE_STARTER, cases=_update_cases,
+    compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12,
+                                        what="the updated inverse"),
+    returns=Array(),
+    forbidden=tuple(f"{module}.{name}" for module in ("numpy.linalg", "scipy.linalg")
+                    for name in ("inv", "solve", "pinv", "lstsq")),
+    mistakes=(Mistake("Broyden's other update", "H + (s - H y) y^T / (y^T y) is the 'bad' "
+                      "Broyden update, a different method: yours must be the inverse of the "
+                      "chapter's B update, whose row vector is s^T H."),
+              Mistake("s^T for s^T H", "Sherman-Morrison puts A^{-1} on both sides: the row "
+                      "vector is s^T H, and the denominator s^T H y."),
+              Mistake("the update of B applied to H", "(y - B s) s^T / (s^T s) updates B; "
+                      "its inverse updates H by (s - H y) s^T H / (s^T H y).")),
+    hint="check that H_new @ y equals s, and that H_new @ B_new is the identity for a small "
+         "example with B_new = inv(H) updated by the chapter's formula.")

@@ -108,6 +108,11 @@ def _lstsq_cases():
                           f"over {width} rad", (A, b)))
     A = rng.normal(size=(9, 4))
     cases.append(Case("a random 9 x 4 matrix and a b off its range", (A, rng.normal(size=9))))
+    t = np.linspace(0.0, 1.0, 6)
+    first = np.r_[1.0, np.full(5, 1e-8)]  # within 1e-8 of e_1: the sign decides
+    cases.append(Case("a 6 x 3 matrix whose first column is within 1e-8 of e_1, its second "
+                      "within 1e-4 of its first", (np.column_stack(
+                          [first, first + 1e-4 * t, np.cos(3 * t)]), np.sin(2 * t) + 0.5)))
     return cases
 
 
@@ -117,11 +122,15 @@ LSTSQ = Exercise(
         "**Implement it yourself.** Write `lstsq_householder(A, b)`, the least-squares solution "
         "of $A x \\approx b$ by Householder QR: for each column $k$, a reflection "
         "$I - 2vv^{\\mathsf T}/v^{\\mathsf T}v$ zeroes the entries below the diagonal (choose the "
-        "sign of $v_0$ that avoids cancellation), applied to $A$ and to $b$ alike; then solve "
-        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Do not form $Q$, and do not "
-        "call `np.linalg.qr` or `lstsq`. Try it on the chapter's narrow-range design, where "
+        "sign of $v_0$ that avoids cancellation: a column that is already nearly $e_1$ shows "
+        "the difference), applied to $A$ and to $b$ alike; then solve "
+        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Do not form $Q$, and call "
+        "none of numpy's or scipy's `qr`, `lstsq`, `pinv` and `svd`: the check runs your "
+        "function with them unavailable. Try it on the chapter's narrow-range design, where "
         "the normal equations lose digits."),
     starter=LSTSQ_STARTER, cases=_lstsq_cases, returns=Array(),
+    forbidden=tuple(f"{module}.{name}" for module in ("numpy.linalg", "scipy.linalg")
+                    for name in ("qr", "lstsq", "pinv", "svd")),
     compare=lambda expected, got: close(expected, got, rtol=1e-7, atol=1e-10, what="x"),
     mistakes=(Mistake("the normal equations", "A^T A squares the condition number: on a narrow "
                       "range of angles (cond(A) ~ 5e5) it loses about ten digits, QR about "
@@ -129,6 +138,9 @@ LSTSQ = Exercise(
               Mistake("b left without its reflections", "apply every reflection to b as well "
                       "(Q^T b), then solve R x = (Q^T b)[:n]."),
               Mistake("a transposed R", "R is upper triangular: back substitution from the "
-                      "last row up, with R, not R.T.")),
+                      "last row up, with R, not R.T."),
+              Mistake("the cancelling sign", "v_0 = x_0 + sign(x_0) ||x||: with the other sign "
+                      "v_0 is the difference of two nearly equal numbers when x is nearly "
+                      "e_1, and the reflection loses its digits.")),
     hint="check that your reflections zero each column below the diagonal, and that A^T (A x "
          "- b) is near zero.")

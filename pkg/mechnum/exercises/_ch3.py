@@ -114,7 +114,7 @@ SHOOTING = Exercise(
         "unknowns $q = (m_0, n_x, n_y)$, integrate the rod's equations (78) by RK4 (your "
         "`rk4_step`) over `nodes` equally spaced nodes from the clamp state $(0, 0, 0, m_0)$, "
         "and return the residual $(x(L) - x_t,\\ y(L) - y_t,\\ m(L))$ of the thesis's pinned "
-        "rod. Then drive it to zero with your `newton_study` of Chapter 1 and a "
+        "rod. Then drive it to zero with your `newton_damped` of Chapter 1 and a "
         "forward-difference Jacobian, from the thesis's guess $(0.1, 0.1, 0.1)$."),
     starter=SHOOTING_STARTER, cases=_shooting_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-10, atol=1e-12,

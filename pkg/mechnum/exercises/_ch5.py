@@ -14,13 +14,10 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     ----------
     EI, L : float
         Bending stiffness (N m^2) and length (m).
-    psi : float
-        Direction of the tip force from the clamped tangent,
-        ``0 < psi < 2 pi``.
-    k_rel : float
-        Relative modulus, ``0 < |k_rel| < 1``.
-    mode : int
-        Buckling mode, ``>= 1``.
+    psi, k_rel, mode : float, float, int
+        The tip force's direction from the clamped tangent,
+        ``0 < psi < 2 pi``; the relative modulus, ``0 < |k_rel| < 1``; the
+        buckling mode, ``>= 1``.
 
     Returns
     -------
@@ -181,40 +178,85 @@ def _krawczyk_cases():
     def case(label, coefficients, lo, hi):
         p = Polynomial(coefficients)
         return Case(label, (p.at, p.slope, lo, hi))
+
+    def line(x):  # f(x) = x - 1.75 at a float of [1, 2]: exact
+        return x - 1.75, x - 1.75
+
+    def loose(lo, hi):  # a valid but loose enclosure of f' = 1
+        return 0.5, 1.5
     return [case("x^2 - 2 on [1.3, 1.5] (one root)", (-2, 0, 1), 1.3, 1.5),
             case("x^2 - 2 on [1.5, 2] (no root)", (-2, 0, 1), 1.5, 2.0),
             case("(x - 1)(x - 2)(x - 3) on [1.8, 2.25] (one root)", (-6, 11, -6, 1), 1.8, 2.25),
             case("(x - 1)^2 on [0.9, 1.15] (a double root)", (1, -2, 1), 0.9, 1.15),
             case("x^2 - 2 on [-1.6, 1.7] (two roots)", (-2, 0, 1), -1.6, 1.7),
-            case("x^3 - x on [-0.3, 0.35] (one root)", (0, -1, 0, 1), -0.3, 0.35)]
+            case("x^3 - x on [-0.3, 0.35] (one root)", (0, -1, 0, 1), -0.3, 0.35),
+            case("x^2 - 2 on [1.4, 1.44], where K(X) rounded to nearest misses the exact set "
+                 "at both ends", (-2, 0, 1), 1.4, 1.44),
+            Case("f(x) = x - 1.75 on [1, 2], f' enclosed in [0.5, 1.5]: K(X) = [1.5, 2] "
+                 "exactly, touching the edge of X", (line, loose, 1.0, 2.0))]
+
+
+SLACK = 64
+"""Units in the last place by which an answer's K(X) may be wider than the tightest enclosure
+of the exact set at each end (outward rounding at every operation widens it by a few)."""
 
 
 def _krawczyk_compare(expected, got):
+    """The expected K(X) is the tightest floating-point enclosure of the exact one: an answer's
+    must contain it, and be wider by at most SLACK units in the last place at each end."""
     verdict, K = got
     if verdict != expected[0]:
         return f"the verdict is {verdict!r}, expected {expected[0]!r}"
-    return close(expected[1], K, rtol=1e-12, atol=1e-15, what="K(X)")
+    (low, high), (lo, hi) = (float(v) for v in expected[1]), (float(v) for v in K)
+    if not lo <= hi:
+        return f"K(X) = [{lo!r}, {hi!r}] is no interval"
+    if lo > low or hi < high:
+        end = (f"its lower end {lo!r} lies above {low!r}" if lo > low
+               else f"its upper end {hi!r} lies below {high!r}")
+        point = ", a single point," if lo == hi else ""
+        return (f"K(X) = [{lo!r}, {hi!r}]{point} does not enclose the exact K(X): {end}. "
+                "Round every lower end down and every upper end up")
+    if lo < low - SLACK * abs(np.spacing(low)) or hi > high + SLACK * abs(np.spacing(high)):
+        return (f"K(X) = [{lo!r}, {hi!r}] is wider than the computation needs (the exact set "
+                f"is within [{low!r}, {high!r}])")
+    return None
+
+
+def _krawczyk_agree(mistaken, got):
+    """Whether an answer is a mistake's: the same verdict, and K(X) within SLACK units in the
+    last place at each end (the two may round differently)."""
+    return got[0] == mistaken[0] and all(
+        abs(float(a) - float(b)) <= SLACK * abs(np.spacing(float(b)))
+        for a, b in zip(got[1], mistaken[1]))
 
 
 KRAWCZYK = Exercise(
     number="5.3", label="ch5-ex-krawczyk", title="a Krawczyk test in one dimension",
     statement=(
-        "**Implement it yourself.** Write `krawczyk_1d(f, df, lo, hi)`: with $m$ the midpoint "
-        "of $X = [lo, hi]$ and $y = 2/(d_{lo} + d_{hi})$ from the enclosure "
-        "$f'(X) \\subseteq [d_{lo}, d_{hi}]$ that `df(lo, hi)` returns, compute Krawczyk's "
-        "$K(X) = m - y f(m) + (1 - y f'(X))(X - m)$ in interval arithmetic, every lower end "
-        "rounded down and every upper end up (`np.nextafter(v, -np.inf)`, "
-        "`np.nextafter(v, np.inf)`), and return `\"unique\"` if $K(X)$ lies in the interior "
-        "of $X$, `\"none\"` if $K(X) \\cap X = \\emptyset$, else `\"undecided\"`, with $K(X)$. "
+        "**Implement it yourself.** Write `krawczyk_1d(f, df, lo, hi)`, the test of "
+        "{ref}`ch3-count` in one dimension. With $X = [lo, hi]$, $m = lo + (hi - lo)/2$ and "
+        "$y = 2/(d_{lo} + d_{hi})$ from the enclosure $f'(X) \\subseteq [d_{lo}, d_{hi}]$ that "
+        "`df(lo, hi)` returns, compute Krawczyk's "
+        "$K(X) = m - y f(m) + (1 - y f'(X))(X - m)$ in interval arithmetic (`f(m)` returns an "
+        "enclosure of $f(m)$), every lower end rounded down and every upper end up "
+        "(`np.nextafter(v, -np.inf)`, `np.nextafter(v, np.inf)`): the check asks that your "
+        "$K(X)$ contain the exact one. Return `\"unique\"` if $K(X)$ lies in the interior of "
+        "$X$, `\"none\"` if $K(X) \\cap X = \\emptyset$, else `\"undecided\"`, with $K(X)$. "
         "Rounding outwards by one unit in the last place encloses the exact result because "
-        "$+, -, \\times, /$ are correctly rounded in IEEE arithmetic; `f(x)` returns an "
-        "enclosure of $f$ at a point, for the same reason. Why can a double root never be "
-        "proved unique?"),
+        "$+, -, \\times, /$ are correctly rounded in IEEE arithmetic. Why can a double root "
+        "never be proved unique?"),
     starter=KRAWCZYK_STARTER, cases=_krawczyk_cases, compare=_krawczyk_compare,
+    agree=_krawczyk_agree,
     returns=Tuple(Choice("unique", "none", "undecided"), Array(), names=("the verdict", "K")),
     mistakes=(Mistake("the Newton point without its enclosure", "K(X) adds (1 - y f'(X))(X - "
                       "m) to the Newton point: without it nothing is proved, and two roots look "
                       "like one."),
+              Mistake("no outward rounding", "round every lower end down and every upper end "
+                      "up (np.nextafter): rounded to nearest, K(X) can miss part of the exact "
+                      "set, and then nothing is proved."),
+              Mistake("'unique' on the closed X", "uniqueness needs K(X) in the interior of X: "
+                      "lo < K_lo and K_hi < hi, strictly; a K(X) that touches an end proves "
+                      "nothing."),
               Mistake("a sign", "K(X) = m - y f(m) + ..., with the minus of Newton's step."),
               Mistake("X instead of X - m", "the last factor is X - m, centred on m."),
               Mistake("'none' for an undecided box", "no root is proved only when K(X) misses "

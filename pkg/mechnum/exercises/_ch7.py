@@ -7,6 +7,7 @@ from types import SimpleNamespace
 from mechnum.exercises._answers import Real, Tuple, close
 from mechnum.exercises._harness import Case, Exercise, Mistake
 from mechnum.mechanisms import actuator
+from mechnum.mechanisms.actuator.study import ANNEX
 
 COEFFICIENTS_STARTER = '''\
 def velocity_coefficients(theta2, theta4, a, l, b):
@@ -38,8 +39,8 @@ def force_by_virtual_power(kin, mech, g):
         them: ``a, a_dot, a_ddot, theta2, theta4, k2, k4, omega2, omega4,
         eps2, eps4`` (SI units, angles in rad).
     mech : object
-        The mechanism, as ``actuator.ANNEX``: ``m2, m3, m4, g2, g3, g4``
-        and ``inertias`` (``I_G2, I_G3, I_G4``), in SI units.
+        The mechanism, as ``actuator.study.ANNEX``: ``m2, m3, m4, g2,
+        g3, g4`` and ``inertias`` (``I_G2, I_G3, I_G4``), in SI units.
     g : float
         Gravity (m/s^2).
     """
@@ -57,13 +58,13 @@ def state(mech, t):
     return SimpleNamespace(**{name: float(getattr(kin, name)) for name in STATE})
 
 
-OTHER = dataclasses.replace(actuator.ANNEX, o2=0.1, b=0.35, l=0.5)
+OTHER = dataclasses.replace(ANNEX, o2=0.1, b=0.35, l=0.5)
 """A second mechanism, with another barrel pivot, crank and rod."""
 
 
 def _coefficient_cases():
     cases = []
-    for mech, t, label in [(actuator.ANNEX, t, f"the chapter's mechanism at t = {t} s")
+    for mech, t, label in [(ANNEX, t, f"the chapter's mechanism at t = {t} s")
                            for t in (0.0, 0.1, 0.6)] + [
             (OTHER, 0.3, "a mechanism with b = 0.35 m, l = 0.5 m at t = 0.3 s")]:
         s = state(mech, t)
@@ -95,7 +96,7 @@ COEFFICIENTS = Exercise(
 def _force_cases():
     other = dataclasses.replace(OTHER, m4=3.0)
     return [Case(f"the chapter's mechanism at t = {t} s, g = 9.81 m/s^2",
-                 (state(actuator.ANNEX, t), actuator.ANNEX, 9.81)) for t in (0.1, 0.25, 0.7)] + [
+                 (state(ANNEX, t), ANNEX, 9.81)) for t in (0.1, 0.25, 0.7)] + [
         Case("a mechanism with b = 0.35 m, l = 0.5 m, m4 = 3 kg at t = 0.4 s, g = 9.80665",
              (state(other, 0.4), other, 9.80665))]
 

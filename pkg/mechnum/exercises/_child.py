@@ -36,19 +36,65 @@ class Outcome:
     changed: tuple = ()
 
 
-def report(function, args, names, changed_test):
-    """Run the function; the packed :class:`Outcome` (in the process that runs it)."""
+class Forbidden(BaseException):
+    """Raised by a function that an exercise rules out, when the student's function calls it
+    (a BaseException: a student's ``except Exception`` does not swallow it)."""
+
+
+def forbid(names):
+    """Make the functions ``names`` (dotted, ``"numpy.linalg.lstsq"``) unavailable wherever a
+    loaded module holds them (``from numpy.linalg import lstsq`` too): each raises
+    :class:`Forbidden`. Returns a callable that restores them."""
+    import importlib
+
+    undo = []
+    for dotted in names:
+        module, _, attribute = dotted.rpartition(".")
+        try:
+            original = getattr(importlib.import_module(module), attribute)
+        except (ImportError, AttributeError):
+            continue
+
+        def refused(*args, dotted=dotted, **kwargs):
+            raise Forbidden(dotted)
+        for loaded in list(sys.modules.values()):
+            space = getattr(loaded, "__dict__", None)
+            if not isinstance(space, dict):
+                continue
+            for key, value in list(space.items()):
+                if value is original:
+                    undo.append((space, key, original))
+                    space[key] = refused
+
+    def restore():
+        for space, key, original in reversed(undo):
+            space[key] = original
+    return restore
+
+
+def report(function, args, names, changed_test, forbidden=()):
+    """Run the function, with the functions ``forbidden`` made unavailable; the packed
+    :class:`Outcome` (in the process that runs it)."""
     import copy
 
     before = copy.deepcopy(args)
+    namespace = getattr(function, "__globals__", None)
+    restore_own = (_forbid_in(namespace, forbidden) if isinstance(namespace, dict)
+                   else lambda: None)  # first: forbid() replaces the originals it looks for
+    restore = forbid(forbidden)
     try:
         value = function(*args)
+    except Forbidden as error:
+        return pack(Outcome("forbidden", message=str(error)))
     except BaseException as error:  # noqa: B036 -- SystemExit and KeyboardInterrupt included
         try:
             name, text = type(error).__name__, str(error)[:2000]
         except BaseException:  # noqa: B036 -- a hostile __str__
             name, text = "Exception", "(its message could not be read)"
         return pack(Outcome("raised", error=name, message=text))
+    finally:
+        restore_own()
+        restore()
     changed = tuple(n for n, b, a in zip(names, before, args) if changed_test(b, a))
     try:
         data = pickle.dumps(value, protocol=4)
@@ -57,6 +103,32 @@ def report(function, args, names, changed_test):
                                     f"cannot be sent back ({type(error).__name__}): return "
                                     "numbers, arrays or tuples of them"))
     return pack(Outcome("value", value=data, changed=changed))
+
+
+def _forbid_in(namespace, names):
+    """The same for the names of one namespace that is not a module's (a notebook's)."""
+    import importlib
+
+    undo = []
+    for dotted in names:
+        module, _, attribute = dotted.rpartition(".")
+        try:
+            original = getattr(importlib.import_module(module), attribute)
+        except (ImportError, AttributeError):
+            continue
+        for key, value in list(namespace.items()):
+            if value is original:
+                undo.append((key, value))
+                namespace[key] = lambda *args, dotted=dotted, **kwargs: _refuse(dotted)
+
+    def restore():
+        for key, value in undo:
+            namespace[key] = value
+    return restore
+
+
+def _refuse(dotted):
+    raise Forbidden(dotted)
 
 
 def pack(outcome):
@@ -71,7 +143,7 @@ def unpack(data):
 
     try:
         kind, value, error, message, changed = loads(data)
-        if not (kind in ("value", "raised", "died") and type(value) is bytes and
+        if not (kind in ("value", "raised", "died", "forbidden") and type(value) is bytes and
                 type(error) is str and type(message) is str and type(changed) is tuple and
                 all(type(name) is str for name in changed)):
             raise ValueError
@@ -81,7 +153,7 @@ def unpack(data):
     return Outcome(kind, value, error, message, changed)
 
 
-def _in_child(function, args, names, changed_test, write):
+def _in_child(function, args, names, changed_test, write, forbidden=()):
     try:
         import faulthandler
 
@@ -89,7 +161,7 @@ def _in_child(function, args, names, changed_test, write):
         os.setpgid(0, 0)
         sys.stdout = open(1, "w", buffering=1, closefd=False)  # noqa: SIM115
         sys.stderr = open(2, "w", buffering=1, closefd=False)  # noqa: SIM115
-        data = report(function, args, names, changed_test)
+        data = report(function, args, names, changed_test, forbidden)
         sys.stdout.flush()
         view = memoryview(data)
         while view:
@@ -122,17 +194,19 @@ def _kill(pid):
             pass
 
 
-def call(function, args, seconds, names=(), changed_test=lambda before, after: False):
-    """``function(*args)`` in a forked child, within ``seconds``: an :class:`Outcome`."""
+def call(function, args, seconds, names=(), changed_test=lambda before, after: False,
+         forbidden=()):
+    """``function(*args)`` in a forked child, within ``seconds``, the functions ``forbidden``
+    unavailable to it: an :class:`Outcome`."""
     if not hasattr(os, "fork"):
-        return _call_here(function, args, seconds, names, changed_test)
+        return _call_here(function, args, seconds, names, changed_test, forbidden)
     read, write = os.pipe()
     with warnings.catch_warnings():  # Python 3.12 warns about forking a threaded process
-        warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.filterwarnings("ignore", message=r".*multi-threaded, use of fork\(\)")
         pid = os.fork()
     if pid == 0:
         os.close(read)
-        _in_child(function, args, names, changed_test, write)
+        _in_child(function, args, names, changed_test, write, forbidden)
     os.close(write)
     try:
         data = _read(read, pid, seconds)
@@ -158,7 +232,7 @@ class _TimeUp(BaseException):
     pass
 
 
-def _call_here(function, args, seconds, names, changed_test):
+def _call_here(function, args, seconds, names, changed_test, forbidden=()):
     """The fallback without ``fork``: in this process, a timer where there is one."""
     if threading.current_thread() is threading.main_thread() and hasattr(signal, "setitimer"):
         def stop(signum, frame):
@@ -166,11 +240,11 @@ def _call_here(function, args, seconds, names, changed_test):
         previous = signal.signal(signal.SIGALRM, stop)
         signal.setitimer(signal.ITIMER_REAL, seconds)
         try:
-            outcome = unpack(report(function, args, names, changed_test))
+            outcome = unpack(report(function, args, names, changed_test, forbidden))
         except _TimeUp:
             outcome = Outcome("timeout")
         finally:
             signal.setitimer(signal.ITIMER_REAL, 0)
             signal.signal(signal.SIGALRM, previous)
         return Outcome("timeout") if outcome.error == "_TimeUp" else outcome
-    return unpack(report(function, args, names, changed_test))
+    return unpack(report(function, args, names, changed_test, forbidden))

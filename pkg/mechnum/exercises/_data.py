@@ -13,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mechnum.exercises import _answers
+
 PATH = Path(__file__).with_name("public.json")
 
 
@@ -28,6 +30,8 @@ def encode(value):
         return {"array": value.astype(float).ravel().tolist(), "shape": list(value.shape)}
     if isinstance(value, tuple):
         return {"tuple": [encode(v) for v in value]}
+    if isinstance(value, _answers.Raises):
+        return {"raises": value.name}
     if value is None or type(value) in (bool, int, float, str):
         return value
     raise TypeError(f"cannot store a {type(value).__name__}")
@@ -45,6 +49,8 @@ def decode(data):
         return np.array(data["array"], dtype=float).reshape(data["shape"])
     if isinstance(data, dict) and "tuple" in data:
         return tuple(decode(v) for v in data["tuple"])
+    if isinstance(data, dict) and "raises" in data:
+        return _answers.Raises(data["raises"])
     return data
 
 

@@ -50,7 +50,10 @@ class Exercise:
     ``compare(expected, got)`` returns ``None`` when ``got`` (already converted by ``returns``,
     a spec of :mod:`mechnum.exercises._answers`) is right, else what is wrong, in words.
     ``probes()`` gives extra inputs that only serve to tell the mistakes apart. ``points`` is
-    what the exercise is worth in a grade.
+    what the exercise is worth in a grade. ``forbidden`` names the library functions that the
+    statement rules out (``"numpy.linalg.lstsq"``): the check runs the function with them
+    unavailable. ``agree(mistaken, got)``, when given, says whether an answer is a mistake's
+    (``compare`` by default; for a comparison that is not symmetric).
     """
 
     number: str
@@ -66,6 +69,8 @@ class Exercise:
     time_limit: float = TIME_LIMIT
     probes: object = tuple
     points: float = 1
+    forbidden: tuple = ()
+    agree: object = None
 
     @property
     def name(self):
@@ -107,7 +112,7 @@ def changed(before, after):
 def run(exercise, function, case, seconds=None):
     """What ``function`` does on ``case``, run in a child process: an Outcome."""
     return _child.call(function, copy.deepcopy(case.args), seconds or exercise.time_limit,
-                       exercise.parameters, changed)
+                       exercise.parameters, changed, exercise.forbidden)
 
 
 def convert(exercise, outcome):
@@ -119,6 +124,17 @@ def convert(exercise, outcome):
 def _problem(exercise, outcome, expected, where):
     """What is wrong with an outcome, in words (``None``: right), and the converted answer."""
     name = exercise.name
+    if outcome.kind == "forbidden":
+        return (f"{where}, your function called {outcome.message}, which this exercise rules "
+                "out: write the method yourself."), None
+    if isinstance(expected, _answers.Raises):
+        if outcome.kind == "raised" and outcome.error == expected.name:
+            return None, None  # the exception the statement asks for
+        if outcome.kind in ("value", "raised"):
+            did = ("returned" if outcome.kind == "value" else
+                   f"raised {outcome.error}: {outcome.message}".rstrip(": ") + ",")
+            return (f"{where}, your function {did} where it must raise {expected.name} (the "
+                    "statement says when)."), None
     if outcome.kind == "timeout":
         return (f"{where}, your function ran for more than {exercise.time_limit:g} s and was "
                 "stopped: an endless loop? Every loop needs a test that ends it, and an "
@@ -140,17 +156,25 @@ def _problem(exercise, outcome, expected, where):
                     "`return`). Write it, then run this cell again."), None
         got = exercise.returns.convert(value, "your answer")
         problem = exercise.compare(expected, got)
-    except _answers.WrongForm as error:
-        return f"{where}: {error}.", None
+    except _answers.WrongForm as error:  # a message about the answer's type, no hint
+        return f"{where}: {error}.", _WRONG_FORM
     except Exception as error:  # a comparison that cannot read the answer
-        return f"{where}: the answer has the wrong form ({type(error).__name__}: {error}).", None
+        return (f"{where}: the answer has the wrong form ({type(error).__name__}: {error}).",
+                _WRONG_FORM)
     return (f"{where}: {problem}." if problem else None), got
+
+
+_WRONG_FORM = object()  # what _problem returns for an answer of the wrong kind
 
 
 def agrees(exercise, mistaken, got):
     """Whether an answer equals a mistake's stored (or computed) answer."""
     try:
-        return mistaken is not None and exercise.compare(mistaken, got) is None
+        if mistaken is None or isinstance(mistaken, _answers.Raises):
+            return False
+        if exercise.agree is not None:
+            return bool(exercise.agree(mistaken, got))
+        return exercise.compare(mistaken, got) is None
     except Exception:
         return False
 
@@ -181,7 +205,10 @@ def judge(exercise, outcomes, expected, mistakes_on, probe_outcomes=(), probe_mi
         problem, got = _problem(exercise, outcome, expected[k], f"On {case.label}")
         count += 1
         if problem:
-            hint = _diagnose(exercise, got, mistakes_on(k), probe_outcomes, probe_mistakes)
+            plain = (outcome.kind == "forbidden" or got is _WRONG_FORM
+                     or isinstance(expected[k], _answers.Raises))
+            hint = "" if plain else _diagnose(exercise, got, mistakes_on(k), probe_outcomes,
+                                              probe_mistakes)
             return Result(exercise.number, False, f"{head}: not yet. {problem} {hint}".rstrip())
     return Result(exercise.number, True, passed or f"{head}: passed, all {count} cases "
                   f"({exercise.title}).")

@@ -19,19 +19,21 @@ matrix ``M = P^{-1} N`` is below 1. The package's modules, in the order a course
 """
 
 from mechnum.linear._checks import condition_number
-from mechnum.linear._direct import LeastSquares, iterative_refinement, least_squares
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.linear._direct import LeastSquares as LeastSquares
+from mechnum.linear._direct import iterative_refinement, least_squares
 from mechnum.linear._krylov import conjugate_gradient, poisson2d, poisson3d
+from mechnum.linear._spectra import OptimalOmega as OptimalOmega
 from mechnum.linear._spectra import (
-    OptimalOmega,
-    iteration_matrix,
     optimal_omega,
     sor_spectral_radii,
-    spectral_radius,
     young_omega,
 )
+from mechnum.linear._stationary import IterationResult as IterationResult
+from mechnum.linear._stationary import SorSweep as SorSweep
 from mechnum.linear._stationary import (
-    IterationResult,
-    SorSweep,
     gauss_seidel,
     jacobi,
     sor,
@@ -39,8 +41,6 @@ from mechnum.linear._stationary import (
 )
 from mechnum.linear._sweeps import sweep_by_components
 
-__all__ = ["IterationResult", "LeastSquares", "OptimalOmega", "SorSweep", "condition_number",
-           "conjugate_gradient", "gauss_seidel", "iteration_matrix", "iterative_refinement",
+__all__ = ["condition_number", "conjugate_gradient", "gauss_seidel", "iterative_refinement",
            "jacobi", "least_squares", "optimal_omega", "poisson2d", "poisson3d", "sor",
-           "sor_spectral_radii", "sor_sweep", "spectral_radius", "sweep_by_components",
-           "young_omega"]
+           "sor_spectral_radii", "sor_sweep", "sweep_by_components", "young_omega"]

@@ -57,7 +57,7 @@ class LeastSquares(Result):
 
 
 def least_squares(A: ArrayLike, b: ArrayLike, method: str = "qr", omega: float | None = None,
-                  **solver_options) -> "LeastSquares":
+                  **solver_options: object) -> "LeastSquares":
     """The least-squares solution of ``A x ~= b``: ``min ||A x - b||_2``.
 
     Parameters

@@ -31,6 +31,9 @@ Examples
 
 import numpy as np
 
+__all__ = ["DIAMETER", "EI", "LENGTH", "MATERIAL", "STRAIN_LIMIT", "STUDY_NODES",
+           "TENSILE_STRENGTH", "YIELD_STRENGTH", "YOUNG"]
+
 LENGTH = 1.0
 """Length of every rod (m), Annex II 3.1 and 4.1."""
 YOUNG = 210e9

@@ -59,10 +59,14 @@ Examples
 array([2.])
 """
 
-from mechnum.newton._batch import BatchNewtonResult, solve_batch
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.newton._batch import BatchNewtonResult as BatchNewtonResult
+from mechnum.newton._batch import solve_batch
 from mechnum.newton._core import MAXITER_LIMIT, fd_jacobian
-from mechnum.newton._search import RootSet, solve_all
-from mechnum.newton._single import NewtonResult, broyden, solve
+from mechnum.newton._search import RootSet as RootSet
+from mechnum.newton._search import solve_all
+from mechnum.newton._single import NewtonResult as NewtonResult
+from mechnum.newton._single import broyden, solve
 
-__all__ = ["BatchNewtonResult", "MAXITER_LIMIT", "NewtonResult", "RootSet", "broyden",
-           "fd_jacobian", "solve", "solve_all", "solve_batch"]
+__all__ = ["MAXITER_LIMIT", "broyden", "fd_jacobian", "solve", "solve_all", "solve_batch"]

@@ -158,32 +158,39 @@ def solve_batch(fun: Callable, seeds: ArrayLike, jac: Callable | bool | None = N
     max_step = None if max_step is None else _validate.tolerance(max_step, "max_step")
     halvings = _validate.maxiter(halvings, "halvings", maximum=HALVINGS_LIMIT)
     eqs = Equations(fun, jac)
-    run = _Run(eqs, x, rule, independent)
+    run = _Run(eqs, x.copy(), rule, independent)
     steps, full = [], []
     for k in range(rule.maxiter + 1):
-        run.check(full[-1] if full else None)
-        active = run.running.copy()
-        if not active.any() or k == rule.maxiter:
+        rows = run.check()
+        if not rows.size or k == rule.maxiter:
             break
-        dx, full_norm = run.step(active)
-        full.append(np.where(active, full_norm, np.nan))
-        dx, shrink = bounded(dx, max_step)
+        rows, dx = run.step(rows)
+        full.append(run.full)
+        if not rows.size:
+            steps.append(np.full(len(x), np.nan))
+            continue
+        dx, shrink = (dx, None) if max_step is None else bounded(dx, max_step)
+        at = run.at
+        x_old = run.x[at]
         if damping:
-            sure = run.meets_step(full_norm, run.x + dx)
-            trial, failed, _ = line_search(run.call, run.x, run.f, run.J, dx, run.running,
-                                           run.rnorm, sure, rule.norm, domain,
-                                           shrink=shrink, stacked=independent,
-                                           halvings=halvings)
-            run.stop(failed != "", failed[failed != ""])
+            sure = run.meets_step(run.full[at], x_old + dx)
+            trial, failed, _ = line_search(run.call, x_old, run.f[at],
+                                           None if run.J is None else run.J[at], dx,
+                                           np.ones(len(rows), dtype=bool), run.rnorm[at],
+                                           sure, rule.norm, domain, shrink=shrink,
+                                           stacked=independent, halvings=halvings)
+            moved = failed == ""
+            run.stop(rows[~moved], failed[~moved])
             x_new, f_new, J_new = trial.x, trial.f, trial.J
         else:
-            x_new = run.x + dx  # dx is zero for the systems that are not moving
+            x_new = x_old + dx
+            moved = np.ones(len(rows), dtype=bool)
             if domain is not None:  # a step out of the domain is not taken, nor evaluated
-                outside = run.running & ~inside(domain, x_new)
-                run.stop(outside, "left-domain")
-                x_new[outside] = run.x[outside]
-            f_new, J_new = run.call(x_new, run.running)
-        steps.append(run.advance(x_new, f_new, J_new))
+                moved = inside(domain, x_new)
+                run.stop(rows[~moved], "left-domain")
+                x_new[~moved] = x_old[~moved]
+            f_new, J_new = run.call(x_new, moved)
+        steps.append(run.advance(rows, moved, x_new, f_new, J_new))
     run.stop(run.running, "maxiter")
     shape = (len(steps), len(x))
     result = BatchNewtonResult(
@@ -199,7 +206,12 @@ def solve_batch(fun: Callable, seeds: ArrayLike, jac: Callable | bool | None = N
 
 class _Run:
     """The state of :func:`solve_batch`: iterates, residuals (and Jacobians from ``fun``), and
-    the status of every system (``""`` while it runs)."""
+    the status of every system (``""`` while it runs).
+
+    Every iteration works on the rows of the running systems only (gathered once, scattered
+    back once), so that its cost follows the systems still running, not the batch: only the
+    array of iterates, which ``fun`` and ``jac`` receive, is copied (never changed in place).
+    """
 
     def __init__(self, eqs, x, rule, independent):
         self.eqs, self.rule, self.independent = eqs, rule, independent
@@ -207,27 +219,43 @@ class _Run:
         self.status = np.full(len(x), "", dtype="<U11")
         self.running = np.ones(len(x), dtype=bool)  # status == "", kept up to date
         self.x = x
-        self.f, self.J = eqs.value(x)
+        # copies: these are updated in place, and fun may return arrays it keeps (a memo)
+        self.f, self.J = (None if a is None else a.copy() for a in eqs.value(x))
         self.rnorm = norms(self.f, rule.norm)
         self.limit = rule.tol * self.rnorm if rule.relative else rule.tol
+        self.full = None    # the norms of the last full steps (NaN where none was taken)
+        self.rows = self.at = np.arange(0)    # the rows of the iteration under way
 
-    def call(self, points, rows):
-        """``(f, J or None)`` at ``points``, at least of the systems ``rows``."""
+    def _index(self, rows):
+        """``rows`` as an index: the whole batch as a slice (views, no copies)."""
+        return slice(None) if len(rows) == len(self.x) else rows
+
+    def call(self, points, which):
+        """``(f, J or None)`` at ``points`` of the rows under way, at least at ``which`` (a
+        mask of them); the other systems, if ``fun`` depends on the position in the batch,
+        at their own iterates."""
         if not self.independent:
+            if isinstance(self.at, slice):
+                return self.eqs.value(points)
+            full = self.x.copy()
+            full[self.rows] = points
+            f, J = self.eqs.value(full)
+            return f[self.rows], None if J is None else J[self.rows]
+        if which.all():
             return self.eqs.value(points)
         f = np.full(points.shape, np.nan)
         J = None if self.eqs.jac is not True else np.full(points.shape + points.shape[-1:],
                                                           np.nan)
-        if rows.any():
-            f_rows, J_rows = self.eqs.value(points[rows])
-            f[rows] = f_rows
+        if which.any():
+            f_rows, J_rows = self.eqs.value(points[which])
+            f[which] = f_rows
             if J is not None:
-                J[rows] = J_rows
+                J[which] = J_rows
         return f, J
 
     def stop(self, which, why):
-        """End the systems ``which`` (a mask) with the status ``why``."""
-        if which.any():
+        """End the systems ``which`` (a mask, or indices) with the status ``why``."""
+        if which.any() if which.dtype == bool else which.size:
             self.status[which] = why
             self.running[which] = False
 
@@ -239,53 +267,85 @@ class _Run:
         with np.errstate(invalid="ignore"):
             return np.isfinite(full_norm) & (full_norm <= self.rule.tol * scale)
 
-    def check(self, last_full):
-        """Stop the systems whose residual is not finite or that meet the criterion."""
+    def check(self):
+        """Stop the systems whose residual is not finite or that meet the criterion; the rows
+        of those that run on."""
+        rows = np.flatnonzero(self.running)
+        at = self._index(rows)
         with np.errstate(invalid="ignore"):
-            self.stop(self.running & ~np.isfinite(self.rnorm), "non-finite")
+            bad = ~np.isfinite(self.rnorm[at])
+            if bad.any():
+                self.stop(rows[bad], "non-finite")
+                rows = rows[~bad]
+                at = rows
             if self.rule.criterion == "residual":
-                met = self.rnorm <= self.limit
+                met = self.rnorm[at] <= (self.limit[at] if np.ndim(self.limit) else self.limit)
+            elif self.full is None:
+                return rows
             else:
-                met = (np.zeros(len(self.x), dtype=bool) if last_full is None
-                       else self.meets_step(last_full, self.x))
-        self.stop(self.running & met, "converged")
+                met = self.meets_step(self.full[at], self.x[at])
+        if met.any():
+            self.stop(rows[met], "converged")
+            rows = rows[~met]
+        return rows
 
-    def step(self, active):
-        """The full Newton steps of the systems ``active`` (zero elsewhere) and their norms;
-        the systems whose Jacobian is singular or not finite are stopped."""
-        subset = self.independent and not active.all()  # then jac is called on active rows
-        J_all = self.J if self.J is not None else None
-        if subset:
-            J = self.eqs.jacobian(self.x[active], self.f[active],
-                                  None if J_all is None else J_all[active])
+    def step(self, rows):
+        """The full Newton steps of the systems ``rows``; the systems whose Jacobian is
+        singular or not finite are stopped. Returns the rows that go on and their steps
+        (their norms in ``full``, with 0 for the stopped ones); ``at`` indexes them."""
+        self.rows = rows
+        self.at = at = self._index(rows)
+        if self.J is not None:
+            J = self.J[at]
+        elif self.independent:
+            J = self.eqs.jacobian(self.x[at], self.f[at])
         else:
-            J = self.eqs.jacobian(self.x, self.f, J_all)
-            J = J if active.all() else J[active]
-        finite = np.isfinite(J).all(axis=(-2, -1))
-        bad = active.copy()
-        bad[active] = ~finite
-        self.stop(bad, "non-finite")
-        dx = np.zeros_like(self.x)
-        rows = np.flatnonzero(active)[finite]
-        if rows.size:
-            dx[rows], stuck, _ = newton_step(J[finite], self.f[rows])
-            singular = np.zeros(len(self.x), dtype=bool)
-            singular[rows[stuck]] = True
-            self.stop(singular, "singular")
-        return dx, norms(dx, self.rule.norm)
+            J = self.eqs.jacobian(self.x, self.f)[at]
+        # (one test of the whole stack first: reducing over its small last axes is slow)
+        finite = (np.ones(len(rows), dtype=bool) if np.isfinite(J).all()
+                  else np.isfinite(J).all(axis=(-2, -1)))
+        if finite.all():
+            dx, stuck, _ = newton_step(J, self.f[at])
+            go = ~stuck
+        else:
+            self.stop(rows[~finite], "non-finite")
+            dx, go = np.zeros((len(rows), self.x.shape[1])), finite.copy()
+            if finite.any():
+                dx[finite], stuck, _ = newton_step(J[finite], self.f[rows[finite]])
+                go[np.flatnonzero(finite)[stuck]] = False
+        self.stop(rows[finite & ~go], "singular")
+        self.full = norms(dx, self.rule.norm)
+        if not isinstance(at, slice):       # NaN for the systems not stepping
+            taken, self.full = self.full, np.full(len(self.x), np.nan)
+            self.full[at] = taken
+        if not go.all():
+            self.rows = rows = rows[go]
+            self.at, dx = rows, dx[go]
+        return rows, dx
 
-    def advance(self, x_new, f_new, J_new):
-        """Move the running systems to their new points; the norms of their steps."""
-        running = self.running
-        self.iterations += running
-        size = norms(x_new - self.x, self.rule.norm)
-        keep = running[:, None]
-        self.x = np.where(keep, x_new, self.x)
-        self.f = np.where(keep, f_new, self.f)
+    def advance(self, rows, moved, x_new, f_new, J_new):
+        """Move the systems ``rows[moved]`` to their new points; the norms of their steps."""
+        if not moved.all():
+            rows, x_new, f_new = rows[moved], x_new[moved], f_new[moved]
+            J_new = None if J_new is None else J_new[moved]
+        at = self._index(rows)
+        self.iterations[at] += 1
+        out = norms(x_new - self.x[at], self.rule.norm)
+        if not isinstance(at, slice):       # NaN for the systems not moving
+            taken, out = out, np.full(len(self.x), np.nan)
+            out[at] = taken
+        # a new array of iterates (never one changed in place: fun and jac may remember the
+        # last array they were called with), the new points themselves when all moved
+        if isinstance(at, slice):
+            self.x = x_new
+        else:
+            self.x = self.x.copy()
+            self.x[at] = x_new
+        self.f[at] = f_new
         if self.J is not None and J_new is not None:
-            self.J = np.where(keep[:, :, None], J_new, self.J)
-        self.rnorm = norms(self.f, self.rule.norm)
-        return np.where(running, size, np.nan)
+            self.J[at] = J_new
+        self.rnorm[at] = norms(f_new, self.rule.norm)
+        return out
 
 
 def _message(status, rnorm, rule):

@@ -16,6 +16,7 @@ Examples
 ([-1.0, 1.0], False)
 """
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -55,6 +56,7 @@ of itself (the customary constant: any decrease counts, but not a vanishing one)
 _SQRT_EPS = np.sqrt(np.finfo(float).eps)  # the forward-difference step that balances errors
 _MAX_COND = 1.0 / np.finfo(float).eps  # a condition number past which no digit is left
 _TINY = np.finfo(float).tiny
+_SQRT_TINY = np.sqrt(_TINY)  # a 2-norm below it was summed from squares that lost digits
 
 
 def describe(rule: StoppingRule) -> str:
@@ -73,29 +75,45 @@ def describe(rule: StoppingRule) -> str:
 def norms(v: np.ndarray, norm: float) -> np.ndarray:
     """``np.linalg.norm(v, norm, axis=-1)``, several times faster for a stack of short vectors
     (the sums over the short last axis are products with a vector of ones), and without
-    overflow: a 2-norm whose squares overflow is computed again from ``v`` scaled by its
-    largest entry.
+    overflow or underflow: a 2-norm whose squares overflow, or underflow (entries below
+    ``sqrt(tiny)``, about ``1.5e-154``, square to subnormals or zero), is computed again from
+    ``v`` scaled by its largest entry.
 
     Examples
     --------
     >>> round(float(norms(np.array([3e200, 4e200]), 2)) / 1e200, 12)
     5.0
+    >>> round(float(norms(np.array([3e-200, 4e-200]), 2)) / 1e-200, 12)
+    5.0
     """
     if v.ndim == 1 and norm != 2:
         return np.linalg.norm(v, norm)
-    a = np.abs(v)
     if norm == np.inf:
-        return largest(a)
-    ones = np.ones(v.shape[-1])
+        return largest(np.abs(v))
+    ones = _ones(v.shape[-1])
     if norm == 1:
-        return a @ ones
-    with np.errstate(over="ignore"):
-        out = np.linalg.norm(v) if v.ndim == 1 else np.sqrt((a * a) @ ones)
-    overflow = np.isinf(out) & np.isfinite(a).all(axis=-1)
-    if np.any(overflow):
-        top = largest(a)
-        scaled = np.sqrt((a / np.maximum(top, _TINY)[..., None]) ** 2 @ ones) * top
-        out = np.where(overflow, scaled, out)
+        return np.abs(v) @ ones
+    with np.errstate(over="ignore"):   # as np.linalg.norm: the root of the sum of squares
+        out = np.sqrt(v.dot(v) if v.ndim == 1 else (v * v) @ ones)
+    # squares that overflow (inf), or underflow (a norm below sqrt(tiny), zero for a non-zero v,
+    # was summed from squares that lost digits): computed again from v scaled by its largest entry
+    lost = np.isinf(out) | (out < _SQRT_TINY)
+    if not lost.any():
+        return out
+    a = np.abs(v)
+    top = largest(a)
+    lost &= (top > 0) & np.isfinite(a).all(axis=-1)
+    if not lost.any():
+        return out
+    scaled = np.sqrt((a / np.where(top > 0, top, 1.0)[..., None]) ** 2 @ ones) * top
+    return np.where(lost, scaled, out)
+
+
+@functools.cache
+def _ones(n):
+    """A vector of ``n`` ones, made once (read-only)."""
+    out = np.ones(n)
+    out.flags.writeable = False
     return out
 
 
@@ -280,9 +298,13 @@ def newton_step(jac: np.ndarray, fx: np.ndarray) -> tuple:
                 dx[i] = np.linalg.solve(jac[i], -fx[i])
             except np.linalg.LinAlgError:
                 exact[i] = True
-    fsize = norms(fx, 1)
+    fsize, size = norms(fx, 1), norms(dx, 1)
     with np.errstate(over="ignore", invalid="ignore"):  # inf or NaN growth is flagged below
-        growth = largest(np.abs(jac).reshape(jac.shape[:-2] + (-1,))) * norms(dx, 1)
+        # the stack's largest entry bounds every J's: where that bound is trusted, all are
+        entry = np.abs(jac)
+        if not exact.any() and (entry.max() * size <= _MAX_COND * fsize).all():
+            return dx, exact, None
+        growth = largest(entry.reshape(jac.shape[:-2] + (-1,))) * size
         trusted = growth <= _MAX_COND * fsize  # False where growth is inf or NaN
     if trusted.all() and not exact.any():
         return dx, exact, None
@@ -396,32 +418,32 @@ def inside(domain: Callable | None, points: np.ndarray) -> np.ndarray:
 
 def _all_halvings(call, x, dx, state, rnorm, shrink, norm, domain, halvings):
     """The rest of :func:`line_search` for position-free systems: ``alpha = 2**-1, ...,
-    2**-halvings`` of every pending system in one call; each takes its largest acceptable
-    ``alpha``, as the halving loop would."""
+    2**-halvings`` of every pending system in one call (at the trial points inside the
+    domain only); each takes its largest acceptable ``alpha``, as the halving loop would."""
     rows = np.flatnonzero(state.pending)
     n = x.shape[1]
     alpha = 0.5 ** np.arange(1, halvings + 1)
     trial = x[rows, None, :] + alpha[:, None] * dx[rows, None, :]       # (rows, alphas, n)
     flat = trial.reshape(-1, n)
     within = inside(domain, flat)
-    f_flat = np.full(flat.shape, np.nan)
-    J_flat = None if state.J is None else np.full(flat.shape + (n,), np.nan)
-    if within.any():
-        f_in, J_in = call(flat[within], np.ones(within.sum(), dtype=bool))
-        f_flat[within] = f_in
-        if J_flat is not None:
-            J_flat[within] = J_in
-    t_norm = norms(f_flat, norm).reshape(len(rows), -1)
-    with np.errstate(invalid="ignore"):
-        ok = within.reshape(len(rows), -1) & np.isfinite(t_norm) & (
-            t_norm <= (1 - ARMIJO * alpha * shrink[rows, None]) * rnorm[rows, None])
+    inner = np.flatnonzero(within)
+    ok = np.zeros(len(flat), dtype=bool)
+    if inner.size:
+        f_in, J_in = call(flat[inner], np.ones(inner.size, dtype=bool))
+        t_norm = norms(f_in, norm)
+        row, step = np.divmod(inner, halvings)
+        with np.errstate(invalid="ignore"):
+            ok[inner] = np.isfinite(t_norm) & (
+                t_norm <= (1 - ARMIJO * alpha[step] * shrink[rows[row]]) * rnorm[rows[row]])
+    ok = ok.reshape(len(rows), halvings)
     first = ok.argmax(axis=1)
     found = ok[np.arange(len(rows)), first]
-    take = rows[found]
-    state.x[take] = trial[found, first[found]]
-    state.f[take] = f_flat.reshape(len(rows), -1, n)[found, first[found]]
-    if J_flat is not None:
-        state.J[take] = J_flat.reshape(len(rows), -1, n, n)[found, first[found]]
+    take, pick = rows[found], np.flatnonzero(found) * halvings + first[found]
+    if take.size:
+        at = np.searchsorted(inner, pick)          # the picked points among those evaluated
+        state.x[take], state.f[take] = flat[pick], f_in[at]
+        if state.J is not None:
+            state.J[take] = J_in[at]
     state.pending[take] = False
     status = np.full(len(x), "", dtype="<U11")
     status[rows[~found]] = np.where(within.reshape(len(rows), -1)[~found, -1], "stagnated",

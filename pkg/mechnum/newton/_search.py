@@ -102,9 +102,10 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     The search runs :func:`~mechnum.newton.solve_batch` (damped, with the status of each
     start) from ``n_starts`` starts drawn by ``sample`` (after any given ``seeds``); starts that
     stagnate, leave the ``domain`` or hit a singular Jacobian are dropped. The converged ends
-    are grouped into distinct roots (those within ``same`` of each other) and counted. Then a
+    are grouped into distinct roots (those within ``same`` of each other) and counted. A
     completeness check runs ``check * n_starts`` new starts: the number of roots that only it
-    finds, ``new_in_check``, is zero when the search looks complete.
+    finds, ``new_in_check``, is zero when the search looks complete. The starts of both run in
+    one batch (each ends as it would alone: the systems are independent), the search's first.
 
     Parameters
     ----------
@@ -170,30 +171,30 @@ def solve_all(fun: Callable, sample: Callable, jac: Callable | bool | None = Non
     Equations(fun, jac)  # fun and jac checked before any work
     extra = None if seeds is None else _validate.array(seeds, "seeds", ndim=2)
     width = None if extra is None else extra.shape[1]
-    runs = []
+    parts = []
     for m, given in ((n_starts, extra), (check * n_starts, None)):
         starts = _sample(sample, rng, m, width) if m else np.empty((0, width or 0))
         width = starts.shape[1] if m else width
-        if given is not None:
-            starts = np.concatenate([given, starts])
-        runs.append(solve_batch(fun, starts.reshape(-1, width), jac, tol=tol, maxiter=maxiter,
-                                damping=True, domain=domain, raise_on_failure=False,
-                                independent=True, halvings=halvings))
-    ends = [r.x[r.converged] for r in runs]
+        parts.append(starts if given is None else np.concatenate([given, starts]))
+    # the search and its check in one lockstep batch: the starts are independent, so each
+    # ends as it would alone, and a few slow ones cost no more than they do alone
+    run = solve_batch(fun, np.concatenate(parts).reshape(-1, width), jac, tol=tol,
+                      maxiter=maxiter, damping=True, domain=domain, raise_on_failure=False,
+                      independent=True, halvings=halvings)
+    split = len(parts[0])
+    ends = [run.x[:split][run.converged[:split]], run.x[split:][run.converged[split:]]]
     roots, label = _distinct(np.concatenate(ends).reshape(-1, width), same)
     first = len(np.unique(label[:len(ends[0])]))
     order = np.lexsort(roots.T[::-1]) if len(roots) else np.arange(0)
     hits = np.bincount(label, minlength=len(roots))
-    status = np.concatenate([r.status for r in runs])
     residual_norms = (np.linalg.norm(Equations(fun, jac).value(roots[order])[0], axis=-1)
                       if len(roots) else np.empty(0))
-    counts = {s: c for s, c in status_counts(status).items() if c}
-    return RootSet(x=roots[order], status=status,
-                   message=f"{len(roots)} roots from {len(status)} starts ({counts}); "
+    counts = {s: c for s, c in status_counts(run.status).items() if c}
+    return RootSet(x=roots[order], status=run.status,
+                   message=f"{len(roots)} roots from {len(run.status)} starts ({counts}); "
                            f"{len(roots) - first} new in the check",
-                   iterations=np.concatenate([r.iterations for r in runs]),
-                   nfev=sum(r.nfev for r in runs) + bool(len(roots)),
-                   njev=sum(r.njev for r in runs), hits=hits[order],
+                   iterations=run.iterations, nfev=run.nfev + bool(len(roots)),
+                   njev=run.njev, hits=hits[order],
                    residual_norms=residual_norms, n_starts=n_starts, n_check=check * n_starts,
                    new_in_check=len(roots) - first)
 

@@ -218,7 +218,12 @@ def broyden(fun: Callable, seed: ArrayLike, jac: Callable | bool | None = None, 
             return eqs.jacobian(x, fx, J)
         B, x_old, f_old = previous
         s, y = x - x_old, fx - f_old
-        return B + np.outer(y - B @ s, s) / (s @ s) if s @ s > 0 else B
+        # the rank-one update (y - B s) s^T / (s^T s) with s scaled to a unit vector: s^T s
+        # underflows for a step below 1e-162, which would leave B unchanged (a chord method)
+        size = norms(s, 2)
+        if not size > 0:
+            return B
+        return B + np.outer((y - B @ s) / size, s / size)
 
     return _iterate(Equations(fun, jac), seed, matrix,
                     StoppingRule.checked(tol, maxiter, criterion, norm, relative,

@@ -32,37 +32,43 @@ parameter ``m = k**2``. To place a closed-form rod clamped at ``(x0, y0)`` at an
 ``theta0``, rotate its tip and its force by ``theta0`` and add ``(x0, y0)``: ``psi`` is the
 force direction relative to the clamped tangent.
 
-Modules, each importing only those before it: :mod:`mechnum.rods.rod` (the rod, its equations,
-the RK4 sweeps :func:`integrate` and :func:`tip_jacobian`), :mod:`mechnum.rods.jacobi` (Jacobi's
-amplitude from the complementary modulus), :mod:`mechnum.rods.growing` (the growing branch in
-a chart that holds every digit, behind :func:`cantilever`), :mod:`mechnum.rods.regular` (the
-closed form in the regular chart ``(psi, t)``, its Jacobian and shapes),
-:mod:`mechnum.rods.elliptic` (the closed form in the study's chart ``(psi, k_rel)`` and its
-inverses), :mod:`mechnum.rods.pinned` (every equilibrium through a point, and what a shot rod
-is), :mod:`mechnum.rods.shooting` and :mod:`mechnum.rods.multiple` (the shooting solvers,
-single and multiple),
-:mod:`mechnum.rods.stability` and :mod:`mechnum.rods.bodies` (the second variation),
-:mod:`mechnum.rods.crossing` and :mod:`mechnum.rods.loading` (a cantilever's equilibria under a
-growing dead load, for continuation); the main names are importable from :mod:`mechnum.rods`.
-In a Newton loop over the rods of a mechanism, call :func:`tip_jacobian` once on the batch of
-all rods: one sweep gives every tip and every ``d tip / d (m0, n_x, n_y)``, and costs little
-more than one rod (the cost of a sweep is per numpy call, not per rod).
+What the package holds: the rod, its equations and its RK4 sweeps (:class:`Rod`,
+:func:`equations`, :func:`integrate`, :func:`tip_jacobian`); a cantilever by either method
+(:func:`cantilever`); the closed form in the study's chart ``(psi, k_rel)``
+(:func:`clamped_pinned`, :func:`elliptic_k`, :func:`elliptic_parameters`,
+:func:`k_rel_for_force`) and in the regular chart ``(psi, t)``, which holds every digit
+(:func:`clamped_pinned_regular` with its Jacobian, :func:`shape`, :func:`k_rel_from_t`,
+:func:`t_from_k_rel`; :class:`ClampedRods` for a mechanism's rods in a solver's loop, and
+the compiled residual and Jacobian of rods whose tips meet, :class:`MeetingRods`, for the
+searches and the atlas of the rod mechanisms); every
+equilibrium through a point and what a shot rod is (:func:`pinned_equilibria`,
+:func:`classify`); the shooting solvers, single and multiple (:func:`shoot_cantilever`,
+:func:`shoot_pinned`, :func:`shoot_pinned_multiple`, :class:`Shooting`); the second variation
+(:func:`rod_block`, :func:`constrained_eigenvalues`, :func:`constrained_index`,
+:func:`constrained_index_with_body`); crossings (:func:`self_crossings`,
+:func:`mutual_crossings`); a cantilever's equilibria under a growing dead load, for
+continuation (:class:`DeadLoad`); the pinned rod proven (:func:`certify_pinned`); every
+equilibrium of rods that meet, proven by co-refinement over their whole charts
+(:func:`corefine`, :func:`certified_all`; the rods and their assembly are
+:mod:`mechnum.rods.certified`'s), and a rod's proven index (:func:`pinned_index`,
+:func:`proven_stability`). What every
+mechanism built of rods shares is ``mechanisms._assembly``.
+In a Newton loop over the rods of a mechanism, call a :class:`ShotRods` (:func:`tip_jacobian`,
+checked once when made) once on the batch of all rods: one sweep gives every tip and every
+``d tip / d (m0, n_x, n_y)``, and costs little more than one rod (the cost of a sweep is per
+numpy call, not per rod).
 """
 
-from numpy.typing import ArrayLike
-
-from mechnum import _validate
-from mechnum.rods._apriori import chart_t_bound, pair_bound, pinned_bound, reach
-from mechnum.rods._cocertificate import CoCertificate, CoVerified
-from mechnum.rods._cocertificate import verify as verify_corefined
-from mechnum.rods._cosearch import MAX_LIVE, CertifiedAll, CoRefined, certified_all, corefine
-from mechnum.rods._index import free_index, pinned_index, proven_stability
-from mechnum.rods._leaves import ChartRod
-from mechnum.rods._tuples import Assembly
-from mechnum.rods.certified import certify_pinned
-from mechnum.rods.elliptic import (
-    TWO_PI,
-    EllipticRod,
+from mechnum.rods._bodies import constrained_index_with_body
+from mechnum.rods._cantilever import cantilever
+from mechnum.rods._clamps import chart_from_clamps, peak_moment
+from mechnum.rods._cocertificate import CoCertificate as CoCertificate
+from mechnum.rods._cocertificate import CoVerified as CoVerified
+from mechnum.rods._cosearch import CertifiedAll as CertifiedAll
+from mechnum.rods._cosearch import CoRefined as CoRefined
+from mechnum.rods._cosearch import certified_all, corefine
+from mechnum.rods._crossing import mutual_crossings, self_crossings
+from mechnum.rods._elliptic import (
     NoEquilibriumError,
     NotAnElasticaError,
     clamped_pinned,
@@ -70,89 +76,40 @@ from mechnum.rods.elliptic import (
     elliptic_parameters,
     k_rel_for_force,
 )
-from mechnum.rods.growing import closed_form
-from mechnum.rods.loading import DeadLoad
-from mechnum.rods.multiple import shoot_pinned_multiple
-from mechnum.rods.pinned import Classification, classify, pinned_equilibria
-from mechnum.rods.rod import MAX_NODES, Rod, equations, integrate, rod_scales, tip_jacobian
-from mechnum.rods.shooting import (
+from mechnum.rods._index import pinned_index, proven_stability
+from mechnum.rods._loading import DeadLoad
+from mechnum.rods._meeting import MeetingRods
+from mechnum.rods._multiple import shoot_pinned_multiple
+from mechnum.rods._pinned import classify, pinned_equilibria
+from mechnum.rods._profile import shape
+from mechnum.rods._regular import (
+    T_MAX,
+    ClampedRods,
+    clamped_pinned_regular,
+    in_chart,
+    k_rel_from_t,
+    t_from_k_rel,
+)
+from mechnum.rods._rod import Rod, ShotRods, equations, integrate, tip_jacobian
+from mechnum.rods._shooting import (
     SHOOTING_TOL,
-    Shooting,
     UnresolvedRodError,
     shoot_cantilever,
     shoot_pinned,
 )
 
-__all__ = ["MAX_LIVE", "SHOOTING_TOL", "TWO_PI", "Assembly", "CertifiedAll", "ChartRod",
-           "Classification", "CoCertificate", "CoRefined", "CoVerified", "DeadLoad", "EllipticRod",
-           "NoEquilibriumError", "NotAnElasticaError", "Rod", "Shooting", "UnresolvedRodError",
-           "cantilever", "certified_all", "certify_pinned", "chart_t_bound", "clamped_pinned",
-           "classify", "corefine", "elliptic_k", "elliptic_parameters", "equations",
-           "free_index", "integrate", "k_rel_for_force", "pair_bound", "pinned_bound",
-           "pinned_equilibria", "pinned_index", "proven_stability", "reach", "shoot_cantilever",
-           "shoot_pinned", "shoot_pinned_multiple", "tip_jacobian", "verify_corefined"]
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.rods._shooting import Shooting as Shooting
+from mechnum.rods._stability import constrained_eigenvalues, constrained_index, rod_block
+from mechnum.rods.certified import certify_pinned
 
-METHODS = ("elliptic", "shooting")
-
-
-def cantilever(EI: float, L: float, force: ArrayLike, method: str = "elliptic", *,
-               nodes: int = 41) -> Rod:
-    """A cantilever (clamped at the origin along +x) under a tip force, by either method.
-
-    The equilibrium returned is the one that grows continuously from the unloaded rod (mode 1,
-    bending towards the force), by both methods. A purely axial force (``n_y = 0``) gives the
-    straight rod, the only equilibrium below the Euler load (``pi**2 EI / (4 L**2)`` in
-    compression); buckled ones are :func:`clamped_pinned` with ``psi = pi``.
-
-    The closed form is evaluated in a chart that holds every digit at every load, from
-    ``1e-200`` (linear beam theory, ``v = P L**3 / (3 EI)`` to rounding) to ``P L**2 / EI``
-    near ``1e5`` (see :mod:`mechnum.rods.growing`); ``nodes=2`` asks for the clamp and the
-    tip only, the fastest call.
-
-    Parameters
-    ----------
-    EI, L : float
-        Bending stiffness (N m^2) and length (m), positive.
-    force : array_like, shape (2,)
-        Tip force ``(n_x, n_y)`` (N).
-    method : {"elliptic", "shooting"}
-        Closed form (in Carlson's symmetric integrals) or RK4 shooting
-        (:func:`shoot_cantilever`, from the closed form's clamp moment).
-    nodes : int, optional
-        Nodes of the returned shape (and RK4 nodes for shooting),
-        ``2 <= nodes <=`` :data:`~mechnum.rods.rod.MAX_NODES`.
-
-    Returns
-    -------
-    Rod
-        Its ``tip`` and ``tip_angle`` are the tip position and angle.
-
-    Raises
-    ------
-    ValueError
-        If an input is not finite or out of range, or the load is beyond the closed form's
-        range in double precision.
-    ConvergenceError
-        If shooting fails or cannot resolve the load at these nodes
-        (:class:`UnresolvedRodError`; see :func:`shoot_cantilever`).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> a = cantilever(2.0, 1.5, [-0.3, 1.0], "elliptic")
-    >>> b = cantilever(2.0, 1.5, [-0.3, 1.0], "shooting", nodes=801)
-    >>> bool(np.abs(a.tip - b.tip).max() < 1e-11), round(float(a.tip_angle), 6)
-    (True, 0.57334)
-    >>> tip = cantilever(1.0, 1.0, [0.0, 1e-12], nodes=2).tip   # linear theory: P L^3 / 3 EI
-    >>> bool(abs(tip[1] / (1e-12 / 3) - 1) < 1e-12)
-    True
-    """
-    EI, L = rod_scales(EI, L, scalar=True)
-    force = _validate.array(force, "force", shape=(2,))
-    method = _validate.choice(method, METHODS, "method")
-    nodes = _validate.maxiter(nodes, "nodes", minimum=2, maximum=MAX_NODES)
-    if force[1] == 0:
-        return integrate(EI, L, 0.0, force, nodes=nodes)
-    if method == "shooting":
-        return shoot_cantilever(EI, L, force, nodes=nodes).rod
-    return closed_form(EI, L, force, nodes)
+__all__ = ["SHOOTING_TOL", "T_MAX", "ClampedRods", "DeadLoad", "MeetingRods", "NoEquilibriumError",
+           "NotAnElasticaError", "Rod", "ShotRods", "UnresolvedRodError", "cantilever",
+           "certified_all", "certify_pinned", "chart_from_clamps", "clamped_pinned",
+           "clamped_pinned_regular", "classify", "constrained_eigenvalues", "constrained_index",
+           "constrained_index_with_body", "corefine", "elliptic_k", "elliptic_parameters",
+           "equations", "in_chart", "integrate", "k_rel_for_force", "k_rel_from_t",
+           "mutual_crossings", "peak_moment", "pinned_equilibria", "pinned_index",
+           "proven_stability", "rod_block", "self_crossings", "shape", "shoot_cantilever",
+           "shoot_pinned", "shoot_pinned_multiple", "t_from_k_rel", "tip_jacobian"]

@@ -1,7 +1,7 @@
 """A-priori bounds: how hard a clamped-pinned rod can pull, given where its tip must be.
 
-**The reach of a loaded rod.** A rod of ``mode`` ``j`` in the regular chart of
-:mod:`mechnum.rods.regular`, clamped at the origin along +x, has (that module's formulas)::
+**The reach of a loaded rod.** A rod of ``mode`` ``j`` in the regular chart
+(``rods._regular``), clamped at the origin along +x, has (that module's formulas)::
 
     tip = L Rot(psi) (1 - 2 D / Lambda, -2 v b / Lambda),   force = R e,   R = EI Lambda**2 / L**2
 
@@ -53,7 +53,7 @@ import numpy as np
 from flint import arb
 
 from mechnum import _validate
-from mechnum.rods import regular
+from mechnum.rods import _regular as regular
 
 BISECTIONS = 80
 """Bisection steps of :func:`pair_bound` (the crossing to the last bits of a double)."""
@@ -93,7 +93,7 @@ def reach(mode: int) -> float:
 
 def chart_t_bound(lam_max: float) -> float:
     """The largest ``|t|`` of a rod with ``Lambda <= lam_max`` (rounded up, at most
-    :data:`mechnum.rods.regular.T_MAX`): ``q <= 2 log cosh(lam_max)``.
+    :data:`mechnum.rods.T_MAX`): ``q <= 2 log cosh(lam_max)``.
 
     Examples
     --------
@@ -165,7 +165,7 @@ def pair_bound(modes, gap: float, force: float, EI: float, L: float) -> tuple:
     --------
     Table 7 (motors 0.6 m apart, ``|F| = 0.316 N``):
 
-    >>> from mechnum.mechanisms.rfr2 import TABLE7
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7
     >>> [round(x, 2) for x in pair_bound((1, 1), 0.6, float(np.hypot(*TABLE7.force)),
     ...                                  TABLE7.EI, TABLE7.L)]
     [10.39, 10.39]

@@ -3,7 +3,7 @@
 A :class:`CoCertificate` (:meth:`~mechnum.rods._cosearch.CertifiedAll.certificate`) stores what a
 co-refinement (:mod:`mechnum.rods._corefine`) **chose**: the first grid, the axis of every cut
 of every round, the boxes in which each round's clusters were settled, and the certificate of
-the final Krawczyk search of those boxes (:class:`mechnum.certify.certificate.Certificate`);
+the final Krawczyk search of those boxes (:class:`mechnum.certify.Certificate`);
 with, per round, the tuples tested, left live and dropped by each reason, and the count.
 
 :func:`verify` trusts none of it: from the mechanism's rods (with their a-priori bounds,
@@ -15,7 +15,7 @@ boxes as its domain, scope ``"all"`` (:func:`mechnum.certify.verify`: exactly th
 searched, none overlapping another, every leaf's test re-run). The count and
 ``complete`` it derives must be the stored ones, and so must every round's summary: a
 certificate whose numbers differ from what its choices imply is rejected
-(:class:`mechnum.certify.certificate.CertificateError`, naming the difference).
+(:class:`mechnum.certify.CertificateError`, naming the difference).
 """
 
 import json
@@ -45,7 +45,7 @@ class CoCertificate:
         Per round, the boxes in which clusters were settled (the last: those left at the end).
     rounds : tuple of dict
         Per round: ``tested``, ``live`` and ``dropped`` (tuples, by reason).
-    search : mechnum.certify.certificate.Certificate
+    search : mechnum.certify.Certificate
         The Krawczyk search of every settled box.
     count : int
         Equilibria proven.

@@ -36,7 +36,7 @@ import time
 import numpy as np
 
 from mechnum import _validate
-from mechnum.certify import subtract
+from mechnum.rods._clusters import subtract
 from mechnum.rods._leaves import COLUMNS, ChartRod, Leaves
 from mechnum.rods._tuples import REASONS, Assembly, leaf_codes, tuple_codes
 

@@ -3,12 +3,12 @@
 :func:`corefine` runs the rounds of a :class:`~mechnum.rods._corefine.Refinement` and, after
 each (from :data:`MIN_ROUNDS` on, once at most :data:`PROBE_LIVE` tuples are live), **probes**
 them: it groups the live tuples into clusters of touching boxes (a spatial hash,
-:func:`mechnum.certify.clusters`, by branch) and tries to settle each cluster of at most
-:data:`CLUSTER_TUPLES` tuples with cheap Krawczyk searches (:func:`mechnum.certify.search.roots`,
+:func:`~mechnum.rods._clusters.clusters`, by branch) and tries to settle each cluster of at most
+:data:`CLUSTER_TUPLES` tuples with cheap Krawczyk searches (:func:`mechnum.certify.roots`,
 :data:`PROBE_BOXES` boxes each): of the cluster's hull; or, when Newton's method (in floats)
 finds a root in it, of a box around that root (from half the cluster's reach from it down to
 its widest tuple), and then of what that box and the boxes settled before leave of each of
-the cluster's tuples (:func:`mechnum.certify.subtract`, :data:`TUPLE_BOXES` boxes each). The
+the cluster's tuples (:func:`~mechnum.rods._clusters.subtract`, :data:`TUPLE_BOXES` boxes each). The
 settled boxes never overlap, so that each root is counted in one of them; the live tuples
 they cover leave the rounds (:meth:`~mechnum.rods._corefine.Refinement.resolve`). When no
 tuple is left, one Krawczyk search of every settled box gives the count: a theorem when it is
@@ -22,17 +22,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechnum import _validate, certify
-from mechnum.certify import clusters, hulls, subtract
 from mechnum.results import Result
+from mechnum.rods._clusters import clusters, hulls, subtract
 from mechnum.rods._cocertificate import certificate as cocertificate
 from mechnum.rods._corefine import GRID, Refinement, checked
-from mechnum.rods.certified import Certified, combine
+from mechnum.rods.certified import MAX_LIVE, Certified, combine
 
 MAX_ROUNDS = 40
 """Default bound on the rounds."""
-MAX_LIVE = 2_000_000
-"""Default bound on the live tuples after a round (memory: 8 r bytes each, and their tests):
-beyond it the rounds stop, and the result is not complete."""
 MIN_ROUNDS = 4
 """Clusters are probed from this round on."""
 PROBE_BOXES = 16
@@ -66,7 +63,7 @@ class CoRefined(Result):
         Every equilibrium of the domain is one of ``roots``: a theorem.
     settled : ndarray, shape (m, 2 r, 2)
         The boxes searched by the final Krawczyk search.
-    search : mechnum.certify.search.Roots
+    search : mechnum.certify.Roots
         That search.
     rounds : tuple of dict
         :attr:`Refinement.history <mechnum.rods._corefine.Refinement>`: per round the tuples
@@ -100,7 +97,7 @@ def _newton(system, hull):
     residual, jacobian = system[0], system[1]
     x = hull.mean(axis=1)
     for _ in range(NEWTON_STEPS):
-        X = [certify.ball(v) for v in x]
+        X = [certify.balls.ball(v) for v in x]
         f = np.array([float(v.mid()) for v in residual(X)])
         J = np.array([[float(v.mid()) for v in row] for row in jacobian(X)])
         try:
@@ -189,7 +186,7 @@ def corefine(rods, assembly, system, *, grid=GRID, max_rounds=MAX_ROUNDS,
         How their tips meet, and the load.
     system : (callable, callable, callable or None, callable or None)
         ``residual, jacobian, exclude, split`` of the mechanism's equations in the full chart
-        ``(psi_1, t_1, ..., psi_r, t_r)`` over boxes (see :func:`mechnum.certify.search.roots`).
+        ``(psi_1, t_1, ..., psi_r, t_r)`` over boxes (see :func:`mechnum.certify.roots`).
     grid : (int, int), optional
         The first grid of each branch of each rod's chart, in ``psi`` and ``t``.
     max_rounds : int, optional

@@ -23,7 +23,7 @@ before the first: ``j - 1`` zeros in ``(0, L)``, and none at ``L``. By the oscil
 (Prufer's angle of ``u0``, the Dirichlet condition at the clamp and the natural one at the
 tip) ``iota_free = (j - 1) + [u0(L) u0'(L) < 0]``, and
 ``u0(L) du0/dphi(L) = cos(phi1) k' (u2(phi1) + cos(phi1) G(phi2))``. In the regular chart
-(:mod:`mechnum.rods.regular`: ``k sin(phi1) = a``, ``k cos(phi1) = v b``, so
+(the regular chart (``rods._regular``): ``k sin(phi1) = a``, ``k cos(phi1) = v b``, so
 ``Delta(phi1) = b``; ``G(phi2) - G(phi1) = D - p Lambda``) its sign is that of::
 
     S = sign(t) cos(psi / 2) + |v| (D - p Lambda),    iota_free = (j - 1) + [S < 0]
@@ -35,7 +35,7 @@ valid when the pinned problem is not degenerate, ``det(d tip / d (psi, t)) != 0`
 :func:`mechnum.rods.certified.stiffness`). Hence ``iota_pin = iota_free - ind(K)``.
 
 :func:`free_index` and :func:`pinned_index` enclose ``S``, ``det(d tip / d (psi, t))`` and
-``K`` in balls over a chart box (Arb, :mod:`mechnum.rods.balls`) and return the index where
+``K`` in balls over a chart box (Arb, ``rods._balls``) and return the index where
 every sign is proven, None elsewhere. :func:`proven_stability` combines the rods' pinned
 indices with the reduced Hessian of a mechanism (its index adds to theirs) into a verdict.
 """
@@ -45,7 +45,8 @@ from flint import arb
 
 from mechnum import _validate, certify
 from mechnum.certify.balls import ball
-from mechnum.rods import balls, regular
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
 from mechnum.rods.certified import stiffness
 
 

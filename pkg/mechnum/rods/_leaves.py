@@ -1,7 +1,7 @@
 """One rod's chart cut into boxes, each with its tip and force enclosed once: the leaves.
 
 A :class:`ChartRod` is a clamped-pinned rod of a mechanism (stiffness, length, mode, clamp),
-searched over its regular chart ``(psi, t)`` (:mod:`mechnum.rods.regular`) on both branches:
+searched over its regular chart ``(psi, t)`` (``rods._regular``) on both branches:
 ``0 <= psi <= 2 pi``, ``0 <= sign t <= t_max``. :class:`Leaves` holds the boxes of that chart
 that a search has made, as arrays (one row per box, never removed): the box, its branch, its
 parent and children, and the enclosures of :func:`enclose`, in the global frame, rounded
@@ -17,7 +17,7 @@ columns    what
 12, 13     where the enclosures widen: ``|J| width`` per chart axis
 =========  =========================================================
 
-The enclosures come from :mod:`mechnum.rods.balls` (Arb's balls, every operation rounded
+The enclosures come from ``rods._balls`` (Arb's balls, every operation rounded
 outward), intersected with the mean-value form ``value(centre) + J(box) (box - centre)``, which
 is the tighter of the two once a box is small. The branch of a box is stored, never guessed
 from the box (a box ``[-0.25, 0]`` as a ball pokes above 0).
@@ -39,7 +39,8 @@ from flint import arb
 from mechnum import _validate
 from mechnum.certify import balls as B
 from mechnum.certify.balls import ball, bounds
-from mechnum.rods import balls, regular
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
 
 TWO_PI = 2.0 * np.pi
 COLUMNS = 14

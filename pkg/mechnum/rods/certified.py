@@ -1,9 +1,9 @@
 """Every clamped-pinned equilibrium that reaches a point, proven (Chapter 3's pinned rod).
 
-:func:`certify_pinned` searches the regular chart ``(psi, t)`` of :mod:`mechnum.rods.regular`
-of each mode with :func:`~mechnum.certify.search.roots`, the closed form enclosed by
-:mod:`mechnum.rods.balls`. The searched boxes are the chart's whole closed domain, one per
-branch: ``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
+:func:`~mechnum.rods.certify_pinned` searches the regular chart ``(psi, t)`` of ``rods``'s
+regular module of each mode with :func:`~mechnum.certify.roots`, the closed form enclosed over boxes
+(``rods._balls``). The searched boxes are the chart's whole closed domain, one per branch:
+``0 <= psi <= 2 pi`` and ``0 <= t <= T_MAX`` or ``-T_MAX <= t <= 0``.
 
 **Beyond the chart** (``|t| > T_MAX``, ``q > Q_MAX = 600``) the rods are excluded analytically.
 On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >= I``), and
@@ -14,23 +14,39 @@ On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >
 E-integrals, each at most ``pi / 2``) and ``v b <= 1``: it lies within
 ``tail_reach(mode, Lambda) = (2 pi mode + 2) / Lambda`` times ``L`` of ``L (cos psi, sin psi)``,
 farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is reached by no
-rod of the tail. The a-priori bound of :func:`mechnum.rods.pinned_bound` (``Lambda <= c_j L /
+rod of the tail. The a-priori bound of a-priori bound of the pinned rod (``Lambda <= c_j L /
 (L - d)``, the same reach with ``|D| <= mode pi`` and ``v b <= 1`` used the other way round)
-is tighter wherever it confines the rods inside the chart (:func:`mechnum.rods.chart_t_bound`
+is tighter wherever it confines the rods inside the chart (:func:`chart_t_bound`
 below ``T_MAX``: 34 for Chapter 3's target in mode 1, 98 in mode 3): the tail is then excluded
 by it.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify
-from mechnum.certify import guard
-from mechnum.certify.search import Roots
-from mechnum.rods import balls, regular
-from mechnum.rods._apriori import chart_t_bound, pinned_bound
+from mechnum.certify.balls import interval
+from mechnum.rods import _balls as balls
+from mechnum.rods import _regular as regular
+from mechnum.rods._apriori import chart_t_bound, pair_bound, pinned_bound
+from mechnum.rods._cocertificate import verify as verify_corefined
+from mechnum.rods._leaves import ChartRod
+from mechnum.rods._tuples import Assembly
+
+# The pinned rod's system, and what the rod mechanisms' certified modules build theirs from
+# (certify_pinned is rods'; Certified, the result, is documented with the functions that return
+# it): the rods' charts cut to the a-priori bound and their assembly, which the co-refinement
+# (rods.corefine) searches, and the re-check of its certificate.
+__all__ = ["MAX_LIVE", "TAIL_LAMBDA", "Assembly", "ChartRod", "around_boxes", "around_note",
+           "branch_boxes", "chart_t_bound", "combine", "enclosed", "forces_exclude",
+           "forces_split", "memoised", "pair_bound", "pinned_system", "placed", "stiffness",
+           "tail_reach", "verdict", "verify_corefined"]
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -40,28 +56,31 @@ TAIL_LAMBDA = 0.5 * regular.Q_MAX * float(np.sqrt(-np.expm1(-regular.Q_MAX))) * 
 margin for rounding: ``v q / 2`` at ``q = Q_MAX`` (see the module)."""
 
 
-def tail_reach(mode, lam=TAIL_LAMBDA):
+def tail_reach(mode: int, lam: float = TAIL_LAMBDA) -> float:
     """``(2 pi mode + 2) / Lambda``: how far (over ``L``) the tip of a rod of that ``mode`` with
     ``lambda L >= Lambda`` may lie from ``L (cos psi, sin psi)``."""
     return (2.0 * np.pi * mode + 2.0) / lam
 
 
 MAX_BOXES = 200_000
+MAX_LIVE = 2_000_000
+"""Default bound on the co-refinement's live tuples after a round (memory: 8 r bytes each, and
+their tests): beyond it the rounds stop, and the result is not complete."""
 
 
 @dataclass(frozen=True, kw_only=True)
-class Certified(Roots):
+class Certified(certify.Roots):
     """A certified search of an application, with the solutions in the package's coordinates.
 
     Attributes
     ----------
     solutions : ndarray
         The midpoints of the root enclosures, in the coordinates of the corresponding sampled
-        solver (``pinned_equilibria``: rows ``(psi, k_rel, mode)``; ``forward_elliptic``:
+        solver (``pinned_equilibria``: rows ``(psi, k_rel, mode)``; ``forward``:
         ``(psi_i, k_rel_i)`` per rod).
     stable : list of (bool or None)
         Per solution: True (proven stable), False (proven unstable), None (not decided).
-    parts : tuple of mechnum.certify.search.Roots
+    parts : tuple of mechnum.certify.Roots
         The searches (one per mode, or one for a mechanism), each with its certificate.
     """
 
@@ -69,7 +88,7 @@ class Certified(Roots):
     stable: list
     parts: tuple
 
-    def certificate(self, inputs=None):
+    def certificate(self, inputs: dict | None = None) -> certify.Certificate:
         """The certificate of the one search (a certificate is made per search: for several,
         ``parts[i].certificate()``)."""
         if len(self.parts) != 1:
@@ -78,7 +97,8 @@ class Certified(Roots):
         return self.parts[0].certificate(inputs)
 
 
-def combine(parts, solutions, stable, extra=""):
+def combine(parts: Sequence, solutions: np.ndarray, stable: list,
+            extra: str = "") -> Certified:
     """One :class:`~mechnum.rods.certified.Certified` of several searches (counts, work added)."""
     n = parts[0].roots.shape[1] if parts else 2
     roots = np.concatenate([p.roots for p in parts] + [np.zeros((0, n, 2))])
@@ -119,7 +139,7 @@ AROUND = 1e-6
 ranges (``2 pi`` for ``psi``, ``T_MAX`` for ``t``)."""
 
 
-def around_boxes(points, n_rods: int) -> np.ndarray:
+def around_boxes(points: ArrayLike, n_rods: int) -> np.ndarray:
     """Boxes of half-width ``AROUND`` (relative) around chart points ``(k, 2 n_rods)``, cut to
     the chart and to each point's branch (the side of ``t = 0`` it lies on).
 
@@ -145,7 +165,7 @@ def around_boxes(points, n_rods: int) -> np.ndarray:
     return np.stack((lo, hi), axis=-1)
 
 
-def around_note(around):
+def around_note(around: object) -> str:
     """The message of a search around given points (its count is a lower bound)."""
     return "" if around is None else (
         f"; searched around {len(around)} given points only: the count is a lower bound")
@@ -155,8 +175,10 @@ def _ends(x: arb) -> tuple:
     """The float interval a ball stands for: the exact box of a ball from
     :func:`mechnum.certify.balls.guarded` (what the search hands a residual), else the ball's
     own bounds (rounded outward)."""
-    box = guard.interval(x)
-    return box if box is not None else certify.bounds(arb(x))
+    box = interval(x)
+    if box is None:
+        return certify.balls.bounds(arb(x))
+    return float(arb(box[0])), float(arb(box[1]))          # exact points: exact floats
 
 
 def branch_of(X: list, i: int) -> int:
@@ -181,12 +203,12 @@ def branch_of(X: list, i: int) -> int:
     return 1 if t1 > 0.0 else -1
 
 
-def pinned_system(EI, L, target, mode):
+def pinned_system(EI: float, L: float, target: ArrayLike, mode: int) -> tuple:
     """``residual, jacobian`` of ``tip(psi, t) - target`` (over ``L``) for :mod:`mechnum.certify`.
 
     Examples
     --------
-    >>> from mechnum.certify import ball
+    >>> from mechnum.certify.balls import ball
     >>> f, J = pinned_system(1.0, 1.0, [0.8, 0.1], 2)
     >>> [bool(v.contains(0)) for v in f([ball(3.0, 3.1), ball(0.3, 0.5)])]
     [True, True]
@@ -205,10 +227,11 @@ def pinned_system(EI, L, target, mode):
     return residual, jacobian
 
 
-def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
+def certify_pinned(EI: float, L: float, target: ArrayLike, modes: Sequence = (1, 2, 3), *,
+                   max_boxes: int = MAX_BOXES) -> Certified:
     """Every clamped-pinned equilibrium whose tip is at ``target``, proven by interval arithmetic.
 
-    The certified counterpart of :func:`~mechnum.rods.pinned.pinned_equilibria` (same inputs, same
+    The certified counterpart of :func:`~mechnum.rods.pinned_equilibria` (same inputs, same
     coordinates of the solutions): a branch-and-prune search of the regular chart of each mode
     (see the module). When the result is ``complete``, the count is a theorem: there are
     exactly ``count`` equilibria of these modes with ``|t| <= T_MAX``, each in its enclosure,
@@ -264,15 +287,16 @@ def certify_pinned(EI, L, target, modes=(1, 2, 3), *, max_boxes=MAX_BOXES):
     return combine(parts, solutions, [None] * len(rows), extra)
 
 
-def placed(EI, L, X, i, mode, origin, angle, jacobian):
+def placed(EI: float, L: float, X: Sequence, i: int, mode: int, origin: ArrayLike,
+           angle: float, jacobian: bool) -> tuple:
     """Rod ``i`` of a box of balls ``X = (psi_1, t_1, psi_2, t_2, ...)``, placed at its clamp
-    (:func:`mechnum.rods.balls.place`)."""
+    (``rods._balls.place``)."""
     rod = balls.clamped_pinned(EI, L, X[2 * i], X[2 * i + 1], mode, branch_of(X, i),
                                jacobian=jacobian)
     return balls.place(rod, origin, angle)
 
 
-def stiffness(rod):
+def stiffness(rod: object) -> list:
     """The tip stiffness ``d force / d tip = J_force J_tip^-1`` of a placed rod (2 x 2 balls,
     symmetrised): the Hessian of the rod's energy as a function of its pinned tip, along its
     branch of equilibria."""
@@ -290,7 +314,7 @@ MEMORY = 4
 midpoint and cut interleave)."""
 
 
-def memoised(rods):
+def memoised(rods: Callable) -> Callable:
     """``rods(X, jacobian)`` remembering its last ``MEMORY`` answers: the residual, the
     exclusion test, the cut and the Jacobian of one box share one evaluation of the rods (a
     Jacobian's evaluation also serves the residual). The key is the balls exactly, and the
@@ -298,8 +322,8 @@ def memoised(rods):
     memory = {}
 
     def cached(X, jacobian):
-        key = tuple((guard.interval(x), arb.mid(x).man_exp(), arb.rad(x).man_exp())
-                    for x in X)
+        key = tuple((interval(x) is not None and _ends(x), arb.mid(x).man_exp(),
+                     arb.rad(x).man_exp()) for x in X)
         known = memory.get(key)
         if known is not None and (known[0] or not jacobian):
             return known[1]
@@ -318,7 +342,7 @@ def enclosed(root: np.ndarray) -> list:
     return certify.balls.guarded(root)
 
 
-def verdict(reduced):
+def verdict(reduced: Sequence) -> bool | None:
     """Stability from the reduced Hessian (balls) of an equilibrium: False where it is proven
     to have a negative eigenvalue (the equilibrium is then unstable, whatever the rods' own
     pinned-tip index: the index is the sum of the rods' pinned-tip indices and the reduced
@@ -330,7 +354,7 @@ def verdict(reduced):
 
 def _box(values):
     """Float bounds ``[(lo, hi), ...]`` of balls."""
-    return [certify.bounds(v) for v in values]
+    return [certify.balls.bounds(v) for v in values]
 
 
 def _norm_range(box):
@@ -362,12 +386,25 @@ def _arc(box):
 
 
 def _arcs_meet(a, b):
-    """Whether two arcs ``(lo, hi)`` (each narrower than ``2 pi``) may meet modulo ``2 pi``."""
+    """Whether two arcs ``(lo, hi)`` (arb points, each narrower than ``2 pi``, at any number of
+    turns) may meet modulo ``2 pi``: whether an integer ``k`` has ``a_lo + 2 pi k <= b_hi``
+    and ``a_hi + 2 pi k >= b_lo``, that is ``k`` in ``[(b_lo - a_hi) / 2 pi,
+    (b_hi - a_lo) / 2 pi]``. The ends of that range are enclosed by Arb and rounded outward
+    to integers, so the test is sound for angles of any size (a huge angle gives a wide
+    range: the arcs may meet).
+
+    Examples
+    --------
+    >>> turns = 2 * balls.B.PI * 10**6
+    >>> _arcs_meet((arb(0.1) + turns, arb(0.2) + turns), (arb(0.15), arb(0.3)))
+    True
+    >>> _arcs_meet((arb(0.1) + turns, arb(0.2) + turns), (arb(0.25), arb(0.3)))
+    False
+    """
     two_pi = 2 * balls.B.PI
-    for k in (-2, -1, 0, 1, 2):
-        if not (bool(a[1] + k * two_pi < b[0]) or bool(a[0] + k * two_pi > b[1])):
-            return True
-    return False
+    first = ((b[0] - a[1]) / two_pi).lower().ceil()
+    last = ((b[1] - a[0]) / two_pi).upper().floor()
+    return not bool(last < first)
 
 
 def _allowed(rods, load, i):
@@ -378,7 +415,7 @@ def _allowed(rods, load, i):
     return _box(c) if all(v.is_finite() for v in c) else None
 
 
-def forces_exclude(rods, load):
+def forces_exclude(rods: Callable, load: ArrayLike) -> Callable:
     """Whether ``sum of the rods' forces = load`` is impossible over a box, in polar form.
 
     For each rod ``i`` the others' forces give the box ``c = load - sum_{j != i} n_j`` that
@@ -401,7 +438,7 @@ def forces_exclude(rods, load):
     return False
 
 
-def forces_split(rods, load, X):
+def forces_split(rods: Callable, load: ArrayLike, X: Sequence) -> object:
     """Where to cut the box ``X`` of chart coordinates ``(psi_1, t_1, ...)``: at an edge of the
     directions that the force balance leaves rod ``i`` (see :func:`forces_exclude`), when that
     edge lies inside ``psi_i``'s range; the half beyond it is then excluded at once. The rod

@@ -9,8 +9,8 @@ when
 .. math:: (a + l)\\,e^{i\\theta_2} = O_4 + b\\,e^{i\\theta_4},
 
 where ``a(t) = 0.6 + 0.02 sin(2 pi t)`` m is the cylinder's stroke, the one degree of freedom. The
-annex solves the loop from the triangle ``O2 O4 A`` (:func:`forward`, both assembly modes;
-:func:`positions`, the annex's); :func:`solve_loop` solves the same two equations by
+annex solves the loop from the triangle ``O2 O4 A`` (:func:`forward`, both assembly modes, the
+annex's first); :func:`solve_loop` solves the same two equations by
 :func:`mechnum.newton.solve`. :func:`inverse` gives the stroke of a rocker angle, and
 :func:`singular_points` the strokes of the dead points.
 
@@ -42,29 +42,35 @@ as the routes' numerical error (``annex_slip=True`` in :func:`lagrange_force` re
 *Forward* dynamics, the motion that a given force produces, integrates Lagrange's equation by
 RK4 (:func:`forward_dynamics`); :func:`energy` gives ``T + V`` for the energy balance.
 
-The parameters are those the annex prints (:data:`ANNEX`), suspicious ones included: the rocker's
-centroidal inertia ``I_G4 = g4**2 m2 / 3`` uses the barrel's mass ``m2`` (printed ``I_O4 = 0.96``
-confirms it), and its centre of mass lies ``g4 = 0.6`` m from ``O4`` though the crank ``b`` is
-0.25 m long. Gravity is Mathcad's built-in ``g = 9.80665`` m/s**2, the only value that reproduces
-the printed ``Q(0) = 43.14926`` N.
+The parameters are those the annex prints (``ANNEX``,
+in :mod:`mechnum.mechanisms.actuator.study` with the annex's numbers recomputed), suspicious
+ones included: the rocker's centroidal inertia ``I_G4 = g4**2 m2 / 3`` uses the barrel's mass
+``m2`` (printed ``I_O4 = 0.96`` confirms it), and its centre of mass lies ``g4 = 0.6`` m from
+``O4`` though the crank ``b`` is 0.25 m long. Gravity is Mathcad's built-in ``g = 9.80665``
+m/s**2, the only value that reproduces the printed ``Q(0) = 43.14926`` N.
 
 Every function takes the mechanism, an :class:`Actuator`, first (``f(mech, inputs, ...)``);
 the stroke ``a`` (or the time ``t``) is the input, and a state, what :func:`draw` draws, is the
-pair ``(a, (theta2, theta4))``. The orders of version 0.1, with the mechanism after the stroke,
-are deprecated (CHANGELOG.md). The modules: :mod:`~mechnum.mechanisms.actuator.model` (the
-parameters), :mod:`~mechnum.mechanisms.actuator.loop` (positions and the loop equations),
-:mod:`~mechnum.mechanisms.actuator.velocities` (velocity coefficients, partial velocities),
-:mod:`~mechnum.mechanisms.actuator.dynamics` (the force, the energy, forward dynamics),
-:mod:`~mechnum.mechanisms.actuator.drawing` and :mod:`~mechnum.mechanisms.actuator.annex`
-(the study's numbers).
+pair ``(a, (theta2, theta4))``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mechnum.mechanisms import actuator
+>>> np.degrees(actuator.forward(actuator.Actuator(), 0.6).x[0]).round(4).tolist()
+[90.0, 0.0]
 """
 
-from mechnum.mechanisms.actuator.annex import reproduce
-from mechnum.mechanisms.actuator.drawing import draw
-from mechnum.mechanisms.actuator.dynamics import (
-    Energy,
-    ForwardDynamics,
-    LagrangeTerms,
+import importlib
+
+from mechnum.mechanisms.actuator._drawing import draw
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.actuator._dynamics import Energy as Energy
+from mechnum.mechanisms.actuator._dynamics import ForwardDynamics as ForwardDynamics
+from mechnum.mechanisms.actuator._dynamics import LagrangeTerms as LagrangeTerms
+from mechnum.mechanisms.actuator._dynamics import (
     energy,
     forward_dynamics,
     kane_force,
@@ -72,30 +78,31 @@ from mechnum.mechanisms.actuator.dynamics import (
     lagrange_terms,
     virtual_power_force,
 )
-from mechnum.mechanisms.actuator.loop import (
-    MODES,
+from mechnum.mechanisms.actuator._loop import (
     forward,
     inverse,
     loop_jacobian,
     loop_residual,
-    positions,
     singular_points,
     solve_loop,
 )
-from mechnum.mechanisms.actuator.model import ANNEX, G_MATHCAD, Actuator
-from mechnum.mechanisms.actuator.velocities import (
-    MODELS,
-    Kinematics,
-    PartialVelocities,
-    centres_of_mass,
+from mechnum.mechanisms.actuator._model import Actuator
+from mechnum.mechanisms.actuator._velocities import Kinematics as Kinematics
+from mechnum.mechanisms.actuator._velocities import PartialVelocities as PartialVelocities
+from mechnum.mechanisms.actuator._velocities import (
     kinematics,
     partial_velocities,
     stroke_kinematics,
 )
 
-__all__ = ["G_MATHCAD", "Actuator", "ANNEX", "MODES", "MODELS", "forward", "positions",
-           "inverse", "singular_points", "loop_residual", "loop_jacobian", "solve_loop",
-           "Kinematics", "stroke_kinematics", "kinematics", "centres_of_mass",
-           "PartialVelocities", "partial_velocities", "virtual_power_force", "kane_force",
-           "LagrangeTerms", "lagrange_terms", "lagrange_force", "Energy", "energy",
-           "ForwardDynamics", "forward_dynamics", "draw", "reproduce"]
+__all__ = ["Actuator", "draw", "energy", "forward", "forward_dynamics", "inverse", "kane_force",
+           "kinematics", "lagrange_force", "lagrange_terms", "loop_jacobian", "loop_residual",
+           "partial_velocities", "singular_points", "solve_loop", "stroke_kinematics",
+           "virtual_power_force"]
+
+
+def __getattr__(name: str) -> object:
+    """The :mod:`~mechnum.mechanisms.actuator.study` module, imported on first use."""
+    if name == "study":
+        return importlib.import_module(f"{__name__}.study")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

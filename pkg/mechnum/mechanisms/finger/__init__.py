@@ -10,87 +10,58 @@ Frame and names of the study's tables: the output pivot ``D`` is the origin, the
 
 Every function takes the mechanism, a :class:`Linkage` in metres, first (``f(mech, inputs,
 ...)``); ``theta_in`` is the input, ``theta_out`` the output, and a state, what :func:`draw`
-draws, is the pair ``(theta_in, theta_out)``. The study's millimetres appear only in
-:mod:`~mechnum.mechanisms.finger.study`'s :func:`reproduce` (its printed units) and in the
-conversion :data:`MM`. The package's modules:
+draws, is the pair ``(theta_in, theta_out)``. What the package holds:
 
-* :mod:`~mechnum.mechanisms.finger.model`: :class:`Linkage`, the assembly modes
-  (:func:`forward`, :func:`inverse`), where the linkage assembles (:func:`workspace`), the
-  points of given angles (:func:`place_links`, a :class:`Pose`);
-* :mod:`~mechnum.mechanisms.finger.synthesis`: Freudenstein's equation by least squares
-  (:func:`design_matrix`, :func:`synthesize`, :func:`linkage_from_coefficients`);
-* :mod:`~mechnum.mechanisms.finger.drawing`: :func:`draw`;
-* :mod:`~mechnum.mechanisms.finger.examples`: the study's example 1.1 and its Fig. 1 loop;
-* :mod:`~mechnum.mechanisms.finger.study`: the study's tables (in metres) and
-  :func:`reproduce`.
+* :class:`Linkage`, the assembly modes (:func:`forward`, :func:`inverse`), where the linkage
+  assembles (:func:`workspace`), the points of given angles (:func:`place_links`, a
+  :class:`Pose`) and the angles of given points (:func:`angles_from_points`);
+* Freudenstein's equation by least squares (:func:`freudenstein_coefficients`,
+  :func:`design_matrix`, :func:`synthesize`, :func:`lengths_from_coefficients`,
+  :func:`linkage_from_coefficients`);
+* :func:`draw`.
 
-Version 0.1's ``pose``, ``pose_from_output``, ``reachable``, the order with the linkage after
-the angles, ``draw(ax, pose, index, lines=)`` and its millimetre tables are gone or deprecated
-(CHANGELOG.md).
+The study's tables (in metres; it prints millimetres), its two other examples and its
+reproduction are in :mod:`mechnum.mechanisms.finger.study`.
+
+Examples
+--------
+>>> from mechnum.mechanisms import finger
+>>> L = finger.Linkage(0.030613, 0.0069973, 0.0247825, 0.0069989)
+>>> finger.forward(L, [5.0]).x.round(6).tolist()    # the crossed and the open assembly
+[[2.32172, 1.88642]]
 """
 
-from mechnum.mechanisms.finger.drawing import draw
-from mechnum.mechanisms.finger.examples import (
-                                                FIG1_GIVEN,
-                                                FIG1_PRINTED,
-                                                MAX_VECTORS,
-                                                fig1_vectors,
-                                                ill_conditioned_example,
-                                                loop_closure,
-)
-from mechnum.mechanisms.finger.model import (
-                                                CROSSED,
-                                                MODES,
-                                                OPEN,
-                                                Linkage,
-                                                Pose,
-                                                angles_from_points,
-                                                forward,
-                                                freudenstein_coefficients,
-                                                inverse,
-                                                place_links,
-                                                pose,
-                                                pose_from_output,
-                                                reachable,
-                                                workspace,
-)
-from mechnum.mechanisms.finger.study import (
-                                                MM,
-                                                STUDY_OMEGAS,
-                                                TABLE1_EI,
-                                                TABLE1_R4,
-                                                TABLE2_THETA_IN,
-                                                TABLE2_THETA_IN_UNROUNDED,
-                                                TABLE2_THETA_OUT,
-                                                TABLE3_LINKAGE,
-                                                column_shifts,
-                                                published_points,
-                                                reproduce,
-                                                table1_linkage,
-)
-from mechnum.mechanisms.finger.synthesis import (
-                                                Synthesis,
-                                                design_matrix,
-                                                lengths_from_coefficients,
-                                                linkage_from_coefficients,
-                                                synthesize,
+import importlib
+
+from mechnum.mechanisms.finger._drawing import draw
+from mechnum.mechanisms.finger._model import (
+    Linkage,
+    angles_from_points,
+    forward,
+    freudenstein_coefficients,
+    inverse,
+    place_links,
+    workspace,
 )
 
-__all__ = [
-    # model
-    "CROSSED", "OPEN", "MODES", "Linkage", "Pose", "freudenstein_coefficients", "forward",
-    "inverse", "workspace", "place_links", "angles_from_points", "pose", "pose_from_output",
-    "reachable",
-    # synthesis
-    "Synthesis", "design_matrix", "synthesize", "lengths_from_coefficients",
-    "linkage_from_coefficients",
-    # drawing
-    "draw",
-    # examples
-    "FIG1_GIVEN", "FIG1_PRINTED", "MAX_VECTORS", "ill_conditioned_example", "loop_closure",
-    "fig1_vectors",
-    # study
-    "MM", "TABLE1_EI", "TABLE1_R4", "TABLE2_THETA_IN", "TABLE2_THETA_OUT",
-    "TABLE2_THETA_IN_UNROUNDED", "STUDY_OMEGAS", "TABLE3_LINKAGE", "table1_linkage",
-    "published_points", "column_shifts", "reproduce",
-]
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called): the points of a pose, and the synthesis (a Result).
+from mechnum.mechanisms.finger._model import Pose as Pose
+from mechnum.mechanisms.finger._synthesis import Synthesis as Synthesis
+from mechnum.mechanisms.finger._synthesis import (
+    design_matrix,
+    lengths_from_coefficients,
+    linkage_from_coefficients,
+    synthesize,
+)
+
+__all__ = ["Linkage", "angles_from_points", "design_matrix", "draw", "forward",
+           "freudenstein_coefficients", "inverse", "lengths_from_coefficients",
+           "linkage_from_coefficients", "place_links", "synthesize", "workspace"]
+
+
+def __getattr__(name: str) -> object:
+    """The :mod:`~mechnum.mechanisms.finger.study` module, imported on first use."""
+    if name == "study":
+        return importlib.import_module(f"{__name__}.study")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

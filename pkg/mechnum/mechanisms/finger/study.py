@@ -1,18 +1,30 @@
-"""The finger study's data, in metres, and its numbers recomputed, in its millimetres.
+"""The finger study's data, in metres, its examples, and its numbers recomputed, in its
+millimetres.
 
 The study prints its points and lengths in millimetres; the package works in metres, so its
 tables are stored here converted (:data:`MM` metres per millimetre), and :func:`reproduce` gives
 its numbers back in the study's units, keyed by the registry's ``quantity``, for the chapter's
 reproduction table. :func:`published_points` reads a table of points as the study prints it
 (from the registry) into metres, and :func:`column_shifts` compares two tables.
+
+The study opens with two other examples: a system whose matrix is nearly singular (its example
+1.1, :func:`ill_conditioned_example`) and a loop of nine vectors whose printed solution should
+close (its Fig. 1: :data:`FIG1_GIVEN`, :data:`FIG1_PRINTED`, :func:`fig1_vectors`,
+:func:`loop_closure`).
 """
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate, linear
-from mechnum.mechanisms.finger.examples import fig1_vectors, ill_conditioned_example, loop_closure
-from mechnum.mechanisms.finger.model import (
+from mechnum.mechanisms.finger._examples import (
+    FIG1_GIVEN,
+    FIG1_PRINTED,
+    fig1_vectors,
+    ill_conditioned_example,
+    loop_closure,
+)
+from mechnum.mechanisms.finger._model import (
     Linkage,
     angles_from_points,
     forward,
@@ -20,7 +32,12 @@ from mechnum.mechanisms.finger.model import (
     place_links,
     workspace,
 )
-from mechnum.mechanisms.finger.synthesis import design_matrix, synthesize
+from mechnum.mechanisms.finger._synthesis import design_matrix, synthesize
+
+__all__ = ["FIG1_GIVEN", "FIG1_PRINTED", "MM", "STUDY_OMEGAS", "TABLE1_EI", "TABLE1_R4",
+           "TABLE2_THETA_IN", "TABLE2_THETA_IN_UNROUNDED", "TABLE2_THETA_OUT", "TABLE3_LINKAGE",
+           "column_shifts", "fig1_vectors", "ill_conditioned_example", "loop_closure",
+           "published_points", "reproduce", "table1_linkage"]
 
 MM = 1e-3
 """Metres per millimetre: the study's unit of length, converted at the edges."""
@@ -75,7 +92,8 @@ def published_points(published: dict, table: int,
     Parameters
     ----------
     published : dict
-        ``{quantity: printed text}`` of the registry (``mechnum.published.read_published``),
+        ``{quantity: printed text}`` of the registry (``read_published`` of the book's
+        ``published`` module),
         with keys ``"Table <t> pos <i> <I|E> <x|y>"`` (printed in millimetres).
     table : int
         One of the tables of points: 1, 4, 5, 7, 8, 9, 10.
@@ -173,13 +191,13 @@ def reproduce() -> dict[str, float]:
     L1 = table1_linkage()
     theta_in, theta_out = angles_from_points(TABLE1_EI[:, :2], TABLE1_EI[:, 2:], TABLE1_R4)
     values.update(_table_rows(1, place_links(L1, inverse(L1, theta_out)[:, 0], theta_out).I,
-                              place_links(L1, theta_in, forward(L1, theta_in)[:, 0]).E))
+                              place_links(L1, theta_in, forward(L1, theta_in).x[:, 0]).E))
     # Table 2: each angle from the other one through the published linkage (Table 3).
     published = TABLE3_LINKAGE
     ok = workspace(published, TABLE2_THETA_IN)
-    for i, value in zip(np.flatnonzero(ok), forward(published, TABLE2_THETA_IN[ok])[:, 0]):
+    for i, value in zip(np.flatnonzero(ok), forward(published, TABLE2_THETA_IN[ok]).x[:, 0]):
         values[f"Table 2 pos {i + 1} theta_1"] = float(value)
-    ok = workspace(published, TABLE2_THETA_OUT, "output")
+    ok = workspace(published, TABLE2_THETA_OUT, driver="output")
     for i, value in zip(np.flatnonzero(ok), inverse(published, TABLE2_THETA_OUT[ok])[:, 0]):
         values[f"Table 2 pos {i + 1} theta_3"] = float(value)
     # Table 3: the least-squares fit of Table 2. Table 4: the rockers of Table 3 placed at

@@ -31,89 +31,68 @@ Every function takes the mechanism, a :class:`Geometry`, first (``f(mech, inputs
 the motor's state ``(theta2, omega2, alpha2)`` (or the time ``t``) is its input, and a state,
 what :func:`draw` draws, is the pair ``(theta2, x)``. Every public function checks its input
 (finite real arrays of the right shapes, a :class:`Geometry`, known options) and raises
-:class:`ValueError` naming the argument; the solvers work on the unchecked kernels
-(:mod:`~mechnum.mechanisms.hacksaw.kernels`), so the checks cost nothing inside Newton's loop.
-The argument orders of version 0.1, with the geometry last, are deprecated (CHANGELOG.md).
+:class:`ValueError` naming the argument; the solvers work on the unchecked kernels, so the
+checks cost nothing inside Newton's loop.
 
-The package's modules:
+What the package holds:
 
-* :mod:`~mechnum.mechanisms.hacksaw.model`: the unknowns (``NAMES``), the links
-  (:class:`Geometry`), the motor's profile (:func:`motor`, :func:`first_revolution_time`), the
-  study's seeds and tolerance, and the input checks;
-* :mod:`~mechnum.mechanisms.hacksaw.equations`: the constraints and their Jacobians
-  (:func:`position_residual`, :func:`position_jacobian`, :func:`rate_jacobian`,
-  :func:`velocity_residual`, :func:`acceleration_residual`, :func:`residual`,
-  :func:`jacobian`);
-* :mod:`~mechnum.mechanisms.hacksaw.kernels`: their formulas on checked input;
-* :mod:`~mechnum.mechanisms.hacksaw.exact`: the kinematics without iteration, in closed form
-  (:func:`closed_form`, both assembly modes: :func:`forward`), the rates by linear solves
-  (:func:`solve_rates`) and the singular points (:func:`singular_points`);
-* :mod:`~mechnum.mechanisms.hacksaw.solvers`: Newton as the study applies it, to one point in
-  stages (:func:`solve_consecutive`) or at once (:func:`solve_simultaneous`), and along a
-  trajectory (:func:`sweep`);
-* :mod:`~mechnum.mechanisms.hacksaw.drawing`: :func:`joints` and :func:`draw`;
-* :mod:`~mechnum.mechanisms.hacksaw.study`: :func:`reproduce`, the study's numbers.
+* the unknowns (:data:`NAMES`), the links (:class:`Geometry`) and the motor's profile
+  (:func:`motor`, :func:`first_revolution_time`);
+* the constraints and their Jacobians (:func:`position_residual`, :func:`position_jacobian`,
+  :func:`rate_jacobian`, :func:`velocity_residual`, :func:`acceleration_residual`,
+  :func:`residual`, :func:`jacobian`);
+* the kinematics without iteration: in closed form (:func:`closed_form`, the study's mode;
+  :func:`forward`, both assembly modes), the rates by linear solves (:func:`solve_rates`) and
+  the singular points (:func:`singular_points`);
+* Newton as the study applies it, to one point in stages (:func:`solve_consecutive`) or at
+  once (:func:`solve_simultaneous`), and along a trajectory (:func:`sweep`);
+* :func:`joints` and :func:`draw`.
+
+The study's data (its saw, seeds and tolerance) and its reproduction are in
+:mod:`mechnum.mechanisms.hacksaw.study`.
+
+Examples
+--------
+>>> from mechnum.mechanisms import hacksaw
+>>> saw = hacksaw.Geometry()                     # the study's link lengths
+>>> hacksaw.forward(saw, (0.0, 0.0, 0.0)).x[0, :3].round(4).tolist()   # r1, theta1, theta3
+[-0.0997, -0.4684, 2.8737]
 """
 
-from mechnum.mechanisms.hacksaw.drawing import DRAW_PAD, draw, joints
-from mechnum.mechanisms.hacksaw.equations import (
-                                                  DEAD_POINT_COS,
-                                                  acceleration_residual,
-                                                  jacobian,
-                                                  position_jacobian,
-                                                  position_residual,
-                                                  rate_jacobian,
-                                                  residual,
-                                                  velocity_residual,
-)
-from mechnum.mechanisms.hacksaw.exact import (
-                                                  POSITION_RTOL,
-                                                  SingularPoints,
-                                                  closed_form,
-                                                  forward,
-                                                  singular_points,
-                                                  solve_rates,
-)
-from mechnum.mechanisms.hacksaw.kernels import MODES
-from mechnum.mechanisms.hacksaw.model import (
-                                                  ALPHA_MAX,
-                                                  FORMS,
-                                                  NAMES,
-                                                  REPORT_SEED,
-                                                  STUDY,
-                                                  STUDY_SEED,
-                                                  TOL,
-                                                  TRAJECTORY_SEED,
-                                                  Geometry,
-                                                  first_revolution_time,
-                                                  motor,
-)
-from mechnum.mechanisms.hacksaw.solvers import (
-                                                  MAX_POINTS,
-                                                  METHODS,
-                                                  PREDICTORS,
-                                                  SweepResult,
-                                                  solve_consecutive,
-                                                  solve_simultaneous,
-                                                  sweep,
-)
-from mechnum.mechanisms.hacksaw.study import reproduce
+import importlib
 
-__all__ = [
-    # model
-    "NAMES", "ALPHA_MAX", "TOL", "STUDY_SEED", "REPORT_SEED", "TRAJECTORY_SEED", "FORMS",
-    "Geometry", "STUDY", "first_revolution_time", "motor",
-    # equations
-    "DEAD_POINT_COS", "position_residual", "position_jacobian", "rate_jacobian",
-    "velocity_residual", "acceleration_residual", "residual", "jacobian",
-    # exact
-    "MODES", "POSITION_RTOL", "closed_form", "forward", "solve_rates", "SingularPoints",
-    "singular_points",
-    # solvers
-    "METHODS", "PREDICTORS", "MAX_POINTS", "solve_consecutive", "solve_simultaneous",
-    "SweepResult", "sweep",
-    # drawing
-    "DRAW_PAD", "joints", "draw",
-    # study
-    "reproduce",
-]
+from mechnum.mechanisms.hacksaw._drawing import draw, joints
+from mechnum.mechanisms.hacksaw._equations import (
+    jacobian,
+    position_jacobian,
+    position_residual,
+    residual,
+)
+
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.hacksaw._exact import SingularPoints as SingularPoints
+from mechnum.mechanisms.hacksaw._exact import (
+    closed_form,
+    forward,
+    singular_points,
+)
+from mechnum.mechanisms.hacksaw._model import NAMES, Geometry, first_revolution_time, motor
+from mechnum.mechanisms.hacksaw._solvers import Stages as Stages
+from mechnum.mechanisms.hacksaw._solvers import SweepResult as SweepResult
+from mechnum.mechanisms.hacksaw._solvers import (
+    solve_consecutive,
+    solve_simultaneous,
+    sweep,
+)
+
+__all__ = ["NAMES", "Geometry", "closed_form", "draw", "first_revolution_time", "forward",
+           "jacobian", "joints", "motor", "position_jacobian", "position_residual", "residual",
+           "singular_points", "solve_consecutive", "solve_simultaneous", "sweep"]
+
+
+def __getattr__(name: str) -> object:
+    """The :mod:`~mechnum.mechanisms.hacksaw.study` module, imported on first use."""
+    if name == "study":
+        return importlib.import_module(f"{__name__}.study")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,14 +1,28 @@
-"""The study's numbers, recomputed for the registry's rows of Chapter 1.
+"""The hacksaw study's data, and its numbers recomputed for the registry's rows of Chapter 1.
 
-:func:`~mechnum.mechanisms.hacksaw.reproduce` returns them keyed by the registry's
-``quantity``.
+The study's saw (:data:`STUDY`), the three seeds it uses (:data:`STUDY_SEED`, the MATLAB
+code's; :data:`REPORT_SEED`, the report's, the six rates' signs flipped;
+:data:`TRAJECTORY_SEED`, the first trajectory point's, the rounded solution at rest) and its
+tolerance on the Euclidean norm of the Newton step (:data:`TOL`); :func:`reproduce` returns
+every number of the study that the registry holds, keyed by the registry's ``quantity``.
 """
 
 import numpy as np
 
-from mechnum.mechanisms.hacksaw.exact import closed_form
-from mechnum.mechanisms.hacksaw.model import NAMES, STUDY, STUDY_SEED, first_revolution_time, motor
-from mechnum.mechanisms.hacksaw.solvers import solve_consecutive, solve_simultaneous, sweep
+from mechnum.mechanisms.hacksaw._exact import closed_form
+from mechnum.mechanisms.hacksaw._model import (
+    NAMES,
+    REPORT_SEED,
+    STUDY,
+    STUDY_SEED,
+    TOL,
+    TRAJECTORY_SEED,
+    first_revolution_time,
+    motor,
+)
+from mechnum.mechanisms.hacksaw._solvers import solve_consecutive, solve_simultaneous, sweep
+
+__all__ = ["REPORT_SEED", "STUDY", "STUDY_SEED", "TOL", "TRAJECTORY_SEED", "reproduce"]
 
 
 def reproduce() -> dict[str, float]:
@@ -28,7 +42,7 @@ def reproduce() -> dict[str, float]:
     T = first_revolution_time()
     speed = float(motor(T)[1])
     rest = (0.0, 0.0, 0.0)
-    pos, vel, acc = solve_consecutive(STUDY, rest, STUDY_SEED)
+    pos, vel, acc = solve_consecutive(STUDY, rest, STUDY_SEED).stages
     simultaneous = solve_simultaneous(STUDY, rest, STUDY_SEED)
     t = np.linspace(0.0, 2 * T, 1000)
     exact = closed_form(STUDY, t)

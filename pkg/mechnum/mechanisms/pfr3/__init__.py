@@ -3,106 +3,75 @@
 Three sliders on straight guides move the clamped ends of three flexible rods whose other ends
 are pinned to the vertices of a rigid triangular platform, which carries a force and a moment.
 
-* :mod:`~mechnum.mechanisms.pfr3.model`: the :class:`Mechanism`, the study's examples
-  (:data:`TABLE8`, :data:`TABLE2`), and the equilibrium equations in closed form, in a
-  formulation that admits only real assemblies of the platform (never its mirror image);
-* :mod:`~mechnum.mechanisms.pfr3.equilibria`: :func:`forward_elliptic` (the protocol's
-  :func:`forward`), every equilibrium for given slider inputs, and :func:`inverse`, for a given
-  pose;
-* :mod:`~mechnum.mechanisms.pfr3.analysis`: each equilibrium's stability, crossings, bending
-  strain and an independent check;
-* :mod:`~mechnum.mechanisms.pfr3.shooting`: the study's RK4 shooting, inverse and direct;
-* :mod:`~mechnum.mechanisms.pfr3.paths`: trajectories by continuation, the determinants of the
-  direct and inverse problems, maps over the plane, singularity curves
-  (:func:`singular_points`) and the workspace's edge (:func:`workspace`);
-* :mod:`~mechnum.mechanisms.pfr3.atlases`: :func:`atlas`, the equilibria and the stable ones
-  over a grid of slider inputs on a plane (:func:`plane`), and the folds;
-* :mod:`~mechnum.mechanisms.pfr3.study`: the study's published numbers, the inputs they belong
-  to, and its own residual; :func:`reproduce` gives the registry's values;
-* :mod:`~mechnum.mechanisms.pfr3.drawing`: :func:`shapes` and :func:`draw`.
+* the :class:`Mechanism` and the equilibrium equations in closed form, in a formulation that
+  admits only real assemblies of the platform (never its mirror image): the reduced one
+  (:func:`forward_system`) and the full one (:func:`full_system`), with the rods
+  (:func:`rods`), the clamps (:func:`clamps`), the pins (:func:`pins`) and the pose of the tips
+  (:func:`pose_of_tips`);
+* :func:`forward`, every equilibrium for given slider inputs (from the physical starts of
+  :func:`sampler`), and :func:`inverse`, for a given pose;
+* each equilibrium's stability (:func:`stability`, :func:`index`, :func:`second_variation`),
+  crossings (:func:`crossings`), bending strain (:func:`strain`) and an independent check
+  (:func:`verify`);
+* the study's RK4 shooting, direct and inverse (:func:`forward_shooting`,
+  :func:`inverse_shooting`, :func:`shooting_guess`, :func:`shooting_system`);
+* trajectories by continuation (:func:`forward_path`, :func:`inverse_path`), the determinants
+  of the direct and inverse problems (:func:`jacobians`), maps over the plane
+  (:func:`inverse_map`), singularity curves (:func:`singular_points`) and the workspace's edge
+  (:func:`workspace`);
+* :func:`atlas`, the equilibria and the stable ones over a grid of slider inputs on a plane,
+  and the folds;
+* :func:`shapes` and :func:`draw`; :func:`certify_forward`, every equilibrium proven.
 
 The mechanism protocol, the same verbs as the 2RFR's, the mechanism first: :func:`forward`
 (with ``status`` and ``stable``), :func:`inverse`, :func:`singular_points`, :func:`workspace`,
 :func:`atlas` and ``draw(ax, mech, state, *, artists=None)``. The shared parts (results,
-searches, paths, maps) are :mod:`mechnum.rods.assembly`'s; the study's constants
-:mod:`mechnum.mechanisms.thesis`'s.
+searches, paths, maps) are ``mechanisms._assembly``'s; the study's constants
+:mod:`mechnum.mechanisms.thesis`'s. Its study (the examples of Tablas 8 and 2 and of the
+shooting programs, the published numbers, the inputs they belong to and their reproduction) is
+:mod:`mechnum.mechanisms.pfr3.study`, imported on first use.
 """
 
-from mechnum.mechanisms.pfr3.analysis import (
-    crossings,
+from mechnum.mechanisms.pfr3._analysis import (
     index,
-    resolutions,
-    second_variation,
-    stability,
-    strain,
     verify,
 )
-from mechnum.mechanisms.pfr3.atlases import atlas, plane
-from mechnum.mechanisms.pfr3.certified import certify_forward
-from mechnum.mechanisms.pfr3.drawing import draw, shapes
-from mechnum.mechanisms.pfr3.equilibria import (
-    Equilibria,
-    forward,
-    forward_elliptic,
-    inverse,
-    inverse_sampler,
-    sampler,
-)
-from mechnum.mechanisms.pfr3.model import (
-    LAYOUT,
-    SHOOTING_EXAMPLE,
-    SHOOTING_POSE,
-    TABLE2,
-    TABLE2_LAMBDAS,
-    TABLE8,
-    TABLE8_LAMBDAS,
+from mechnum.mechanisms.pfr3._atlases import atlas
+from mechnum.mechanisms.pfr3._drawing import draw
+from mechnum.mechanisms.pfr3._elliptic import forward, inverse, sampler
+from mechnum.mechanisms.pfr3._model import (
     Mechanism,
-    chart_from_thesis,
-    check_closure,
     clamps,
     forward_system,
     full_system,
     pins,
-    pose_of_tips,
-    thesis_from_chart,
+    rods,
 )
-from mechnum.mechanisms.pfr3.paths import (
-    Path,
+from mechnum.mechanisms.pfr3._paths import (
     forward_path,
     inverse_map,
     inverse_path,
     jacobians,
     singular_points,
     workspace,
-    workspace_edge,
 )
-from mechnum.mechanisms.pfr3.reproduction import reproduce
-from mechnum.mechanisms.pfr3.shooting import (
-    Shooting,
+from mechnum.mechanisms.pfr3._shooting import (
     forward_shooting,
     inverse_shooting,
     shooting_guess,
-    shooting_system,
 )
-from mechnum.mechanisms.pfr3.study import (
-    TABLE8_PUBLISHED,
-    digit_matches,
-    orientation,
-    recover_inputs,
-    thesis_residual,
-    within_study_reach,
-)
+from mechnum.mechanisms.pfr3.certified import certify_forward
 
-__all__ = [
-    "LAYOUT", "SHOOTING_EXAMPLE", "SHOOTING_POSE", "TABLE2", "TABLE2_LAMBDAS", "TABLE8",
-    "TABLE8_LAMBDAS", "TABLE8_PUBLISHED", "Equilibria", "Mechanism", "Path", "Shooting",
-    "atlas", "certify_forward", "chart_from_thesis", "check_closure", "clamps", "crossings",
-    "digit_matches", "draw",
-    "forward", "forward_elliptic", "forward_path", "forward_shooting", "forward_system",
-    "full_system", "index", "inverse", "inverse_map", "inverse_path", "inverse_sampler",
-    "inverse_shooting", "jacobians", "orientation", "pins", "plane", "pose_of_tips",
-    "recover_inputs",
-    "reproduce", "resolutions", "sampler", "second_variation", "shapes", "shooting_guess",
-    "shooting_system", "singular_points", "stability", "strain", "thesis_from_chart",
-    "thesis_residual", "verify", "within_study_reach", "workspace", "workspace_edge",
-]
+__all__ = ["Mechanism", "atlas", "certify_forward", "clamps", "draw", "forward", "forward_path",
+           "forward_shooting", "forward_system", "full_system", "index", "inverse", "inverse_map",
+           "inverse_path", "inverse_shooting", "jacobians", "pins", "rods", "sampler",
+           "shooting_guess", "singular_points", "verify", "workspace"]
+
+
+def __getattr__(name: str) -> object:
+    """The study (:mod:`mechnum.mechanisms.pfr3.study`), imported on first use."""
+    if name == "study":
+        import importlib
+
+        return importlib.import_module(f"{__name__}.study")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,13 +1,13 @@
 """Equilibria of the 3PFR for given slider inputs, proven by interval arithmetic.
 
-:func:`~mechnum.mechanisms.pfr3.certified.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.pfr3.equilibria.forward_elliptic`: the same six reduced equations
-(:func:`~mechnum.mechanisms.pfr3.model.forward_system`: the tips form the platform, ``d_1 / b_1
+:func:`~mechnum.mechanisms.pfr3.certify_forward` is the certified counterpart of
+:func:`~mechnum.mechanisms.pfr3.forward`: the same six reduced equations
+(:func:`~mechnum.mechanisms.pfr3.forward_system`: the tips form the platform, ``d_1 / b_1
 = d_2 / b_2`` and ``|d_1 / b_1| = 1`` in complex numbers with ``d_i = tip_i - centroid``; the
 forces carry ``F``; the moments about the centroid carry ``M``) in the same chart, re-derived
-from the :class:`~mechnum.mechanisms.pfr3.model.Mechanism`'s public fields and
-:func:`~mechnum.mechanisms.pfr3.model.clamps`, and enclosed over boxes
-(:mod:`mechnum.rods.balls`). Two exclusion tests of the mechanism's own speed the search up:
+from the :class:`~mechnum.mechanisms.pfr3.Mechanism`'s public fields and
+:func:`~mechnum.mechanisms.pfr3.clamps`, and enclosed over boxes
+(:mod:`mechnum.rods.certified`). Two exclusion tests of the mechanism's own speed the search up:
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
@@ -17,7 +17,7 @@ of boxes, then Krawczyk's search of their clusters); rods beyond the chart (``q 
 forces above about ``9e4 EI / L**2``) are outside the claim (no a-priori bound of the load is
 derived for the platform). Its certificate (its inputs: :func:`certificate_inputs`) is
 re-checked against the caller's own inputs by :func:`verify_certificate`. With ``around``
-(chart points, for example the sampled ``forward_elliptic(...).chart``), it covers a small box
+(chart points, for example the sampled ``forward(...).x``), it covers a small box
 around each point: each equilibrium there is then proven to exist, alone in its box, and the
 count is a lower bound.
 
@@ -29,13 +29,21 @@ stiffnesses); ``stable`` is True or False where proven (:func:`mechnum.rods.prov
 None otherwise.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import acb, arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify, rods
-from mechnum.mechanisms.pfr3.model import Mechanism, clamps
-from mechnum.rods import certified, regular
-from mechnum.rods.assembly import check_type
+from mechnum.mechanisms._assembly import check_type
+from mechnum.mechanisms.pfr3._model import Mechanism, clamps
+from mechnum.rods import certified, k_rel_from_t
+
+# certify_forward is pfr3's
+__all__ = ["certificate_inputs", "certify_stability", "chart", "system", "verify_certificate"]
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -48,16 +56,16 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, lambdas, modes=(1, 1, 1)):
+def system(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1)) -> tuple:
     """``residual, jacobian, rods, exclude`` of the 3PFR's reduced closed form over boxes
     (``exclude.split``: the cut of :func:`mechnum.rods.certified.forces_split`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS, chart_from_thesis
     >>> f, J, rods, exclude = system(TABLE8, TABLE8_LAMBDAS)
     >>> z = chart_from_thesis([5.1834, -0.7267, 5.0059, -0.9286, 2.6908, -0.0952])
-    >>> X = [certify.ball(v - 1e-3, v + 1e-3) for v in z]
+    >>> X = [certify.balls.ball(v - 1e-3, v + 1e-3) for v in z]
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True, True, True], False)
     """
@@ -115,7 +123,7 @@ def system(mech, lambdas, modes=(1, 1, 1)):
         if certified.forces_exclude(rs, mech.force):
             return True
         for i, j in ((0, 1), (1, 2), (2, 0)):
-            box = [certify.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
+            box = [certify.balls.bounds(rs[i].tip[k] - rs[j].tip[k]) for k in range(2)]
             low, high = certified._norm_range(box)
             if bool(a < low) or bool(a > high):
                 return True
@@ -146,10 +154,10 @@ def _reduced(rs):
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 3PFR's three rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.pfr3.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -159,19 +167,20 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(3)
 
 
-def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: ArrayLike,
+                       modes: Sequence = (1, 1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``lambdas`` and the domain they imply, the chart (:func:`chart`).
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate or ~mechnum.rods.CoCertificate
+    certificate : ~mechnum.certify.Certificate or ~mechnum.rods.CoCertificate
         A certificate of a search around given points, or of the whole chart; a
         :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
-        by :func:`mechnum.rods.verify_corefined` on the rods and equations that ``mech``
+        by :func:`mechnum.rods.certified.verify_corefined` on the rods and equations that ``mech``
         implies, each rod's domain derived again.
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
     modes : tuple of int, optional
@@ -181,18 +190,19 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified or ~mechnum.rods.CoVerified
+    ~mechnum.certify.Verified or ~mechnum.rods.CoVerified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
-        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.verify_corefined`).
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.certified.verify_corefined`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:1]
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> sampled = forward(TABLE8, TABLE8_LAMBDAS, rng=0).x[:1]
     >>> cert = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled).certificate()
     >>> v = verify_certificate(cert, TABLE8, TABLE8_LAMBDAS)
     >>> v.count, v.scope, v.complete
@@ -204,13 +214,14 @@ def verify_certificate(certificate, mech, lambdas, modes=(1, 1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, around=None,
-                    max_live=rods.MAX_LIVE):
+def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1), *,
+                    max_boxes: int = MAX_BOXES, around: ArrayLike | None = None,
+                    max_live: int = certified.MAX_LIVE) -> certified.Certified:
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     modes : (int, int, int), optional
@@ -219,7 +230,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 6), optional
         Chart points to search around (boxes of half-width
-        :data:`mechnum.rods.certified.AROUND` times the chart's ranges) instead of the whole
+        ``mechnum.rods.certified.AROUND`` times the chart's ranges) instead of the whole
         chart.
     max_live : int, optional
         Without ``around``: the most live triples of boxes after a round of the
@@ -230,7 +241,7 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     -------
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
-        ``(psi_i, k_rel_i)`` (``forward_elliptic``'s coordinates), sorted by ``psi1``;
+        ``(psi_i, k_rel_i)`` (``forward``'s coordinates), sorted by ``psi1``;
         ``stable``: True, False or None (see the module); ``scope``: ``"all"`` (the chart's
         whole domain searched by co-refinement, a :class:`~mechnum.rods.CertifiedAll`;
         ``complete``: the count is a theorem over it) or, with ``around``, ``"existence"``
@@ -241,16 +252,17 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     --------
     Each of the equilibria that the sampling finds, proven (here the first):
 
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0)
-    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.chart[:1])
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> sampled = forward(TABLE8, TABLE8_LAMBDAS, rng=0)
+    >>> r = certify_forward(TABLE8, TABLE8_LAMBDAS, around=sampled.x[:1])
     >>> r.count, r.scope, r.complete, np.round(r.solutions[0], 4).tolist()
     (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
     f, J, _, exclude = system(mech, lambdas, modes)
     if around is None:
-        result = rods.corefine(chart_rods(mech, lambdas, modes), assembly(mech),
+        result = rods.corefine(_chart_rods(mech, lambdas, modes), _assembly(mech),
                                (f, J, exclude, exclude.split), max_live=max_live,
                                max_boxes=max_boxes)
         part = result.search
@@ -260,20 +272,21 @@ def certify_forward(mech, lambdas, modes=(1, 1, 1), *, max_boxes=MAX_BOXES, arou
     z = part.x
     solutions = z.copy()
     if len(z):
-        solutions[:, 1::2] = regular.k_rel_from_t(z[:, 0::2], z[:, 1::2])
-    stable = stability(mech, lambdas, part.roots, modes)
+        solutions[:, 1::2] = k_rel_from_t(z[:, 0::2], z[:, 1::2])
+    stable = certify_stability(mech, lambdas, part.roots, modes)
     if around is not None:
         return certified.combine([part], solutions, stable, certified.around_note(around))
     return rods.certified_all(result, solutions, stable)
 
 
-def stability(mech, lambdas, roots, modes=(1, 1, 1)):
+def certify_stability(mech: Mechanism, lambdas: ArrayLike, roots: ArrayLike,
+              modes: Sequence = (1, 1, 1)) -> list:
     """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
     False (unstable) or None (a sign not proven).
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.pfr3.model.Mechanism
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         Slider inputs (m).
     roots : array_like, shape (k, 6, 2)
@@ -287,9 +300,10 @@ def stability(mech, lambdas, roots, modes=(1, 1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.pfr3 import TABLE8, TABLE8_LAMBDAS, forward_elliptic
-    >>> z = forward_elliptic(TABLE8, TABLE8_LAMBDAS, rng=0).chart[:2]
-    >>> stability(TABLE8, TABLE8_LAMBDAS, np.stack((z - 1e-12, z + 1e-12), axis=-1))
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> z = forward(TABLE8, TABLE8_LAMBDAS, rng=0).x[:2]
+    >>> certify_stability(TABLE8, TABLE8_LAMBDAS, np.stack((z - 1e-12, z + 1e-12), axis=-1))
     [True, True]
     """
     modes = _modes(modes)
@@ -301,16 +315,16 @@ def stability(mech, lambdas, roots, modes=(1, 1, 1)):
         _reduced(placed(certified.enclosed(root), True))) for root in roots]
 
 
-def chart_rods(mech, lambdas, modes=(1, 1, 1)):
+def _chart_rods(mech, lambdas, modes=(1, 1, 1)):
     """The three rods as the co-refinement searches them: each chart whole (no a-priori bound
     of the load is derived for the platform)."""
     check_type(mech, Mechanism)
     origin = clamps(mech, _validate.array(lambdas, "lambdas", shape=(3,)))
-    return [rods.ChartRod(mech.EI, mech.L, m, origin[i], mech.clamp_angles[i])
+    return [certified.ChartRod(mech.EI, mech.L, m, origin[i], mech.clamp_angles[i])
             for i, m in enumerate(_modes(modes))]
 
 
-def assembly(mech):
+def _assembly(mech):
     """The tips as far apart as the platform's pins, spanning its triangle (not its mirror
     image), the forces summing to the load, their moments about the centroid to its moment:
     the co-refinement's tests."""
@@ -318,12 +332,13 @@ def assembly(mech):
     b = mech.vertices
     u, v = b[1] - b[0], b[2] - b[0]
     area = 0.5 * float(u[0] * v[1] - u[1] * v[0])
-    return rods.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
+    return certified.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
                                for i in range(3) for j in range(i + 1, 3)),
                          mech.force, mech.moment, area, b)
 
 
-def certificate_inputs(mech, lambdas, modes=(1, 1, 1)):
+def certificate_inputs(mech: Mechanism, lambdas: ArrayLike,
+                       modes: Sequence = (1, 1, 1)) -> dict:
     """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
     fields, the slider inputs and the modes (JSON-ready)."""
     check_type(mech, Mechanism)
@@ -344,5 +359,5 @@ def _verify_corefined(certificate, mech, lambdas, modes, scope):
         raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
                                        f"{scope!r}")
     f, J, _, exclude = system(mech, lambdas, modes)
-    return rods.verify_corefined(certificate, chart_rods(mech, lambdas, modes), assembly(mech),
-                                 f, J, exclude)
+    return certified.verify_corefined(certificate, _chart_rods(mech, lambdas, modes),
+                                      _assembly(mech), f, J, exclude)

@@ -12,67 +12,65 @@ guide (the prismatic input ``lambda_i``) and a bar of length ``L`` from ``C_i`` 
 The loop-closure equations, with the bar angles eliminated, are ``|P_i - C_i|^2 = L^2``
 (:func:`loop_residuals`). Every function takes the mechanism, a :class:`Geometry`, first
 (``f(mech, inputs, ...)``); poses are ``(x, y, psi)`` and inputs ``lambdas``; a state, what
-:func:`draw` draws, is the pair ``(lambdas, pose)``. The package's modules:
+:func:`draw` draws, is the pair ``(lambdas, pose)``. What the package holds:
 
-* :mod:`~mechnum.mechanisms.prr3.geometry`: :class:`Geometry`, the vertices, the loop
-  equations, their Jacobians in the pose and in the inputs, and the singularity measures, each
-  on checked input; :mod:`~mechnum.mechanisms.prr3.kernels` holds their formulas;
-* :mod:`~mechnum.mechanisms.prr3.inverse`: the inverse problem (pose -> inputs), a line-circle
-  cut per leg, up to 8 solutions (:func:`inverse`, :func:`branch_inputs`), and the workspace;
-* :mod:`~mechnum.mechanisms.prr3.elimination`: the study's degree-8 polynomial in
-  ``t = tan(psi/2)`` (:func:`polynomial`), its factor ``1 + t^2`` (:func:`deflate`), and the
-  same problem as four quadratics for a homotopy (:func:`equations`);
-* :mod:`~mechnum.mechanisms.prr3.direct`: the forward (direct) problem (inputs -> poses), at
-  most 6 poses, for one input or thousands at once (:func:`forward`), and Newton from many
-  seeds as a check (:func:`forward_by_newton`);
-* :mod:`~mechnum.mechanisms.prr3.singularities`: the singular poses along a segment
-  (:func:`singular_points`);
-* :mod:`~mechnum.mechanisms.prr3.paths`: a path of poses between two assembly modes of one
-  input that crosses no singularity (:func:`mode_change_path`);
-* :mod:`~mechnum.mechanisms.prr3.drawing`: :func:`draw`;
-* :mod:`~mechnum.mechanisms.prr3.study`: the study's examples (:data:`EXAMPLES`) and
-  :func:`reproduce`;
-* :mod:`~mechnum.mechanisms.prr3.annex_i`: the polynomial's coefficients as typeset in the
-  study's Annex I, term by term (:func:`annex_i_terms`), for the chapter's audit.
+* :class:`Geometry`, the vertices and sliders, the loop equations, their Jacobians in the
+  pose and in the inputs, and the singularity measures (:func:`vertices`, :func:`sliders`,
+  :func:`bars`, :func:`loop_residuals`, :func:`direct_jacobian`, :func:`inverse_jacobian`,
+  :func:`jacobian_dets`, :func:`radicands`), each on checked input;
+* the inverse problem (pose -> inputs), a line-circle cut per leg, up to 8 solutions
+  (:func:`inverse`, :func:`branch_inputs`), and the workspace (:func:`workspace`);
+* the study's degree-8 polynomial in ``t = tan(psi/2)`` (:func:`polynomial`), its factor
+  ``1 + t^2`` (:func:`deflate`), and the same problem as four quadratics for a homotopy
+  (:func:`equations`, :func:`solutions_from_equations`);
+* the forward (direct) problem (inputs -> poses), at most 6 poses, for one input or
+  thousands at once (:func:`forward`, a :class:`DirectSolution`), and Newton from many seeds
+  as a check (:func:`forward_by_newton`);
+* the singular poses along a segment (:func:`singular_points`), and a path of poses between
+  two assembly modes of one input that crosses no singularity (:func:`mode_change_path`);
+* :func:`draw`.
 
-The names of version 0.1, ``direct`` and ``direct_by_newton``, and the argument order with the
-geometry last, are deprecated (CHANGELOG.md).
+The study's examples, its Annex I as typeset, and its reproduction are in
+:mod:`mechnum.mechanisms.prr3.study`.
+
+Examples
+--------
+>>> from mechnum.mechanisms import prr3
+>>> g = prr3.Geometry(L=1, a=1, B2=3, B3=2, H3=3)
+>>> prr3.forward(g, [0.4, 0.1, 0.6]).counts.tolist()      # two poses for these inputs
+2
 """
 
-from mechnum.mechanisms.prr3.annex_i import annex_i_terms
-from mechnum.mechanisms.prr3.direct import (
-                                            DirectSolution,
-                                            direct,
-                                            direct_by_newton,
-                                            forward,
-                                            forward_by_newton,
-)
-from mechnum.mechanisms.prr3.drawing import draw
-from mechnum.mechanisms.prr3.elimination import (
-                                            deflate,
-                                            equations,
-                                            polynomial,
-                                            solutions_from_equations,
-)
-from mechnum.mechanisms.prr3.geometry import (
-                                            Geometry,
-                                            bars,
-                                            direct_jacobian,
-                                            inverse_jacobian,
-                                            jacobian_dets,
-                                            loop_residuals,
-                                            radicands,
-                                            sliders,
-                                            vertices,
-)
-from mechnum.mechanisms.prr3.inverse import branch_inputs, inverse, workspace
-from mechnum.mechanisms.prr3.paths import mode_change_path
-from mechnum.mechanisms.prr3.singularities import singular_points
-from mechnum.mechanisms.prr3.study import EXAMPLES, WORKSPACE_GEOMETRY, reproduce
+import importlib
 
-__all__ = ["DirectSolution", "EXAMPLES", "Geometry", "WORKSPACE_GEOMETRY", "annex_i_terms",
-           "bars", "branch_inputs", "deflate", "direct", "direct_by_newton", "direct_jacobian",
-           "draw", "equations", "forward", "forward_by_newton", "inverse", "inverse_jacobian",
-           "jacobian_dets", "loop_residuals", "mode_change_path", "polynomial", "radicands",
-           "reproduce", "singular_points", "sliders", "solutions_from_equations", "vertices",
-           "workspace"]
+# An import ``X as X``: a result that a function here returns, documented with it (book/api.md)
+# but not in __all__ (returned, never called: mechnum.results.Result is its interface).
+from mechnum.mechanisms.prr3._direct import DirectSolution as DirectSolution
+from mechnum.mechanisms.prr3._direct import forward, forward_by_newton
+from mechnum.mechanisms.prr3._drawing import draw
+from mechnum.mechanisms.prr3._elimination import (
+    deflate,
+    equations,
+    polynomial,
+    solutions_from_equations,
+)
+from mechnum.mechanisms.prr3._geometry import (
+    Geometry,
+    jacobian_dets,
+    radicands,
+)
+from mechnum.mechanisms.prr3._inverse import branch_inputs, inverse, workspace
+from mechnum.mechanisms.prr3._paths import ModeChangePath as ModeChangePath
+from mechnum.mechanisms.prr3._paths import mode_change_path
+from mechnum.mechanisms.prr3._singularities import singular_points
+
+__all__ = ["Geometry", "branch_inputs", "deflate", "draw", "equations", "forward",
+           "forward_by_newton", "inverse", "jacobian_dets", "mode_change_path", "polynomial",
+           "radicands", "singular_points", "solutions_from_equations", "workspace"]
+
+
+def __getattr__(name: str) -> object:
+    """The :mod:`~mechnum.mechanisms.prr3.study` module, imported on first use."""
+    if name == "study":
+        return importlib.import_module(f"{__name__}.study")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,11 +1,20 @@
-"""The study's worked examples (Tables 3 to 6 of the thesis) and the chapter's registry values."""
+"""The study's worked examples (Tables 3 to 6 of the thesis), its Annex I as typeset, and the
+chapter's registry values.
+
+:data:`EXAMPLES` and :data:`WORKSPACE_GEOMETRY` are the study's inputs; :func:`annex_i_terms`
+reads the polynomial's coefficients as the study's Annex I typesets them, term by term, for the
+chapter's audit; :func:`reproduce` recomputes every number of the registry's rows.
+"""
 
 import numpy as np
 
-from mechnum.mechanisms.prr3.direct import forward
-from mechnum.mechanisms.prr3.elimination import polynomial
-from mechnum.mechanisms.prr3.geometry import Geometry
-from mechnum.mechanisms.prr3.inverse import inverse
+from mechnum.mechanisms.prr3._annex_i import annex_i_terms
+from mechnum.mechanisms.prr3._direct import forward
+from mechnum.mechanisms.prr3._elimination import polynomial
+from mechnum.mechanisms.prr3._geometry import Geometry
+from mechnum.mechanisms.prr3._inverse import inverse
+
+__all__ = ["EXAMPLES", "WORKSPACE_GEOMETRY", "annex_i_terms", "reproduce"]
 
 #: The study's worked examples (Tables 3 to 6 of its section 13.1): geometry and input of each
 #: (a pose ``(x, y, psi)`` for the inverse problem, inputs ``lambdas`` for the direct one).
@@ -49,7 +58,7 @@ def reproduce() -> dict[str, float]:
             values[f"{table} lambda{i + 1} (-)"] = float(lam[:, i].min())
     for table in ("Table 5", "Table 6"):
         geometry, lam = EXAMPLES[table]
-        poses = forward(geometry, lam).poses
+        poses = forward(geometry, lam).x
         values[f"{table} number of solutions"] = float(len(poses))
         study_order = (poses[poses[:, 2] > np.pi][0], poses[poses[:, 2] < np.pi][0])
         for number, pose in enumerate(study_order, start=1):

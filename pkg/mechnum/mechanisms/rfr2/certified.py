@@ -1,14 +1,14 @@
 """Every equilibrium of the 2RFR at given motor angles, proven by interval arithmetic.
 
 :func:`~mechnum.mechanisms.rfr2.certify_forward` is the certified counterpart of
-:func:`~mechnum.mechanisms.rfr2.forward_elliptic`: the same four equations (both tips at one
+:func:`~mechnum.mechanisms.rfr2.forward`: the same four equations (both tips at one
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
-:class:`~mechnum.mechanisms.rfr2.model.Mechanism`'s public fields and enclosed over boxes
-(:mod:`mechnum.rods.balls`). The whole chart, both branches of each rod, is searched by
+:class:`~mechnum.mechanisms.rfr2.Mechanism`'s public fields and enclosed over boxes
+(:mod:`mechnum.rods.certified`). The whole chart, both branches of each rod, is searched by
 co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live pairs of
 boxes, then Krawczyk's search of their clusters), each rod's chart cut to the a-priori bound
-on its load (:func:`mechnum.rods.pair_bound`: no equilibrium has a rod beyond it); its
+on its load (:func:`mechnum.rods.certified.pair_bound`: no equilibrium has a rod beyond it); its
 certificate (its inputs: :func:`certificate_inputs`) is re-checked against the caller's own
 inputs by :func:`verify_certificate`.
 
@@ -17,7 +17,7 @@ tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rod
 Its force is at least ``R = EI TAIL_LAMBDA**2 / L**2``; the other rod's is ``F`` minus it,
 at least ``R - |F|``, so its ``Lambda`` is large too and the forces are antiparallel to within
 ``|e1 + e2| <= 2 |F| / R``. Both tips at one point then need
-``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; :func:`tail_excluded` checks that the motors
+``|O1 - O2| >= L (2 - 2 |F| / R - eps1 - eps2)``; ``tail_excluded`` checks that the motors
 are nearer than that (as for the study's Table 7), else the result is not ``complete``.
 
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
@@ -29,13 +29,21 @@ Each rod's pinned index is proven in closed form over the root's enclosure
 proven (:func:`mechnum.rods.proven_stability`).
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 from flint import arb
+from numpy.typing import ArrayLike
 
 from mechnum import _validate, certify, rods
-from mechnum.mechanisms.rfr2.model import Mechanism
-from mechnum.rods import certified, regular
-from mechnum.rods.assembly import check_type
+from mechnum.mechanisms._assembly import check_type
+from mechnum.mechanisms.rfr2._model import Mechanism
+from mechnum.rods import T_MAX, certified, k_rel_from_t
+
+# certify_forward is rfr2's
+__all__ = ["certificate_inputs", "certify_stability", "chart", "system", "verify_certificate"]
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -48,7 +56,7 @@ def _modes(modes):
     return [int(m) for m in modes]
 
 
-def system(mech, theta, modes=(1, 1)):
+def system(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1)) -> tuple:
     """``residual, jacobian`` of the 2RFR's closed form over boxes, for :mod:`mechnum.certify`,
     with ``rods(X, jacobian)`` (both rods, placed) and ``exclude(X)`` (the force balance in
     polar form, :func:`mechnum.rods.certified.forces_exclude`), whose attribute ``split`` is
@@ -56,10 +64,11 @@ def system(mech, theta, modes=(1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
     >>> f, J, rods, exclude = system(TABLE7, TABLE7_THETA)
-    >>> X = [certify.ball(1.96, 1.97), certify.ball(-0.06, -0.05), certify.ball(4.81, 4.82),
-    ...      certify.ball(0.85, 0.86)]                  # holds a root: no test excludes it
+    >>> ball = certify.balls.ball
+    >>> X = [ball(1.96, 1.97), ball(-0.06, -0.05), ball(4.81, 4.82),
+    ...      ball(0.85, 0.86)]                  # holds a root: no test excludes it
     >>> [bool(v.contains(0)) for v in f(X)], exclude(X)
     ([True, True, True, True], False)
     """
@@ -96,13 +105,13 @@ def system(mech, theta, modes=(1, 1)):
     return residual, jacobian, rods, exclude
 
 
-def tail_excluded(mech, modes=(1, 1)):
+def tail_excluded(mech: Mechanism, modes: Sequence = (1, 1)) -> bool:
     """Whether no equilibrium has a rod beyond the chart (``q > Q_MAX``), by the bound of the
     module (True for the study's Table 7).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7
     >>> tail_excluded(TABLE7, (3, 3))
     True
     """
@@ -122,10 +131,10 @@ def tail_excluded(mech, modes=(1, 1)):
 
 def chart() -> np.ndarray:
     """The chart's whole domain for the 2RFR's two rods: one box per sign pattern of the ``t_i``
-    (:func:`mechnum.rods.certified.branch_boxes`). What :func:`certify_forward` searches
-    without ``around``, and the domain that :func:`mechnum.certify.verify` checks a
-    certificate of this mechanism against (scope ``"all"``: exactly these boxes;
-    ``"existence"``: boxes inside them).
+    (:func:`mechnum.rods.certified.branch_boxes`). What
+    :func:`~mechnum.mechanisms.rfr2.certify_forward` searches without ``around``, and the
+    domain that :func:`mechnum.certify.verify` checks a certificate of this mechanism against
+    (scope ``"all"``: exactly these boxes; ``"existence"``: boxes inside them).
 
     Examples
     --------
@@ -135,19 +144,20 @@ def chart() -> np.ndarray:
     return certified.branch_boxes(2)
 
 
-def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
-                       scope=None) -> certify.Verified:
+def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta: ArrayLike,
+                       modes: Sequence = (1, 1), *,
+                       scope: str | None = None) -> certify.Verified:
     """Re-check a certificate of this mechanism against the caller's own inputs: the system
     of ``mech`` at ``theta`` and the domain they imply, the chart (:func:`chart`).
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.certificate.Certificate or ~mechnum.rods.CoCertificate
+    certificate : ~mechnum.certify.Certificate or ~mechnum.rods.CoCertificate
         A certificate of a search around given points, or of the whole chart; a
         :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
-        by :func:`mechnum.rods.verify_corefined` on the rods and equations that ``mech``
+        by :func:`mechnum.rods.certified.verify_corefined` on the rods and equations that ``mech``
         implies, each rod's domain derived again.
-    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
     modes : tuple of int, optional
@@ -157,18 +167,19 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
 
     Returns
     -------
-    ~mechnum.certify.verify.Verified or ~mechnum.rods.CoVerified
+    ~mechnum.certify.Verified or ~mechnum.rods.CoVerified
 
     Raises
     ------
-    ~mechnum.certify.certificate.CertificateError
+    ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
-        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.verify_corefined`).
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.certified.verify_corefined`).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
-    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart[:1]
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> sampled = forward(TABLE7, TABLE7_THETA, rng=0).x[:1]
     >>> cert = certify_forward(TABLE7, TABLE7_THETA, around=sampled).certificate()
     >>> v = verify_certificate(cert, TABLE7, TABLE7_THETA)
     >>> v.count, v.scope, v.complete
@@ -180,12 +191,14 @@ def verify_certificate(certificate, mech, theta, modes=(1, 1), *,
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
-def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=None):
+def certify_forward(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1), *,
+                    max_boxes: int = MAX_BOXES,
+                    around: ArrayLike | None = None) -> certified.Certified:
     """Every equilibrium of the 2RFR at motor angles ``theta`` with the given modes, proven.
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         Motor angles (rad).
     modes : (int, int), optional
@@ -193,7 +206,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     max_boxes : int, optional
         The most boxes tested, at most ``mechnum.certify.MAX_BOXES_LIMIT``.
     around : array_like, shape (k, 4), optional
-        Chart points (for example ``forward_elliptic(...).chart``) to search around instead of
+        Chart points (for example ``forward(...).x``) to search around instead of
         the whole chart (boxes of :func:`mechnum.rods.certified.around_boxes`): each
         equilibrium found there is proven, alone in its box, and the count is a lower bound
         (``complete`` is then False).
@@ -203,7 +216,7 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
     mechnum.rods.CertifiedAll or mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart ``(psi1, t1, psi2, t2)``; ``solutions``: their
         midpoints as ``(psi1, k_rel1, psi2, k_rel2)`` (the coordinates of
-        ``forward_elliptic``'s ``solutions``), sorted by ``psi1``; ``stable``: True (proven
+        ``forward``'s ``solutions``), sorted by ``psi1``; ``stable``: True (proven
         stable), False (proven unstable) or None (see the module); ``complete``: the count is
         a theorem (the chart searched whole, every rod beyond it excluded by the a-priori
         bound). Without ``around``, a :class:`~mechnum.rods.CertifiedAll`, whose
@@ -211,41 +224,42 @@ def certify_forward(mech, theta, modes=(1, 1), *, max_boxes=MAX_BOXES, around=No
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
-    >>> from mechnum.mechanisms.rfr2 import forward_elliptic
-    >>> sampled = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
-    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.chart)
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> sampled = forward(TABLE7, TABLE7_THETA, rng=0)
+    >>> r = certify_forward(TABLE7, TABLE7_THETA, around=sampled.x)
     >>> r.count, r.complete, bool(np.abs(r.solutions - sampled.solutions).max() < 1e-12)
     (3, False, True)
     """
     modes = _modes(modes)
     f, J, _, exclude = system(mech, theta, modes)
     if around is None:
-        result = rods.corefine(chart_rods(mech, theta, modes), assembly(mech),
+        result = rods.corefine(_chart_rods(mech, theta, modes), _assembly(mech),
                                (f, J, exclude, exclude.split), max_boxes=max_boxes)
         part = result.search
     else:
         part = certify.roots(f, J, certified.around_boxes(around, 2), max_boxes=max_boxes,
                              exclude=exclude, split=exclude.split, scope="existence")
-    k_rel = (regular.k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
+    k_rel = (k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
-    stable = stability(mech, theta, part.roots, modes)
+    stable = certify_stability(mech, theta, part.roots, modes)
     if around is not None:
         return certified.combine([part], solutions, stable, certified.around_note(around))
-    beyond = all(rod.t_max < regular.T_MAX for rod in chart_rods(mech, theta, modes)) or (
+    beyond = all(rod.t_max < T_MAX for rod in _chart_rods(mech, theta, modes)) or (
         tail_excluded(mech, modes))
     return rods.certified_all(result, solutions, stable, "" if beyond else (
         "; rods beyond the chart (q > Q_MAX) are not excluded"))
 
 
-def stability(mech, theta, roots, modes=(1, 1)):
+def certify_stability(mech: Mechanism, theta: ArrayLike, roots: ArrayLike,
+              modes: Sequence = (1, 1)) -> list:
     """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
     False (unstable) or None (a sign not proven).
 
     Parameters
     ----------
-    mech : ~mechnum.mechanisms.rfr2.model.Mechanism
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         Motor angles (rad).
     roots : array_like, shape (k, 4, 2)
@@ -259,9 +273,10 @@ def stability(mech, theta, roots, modes=(1, 1)):
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA, forward_elliptic
-    >>> z = forward_elliptic(TABLE7, TABLE7_THETA, rng=0).chart
-    >>> stability(TABLE7, TABLE7_THETA, np.stack((z - 1e-9, z + 1e-9), axis=-1))
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> z = forward(TABLE7, TABLE7_THETA, rng=0).x
+    >>> certify_stability(TABLE7, TABLE7_THETA, np.stack((z - 1e-9, z + 1e-9), axis=-1))
     [True, True, True]
     """
     modes = _modes(modes)
@@ -279,33 +294,34 @@ def stability(mech, theta, roots, modes=(1, 1)):
     return out
 
 
-def chart_rods(mech, theta, modes=(1, 1)):
+def _chart_rods(mech, theta, modes=(1, 1)):
     """The two rods as the co-refinement searches them: each chart up to the a-priori bound on
-    its load (:func:`mechnum.rods.pair_bound`; the chart's whole range where that bound is
+    its load (:func:`mechnum.rods.certified.pair_bound`; the chart's whole range where that bound is
     beyond it, for which :func:`tail_excluded` must then exclude the rest).
 
     Examples
     --------
-    >>> from mechnum.mechanisms.rfr2 import TABLE7, TABLE7_THETA
-    >>> [round(rod.lam_max, 2) for rod in chart_rods(TABLE7, TABLE7_THETA)]
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> [round(rod.lam_max, 2) for rod in _chart_rods(TABLE7, TABLE7_THETA)]
     [10.39, 10.39]
     """
     check_type(mech, Mechanism)
     theta = _validate.array(theta, "theta", shape=(2,))
     modes = _modes(modes)
     gap = float(np.hypot(*(mech.origins[1] - mech.origins[0])))
-    bound = rods.pair_bound(modes, gap, float(np.hypot(*mech.force)), mech.EI, mech.L)
-    return [rods.ChartRod(mech.EI, mech.L, modes[i], mech.origins[i], theta[i],
-                          rods.chart_t_bound(bound[i]), bound[i]) for i in range(2)]
+    bound = certified.pair_bound(modes, gap, float(np.hypot(*mech.force)), mech.EI, mech.L)
+    return [certified.ChartRod(mech.EI, mech.L, modes[i], mech.origins[i], theta[i],
+                          certified.chart_t_bound(bound[i]), bound[i]) for i in range(2)]
 
 
-def assembly(mech):
+def _assembly(mech):
     """The tips at one point, the forces summing to the load: the co-refinement's tests."""
     check_type(mech, Mechanism)
-    return rods.Assembly(((0, 1, 0.0),), mech.force)
+    return certified.Assembly(((0, 1, 0.0),), mech.force)
 
 
-def certificate_inputs(mech, theta, modes=(1, 1)):
+def certificate_inputs(mech: Mechanism, theta: ArrayLike,
+                       modes: Sequence = (1, 1)) -> dict:
     """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
     fields, the motor angles and the modes (JSON-ready)."""
     check_type(mech, Mechanism)
@@ -322,10 +338,10 @@ def _verify_corefined(certificate, mech, theta, modes, scope):
     if scope not in (None, "all"):
         raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
                                        f"{scope!r}")
-    chart_of = chart_rods(mech, theta, modes)
+    chart_of = _chart_rods(mech, theta, modes)
     f, J, _, exclude = system(mech, theta, modes)
-    verified = rods.verify_corefined(certificate, chart_of, assembly(mech), f, J, exclude)
-    if verified.complete and not all(rod.t_max < regular.T_MAX for rod in chart_of) and not (
+    verified = certified.verify_corefined(certificate, chart_of, _assembly(mech), f, J, exclude)
+    if verified.complete and not all(rod.t_max < T_MAX for rod in chart_of) and not (
             tail_excluded(mech, modes)):
         raise certify.CertificateError("rods beyond the chart are not excluded: the count is "
                                        "not complete")

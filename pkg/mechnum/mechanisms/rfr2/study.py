@@ -1,8 +1,12 @@
-"""The study's published numbers: Table 7, the inputs it implies, and the registry's values.
+"""The study of the 2RFR (001: 11.3, 13.2, Annex II 3): its example, its paths, its published
+numbers, and their reproduction.
 
-:func:`~mechnum.mechanisms.rfr2.recover_inputs` finds the inputs of the example from the printed
-solutions of Table 7 (:data:`TABLE7_PUBLISHED`); :func:`~mechnum.mechanisms.rfr2.reproduce`
-computes every registry value of the chapter.
+The example of Table 7 (:data:`TABLE7`, :data:`TABLE7_THETA`) and its published solutions
+(:data:`TABLE7_PUBLISHED`), in the study's convention ``(psi1, k_rel1, psi2, k_rel2)``
+(:func:`chart_from_thesis`, :func:`thesis_from_chart`); the study's six trajectories
+(:func:`path`: straight lines, circles and rectangles); :func:`recover_inputs` finds the inputs
+of the example from the printed solutions, and :func:`reproduce` computes every registry value
+of the chapter.
 """
 
 from __future__ import annotations
@@ -11,21 +15,29 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mechnum import _validate
-from mechnum.mechanisms.rfr2.elliptic import forward_elliptic, residual
-from mechnum.mechanisms.rfr2.model import TABLE7, TABLE7_THETA, chart_from_thesis, rods
-from mechnum.mechanisms.rfr2.shooting import forward_shooting, shooting_guess, shooting_system
-from mechnum.mechanisms.rfr2.trajectories import STUDY_PATHS, path
+from mechnum.mechanisms.rfr2._elliptic import forward, residual
+from mechnum.mechanisms.rfr2._model import (
+    TABLE7,
+    TABLE7_THETA,
+    chart_from_thesis,
+    rods,
+    thesis_from_chart,
+)
+from mechnum.mechanisms.rfr2._shooting import forward_shooting, shooting_guess, shooting_system
+from mechnum.mechanisms.rfr2._trajectories import STUDY_PATHS, path
 from mechnum.mechanisms.thesis import EI, LENGTH, STUDY_NODES, YOUNG
-from mechnum.rods import regular
+from mechnum.rods import ClampedRods
+
+__all__ = ["TABLE7", "TABLE7_PUBLISHED", "TABLE7_THETA", "chart_from_thesis", "path",
+           "recover_inputs", "reproduce", "thesis_from_chart"]
 
 TABLE7_PUBLISHED = np.array([[5.304574, 0.969830, 1.825456, -0.992135],
                              [1.962541, -0.004391, 4.811041, 0.943413]])
 """Table 7 as printed, ``(psi1, k_rel1, psi2, k_rel2)`` of its solutions 1 and 2: input data of
-:func:`~mechnum.mechanisms.rfr2.recover_inputs` (the reproduction computes them, see
-:func:`~mechnum.mechanisms.rfr2.reproduce`)."""
+:func:`recover_inputs` (the reproduction computes them, see :func:`reproduce`)."""
 
 
-def recover_inputs(solutions: ArrayLike, free: str = "EI"):
+def recover_inputs(solutions: ArrayLike, free: str = "EI") -> dict:
     """The example's inputs that the printed solutions of Table 7 determine, by least squares.
 
     Each printed solution ``(psi1, k_rel1, psi2, k_rel2)`` fixes both rods' shapes and
@@ -63,12 +75,12 @@ def recover_inputs(solutions: ArrayLike, free: str = "EI"):
     if len(s) < 2:
         raise ValueError("at least two solutions are needed to fix the inputs")
     z = chart_from_thesis(s)
-    rod = regular.clamped_pinned_regular(1.0, 1.0, z[:, 0::2], z[:, 1::2])   # EI = L = 1
+    pair = ClampedRods(1.0, 1.0, (1, 1))                    # EI = L = 1
 
     def residuals(q):
         theta, motor2 = q[:2], q[2:4]
         EI_, L = (q[4], LENGTH) if free == "EI" else (EI, q[4])
-        tip, n, _, _ = regular.place(rod, np.stack((TABLE7.origins[0], motor2)) / L, theta)
+        tip, n = pair(z, np.stack((TABLE7.origins[0], motor2)) / L, theta, jacobian=False)[:2]
         return np.concatenate(((tip[:, 0] - tip[:, 1]).ravel() * L,
                                (n.sum(axis=1) * EI_ / L ** 2 - TABLE7.force).ravel()))
 
@@ -106,7 +118,7 @@ def _path_sizes() -> dict:
 def reproduce() -> dict:
     """The chapter's registry values, computed (see ``book/published_values.csv``).
 
-    Table 7 from the equilibria that :func:`forward_elliptic` finds (each printed solution
+    Table 7 from the equilibria that :func:`forward` finds (each printed solution
     matched with the nearest one), the example's inputs from :func:`recover_inputs`, the
     number of mode-1 equilibria, and the residual of the study's force balance (104) as
     printed at its own solution 1.
@@ -117,7 +129,7 @@ def reproduce() -> dict:
     >>> len(values) > 10 and all(isinstance(v, float) for v in values.values())
     True
     """
-    eq = forward_elliptic(TABLE7, TABLE7_THETA, rng=0)
+    eq = forward(TABLE7, TABLE7_THETA, rng=0)
     values = {}
     for i, printed in enumerate(TABLE7_PUBLISHED, start=1):
         found = eq.solutions[np.argmin(np.abs(eq.solutions - printed).max(axis=1))]
@@ -136,19 +148,19 @@ def reproduce() -> dict:
                        1e3 * (64 * fit["EI"] / (np.pi * YOUNG)) ** 0.25),
                    "load F_x (n1 + n2 at the printed solution 1)": float(load[0]),
                    "load F_y (n1 + n2 at the printed solution 1)": float(load[1])})
-    values["mode-1 equilibria for the Table 7 inputs"] = float(len(eq.P))
+    values["mode-1 equilibria for the Table 7 inputs"] = float(len(eq.pose))
     # the listing of EmpArt_xyR returns tips relative to their clamps: at the printed
     # solution 1 its residual Res_x, Res_y is the distance between the motors
     relative = rods(TABLE7, TABLE7_THETA, printed)[0] - TABLE7.origins
     values["tip gap at the printed solution 1 with EmpArt_xyR as listed (m)"] = float(
         np.hypot(*(relative[0] - relative[1])))
-    X = shooting_guess(TABLE7, TABLE7_THETA, eq.chart)
+    X = shooting_guess(TABLE7, TABLE7_THETA, eq.x)
     shot = forward_shooting(TABLE7, TABLE7_THETA, X, nodes=STUDY_NODES)
     scale = np.array([TABLE7.EI / TABLE7.L, TABLE7.L, TABLE7.L] * 2 + [TABLE7.EI] * 2)
     values["shooting residual at convergence, N = 41 (N m, m, N)"] = float(np.max(np.abs(
-        shooting_system(TABLE7, STUDY_NODES, "P")[0](shot.x, shot.theta) * scale)))
+        shooting_system(TABLE7, STUDY_NODES, "pose")[0](shot.x, shot.inputs)[0] * scale)))
     values["elliptic residual (105) at convergence (m, N)"] = float(np.abs(residual(
-        TABLE7, TABLE7_THETA, eq.chart)).max())
+        TABLE7, TABLE7_THETA, eq.x)).max())
     values.update(_path_sizes())
     sol1 = eq.forces[np.argmin(np.abs(eq.solutions - TABLE7_PUBLISHED[0]).max(axis=1))]
     values["force balance (104) as printed, at solution 1 (N)"] = float(
