@@ -37,7 +37,7 @@ import mechnum
 
 PACKAGE = Path(mechnum.__file__).resolve().parent
 MAX_API = 220
-MAX_SUPPORT = 120
+MAX_SUPPORT = 129  # issue 36 (+10): the co-refinement's rods and re-check, certified stability
 # The mechanism protocol (CONTRIBUTING.md): the verbs every mechanism defines for itself, and
 # those the two mechanisms built of rods share; a name of several mechanisms is one of these.
 PROTOCOL = {"Mechanism", "Geometry", "forward", "inverse", "draw", "workspace",
@@ -45,7 +45,7 @@ PROTOCOL = {"Mechanism", "Geometry", "forward", "inverse", "draw", "workspace",
             "thesis_from_chart", "forward_system", "forward_path", "inverse_path", "rods",
             "forward_shooting", "inverse_shooting", "shooting_guess", "jacobians", "verify",
             "index", "certify_forward", "system", "chart", "verify_certificate", "full_system",
-            "residual", "shapes"}
+            "residual", "shapes", "certify_stability", "certificate_inputs"}
 # Spellings of an initial guess that the package no longer uses (it is ``seed``, ``seeds``).
 NOT_SEED = {"x0", "u0", "guess", "guesses", "y_guess", "initial_guess", "starts", "start_point"}
 

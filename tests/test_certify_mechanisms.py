@@ -107,9 +107,9 @@ def test_table7_sampled_equilibria_are_proven():
     assert result.count == 3 and not result.complete and "lower bound" in result.message
     assert result.scope == "existence" and result.certificate().scope == "existence"
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
-    # no certified verdict contradicts the sampled index (False only where unstable)
+    # the certified verdicts are proven, and agree with the sampled index (both resolutions)
     for verdict, index in zip(result.stable, sampled.index):
-        assert verdict is None or (verdict is False and index.min() > 0)
+        assert verdict is bool(index.max() == 0) and index.min() == index.max()
 
 
 def test_table8_sampled_equilibria_are_proven():
@@ -118,8 +118,8 @@ def test_table8_sampled_equilibria_are_proven():
     assert result.count == 9 and result.scope == "existence" and not result.complete
     assert result.status == "converged" and len(result.parts[0].undecided) == 0
     assert _same_set(result.solutions, sampled.solutions, 1e-10)
-    for verdict, index in zip(result.stable, sampled.index):
-        assert verdict is None or (verdict is False and index.min() > 0)
+    for verdict, index in zip(result.stable, sampled.index):     # all nine proven stable
+        assert verdict is bool(index.max() == 0) and index.min() == index.max()
 
 
 def test_a_box_without_an_equilibrium_is_excluded():

@@ -99,6 +99,7 @@ def test_one_rod_of_several_stiffnesses_broadcasts():
     rod = regular.closed_form(np.array([1.0, 2.0, 4.0]), L, 2.0, 0.5)
     one = regular.closed_form(1.0, L, 2.0, 0.5)
     assert rod.force.shape == (3, 2) and rod.jacobian.shape == (3, 5, 2)
+    # EI enters as a factor (exact for a power of two); 1e-15: room for one rounding
     np.testing.assert_allclose(rod.jacobian[2, 2:], 4.0 * one.jacobian[2:], rtol=1e-15)
 
 

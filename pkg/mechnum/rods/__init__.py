@@ -47,7 +47,11 @@ equilibrium through a point and what a shot rod is (:func:`pinned_equilibria`,
 (:func:`rod_block`, :func:`constrained_eigenvalues`, :func:`constrained_index`,
 :func:`constrained_index_with_body`); crossings (:func:`self_crossings`,
 :func:`mutual_crossings`); a cantilever's equilibria under a growing dead load, for
-continuation (:class:`DeadLoad`); the pinned rod proven (:func:`certify_pinned`). What every
+continuation (:class:`DeadLoad`); the pinned rod proven (:func:`certify_pinned`); every
+equilibrium of rods that meet, proven by co-refinement over their whole charts
+(:func:`corefine`, :func:`certified_all`; the rods and their assembly are
+:mod:`mechnum.rods.certified`'s), and a rod's proven index (:func:`pinned_index`,
+:func:`proven_stability`). What every
 mechanism built of rods shares is ``mechanisms._assembly``.
 In a Newton loop over the rods of a mechanism, call a :class:`ShotRods` (:func:`tip_jacobian`,
 checked once when made) once on the batch of all rods: one sweep gives every tip and every
@@ -58,6 +62,11 @@ numpy call, not per rod).
 from mechnum.rods._bodies import constrained_index_with_body
 from mechnum.rods._cantilever import cantilever
 from mechnum.rods._clamps import chart_from_clamps, peak_moment
+from mechnum.rods._cocertificate import CoCertificate as CoCertificate
+from mechnum.rods._cocertificate import CoVerified as CoVerified
+from mechnum.rods._cosearch import CertifiedAll as CertifiedAll
+from mechnum.rods._cosearch import CoRefined as CoRefined
+from mechnum.rods._cosearch import certified_all, corefine
 from mechnum.rods._crossing import mutual_crossings, self_crossings
 from mechnum.rods._elliptic import (
     NoEquilibriumError,
@@ -67,6 +76,7 @@ from mechnum.rods._elliptic import (
     elliptic_parameters,
     k_rel_for_force,
 )
+from mechnum.rods._index import pinned_index, proven_stability
 from mechnum.rods._loading import DeadLoad
 from mechnum.rods._meeting import MeetingRods
 from mechnum.rods._multiple import shoot_pinned_multiple
@@ -96,10 +106,10 @@ from mechnum.rods.certified import certify_pinned
 
 __all__ = ["SHOOTING_TOL", "T_MAX", "ClampedRods", "DeadLoad", "MeetingRods", "NoEquilibriumError",
            "NotAnElasticaError", "Rod", "ShotRods", "UnresolvedRodError", "cantilever",
-           "certify_pinned", "chart_from_clamps", "clamped_pinned", "clamped_pinned_regular",
-           "classify", "constrained_eigenvalues", "constrained_index",
-           "constrained_index_with_body", "elliptic_k", "elliptic_parameters", "equations",
-           "in_chart", "integrate", "k_rel_for_force", "k_rel_from_t", "mutual_crossings",
-           "peak_moment", "pinned_equilibria", "rod_block", "self_crossings", "shape",
-           "shoot_cantilever", "shoot_pinned", "shoot_pinned_multiple", "t_from_k_rel",
-           "tip_jacobian"]
+           "certified_all", "certify_pinned", "chart_from_clamps", "clamped_pinned",
+           "clamped_pinned_regular", "classify", "constrained_eigenvalues", "constrained_index",
+           "constrained_index_with_body", "corefine", "elliptic_k", "elliptic_parameters",
+           "equations", "in_chart", "integrate", "k_rel_for_force", "k_rel_from_t",
+           "mutual_crossings", "peak_moment", "pinned_equilibria", "pinned_index",
+           "proven_stability", "rod_block", "self_crossings", "shape", "shoot_cantilever",
+           "shoot_pinned", "shoot_pinned_multiple", "t_from_k_rel", "tip_jacobian"]

@@ -14,7 +14,11 @@ On every branch ``Lambda = lambda L >= I`` (the partial wave; the complete ``K >
 E-integrals, each at most ``pi / 2``) and ``v b <= 1``: it lies within
 ``tail_reach(mode, Lambda) = (2 pi mode + 2) / Lambda`` times ``L`` of ``L (cos psi, sin psi)``,
 farther than ``L (1 - tail_reach)`` from the clamp; a target nearer than that is reached by no
-rod of the tail.
+rod of the tail. The a-priori bound of a-priori bound of the pinned rod (``Lambda <= c_j L /
+(L - d)``, the same reach with ``|D| <= mode pi`` and ``v b <= 1`` used the other way round)
+is tighter wherever it confines the rods inside the chart (:func:`chart_t_bound`
+below ``T_MAX``: 34 for Chapter 3's target in mode 1, 98 in mode 3): the tail is then excluded
+by it.
 """
 
 from __future__ import annotations
@@ -30,13 +34,19 @@ from mechnum import _validate, certify
 from mechnum.certify.balls import interval
 from mechnum.rods import _balls as balls
 from mechnum.rods import _regular as regular
+from mechnum.rods._apriori import chart_t_bound, pair_bound, pinned_bound
+from mechnum.rods._cocertificate import verify as verify_corefined
+from mechnum.rods._leaves import ChartRod
+from mechnum.rods._tuples import Assembly
 
 # The pinned rod's system, and what the rod mechanisms' certified modules build theirs from
 # (certify_pinned is rods'; Certified, the result, is documented with the functions that return
-# it).
-__all__ = ["TAIL_LAMBDA", "around_boxes", "around_note", "branch_boxes", "combine", "enclosed",
-           "forces_exclude", "forces_split", "memoised", "pinned_system", "placed", "stiffness",
-           "tail_reach", "verdict"]
+# it): the rods' charts cut to the a-priori bound and their assembly, which the co-refinement
+# (rods.corefine) searches, and the re-check of its certificate.
+__all__ = ["MAX_LIVE", "TAIL_LAMBDA", "Assembly", "ChartRod", "around_boxes", "around_note",
+           "branch_boxes", "chart_t_bound", "combine", "enclosed", "forces_exclude",
+           "forces_split", "memoised", "pair_bound", "pinned_system", "placed", "stiffness",
+           "tail_reach", "verdict", "verify_corefined"]
 
 TWO_PI = 2.0 * np.pi
 CHART_BOX = ((0.0, TWO_PI), (0.0, regular.T_MAX))
@@ -53,6 +63,9 @@ def tail_reach(mode: int, lam: float = TAIL_LAMBDA) -> float:
 
 
 MAX_BOXES = 200_000
+MAX_LIVE = 2_000_000
+"""Default bound on the co-refinement's live tuples after a round (memory: 8 r bytes each, and
+their tests): beyond it the rounds stop, and the result is not complete."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -266,7 +279,9 @@ def certify_pinned(EI: float, L: float, target: ArrayLike, modes: Sequence = (1,
         for psi, t in part.x:
             rows.append((psi, float(regular.k_rel_from_t(psi, t)), mode))
     reach = 1.0 - tail_reach(max(modes, default=1))
-    extra = "" if np.hypot(*target) < reach * L else (
+    bounded = all(chart_t_bound(pinned_bound(mode, float(np.hypot(*target)), L))
+                  < regular.T_MAX for mode in modes)
+    extra = "" if np.hypot(*target) < reach * L or bounded else (
         f"; the target is farther than {reach:.3f} L: rods beyond the chart are not excluded")
     solutions = np.array(rows, dtype=float).reshape(-1, 3)
     return combine(parts, solutions, [None] * len(rows), extra)

@@ -11,16 +11,22 @@ from the :class:`~mechnum.mechanisms.pfr3.Mechanism`'s public fields and
 the force balance in polar form (:func:`mechnum.rods.certified.forces_exclude`) and the
 platform's sides (every two tips are ``a`` apart).
 
-Without ``around``, the search covers the chart's whole domain (8 boxes, one per sign pattern
-of the ``t_i``); rods beyond the chart (``q > Q_MAX``, forces above about
-``9e4 EI / L**2``) are outside the claim. With ``around`` (chart points, for example the
-sampled ``forward(...).x``), it covers a small box around each point: each
-equilibrium there is then proven to exist, alone in its box, and the count is a lower bound.
+Without ``around``, the search covers the chart's whole domain, every rod on both branches,
+by co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live triples
+of boxes, then Krawczyk's search of their clusters); rods beyond the chart (``q > Q_MAX``,
+forces above about ``9e4 EI / L**2``) are outside the claim (no a-priori bound of the load is
+derived for the platform). Its certificate (its inputs: :func:`certificate_inputs`) is
+re-checked against the caller's own inputs by :func:`verify_certificate`. With ``around``
+(chart points, for example the sampled ``forward(...).x``), it covers a small box
+around each point: each equilibrium there is then proven to exist, alone in its box, and the
+count is a lower bound.
 
-**Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): ``stable`` is False
-where the reduced Hessian in the platform's pose, ``sum_i G_i^T K_i G_i`` plus the turning
-term ``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K_i`` the tips'
-stiffnesses), is proven to have a negative eigenvalue, None otherwise.
+**Stability.** As for the 2RFR (:mod:`mechnum.mechanisms.rfr2.certified`): the index is the sum
+of the rods' pinned indices (:func:`mechnum.rods.pinned_index`) and the index of the reduced
+Hessian in the platform's pose, ``sum_i G_i^T K_i G_i`` plus the turning term
+``-sum_i n_i . (B_i - P)`` in ``phi`` (``G_i = d B_i / d (x, y, phi)``, ``K_i`` the tips'
+stiffnesses); ``stable`` is True or False where proven (:func:`mechnum.rods.proven_stability`),
+None otherwise.
 """
 
 from __future__ import annotations
@@ -31,11 +37,13 @@ import numpy as np
 from flint import acb, arb
 from numpy.typing import ArrayLike
 
-from mechnum import _validate, certify
-from mechnum.mechanisms.pfr3._model import clamps
+from mechnum import _validate, certify, rods
+from mechnum.mechanisms._assembly import check_type
+from mechnum.mechanisms.pfr3._model import Mechanism, clamps
 from mechnum.rods import certified, k_rel_from_t
 
-__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is pfr3's
+# certify_forward is pfr3's
+__all__ = ["certificate_inputs", "certify_stability", "chart", "system", "verify_certificate"]
 
 MAX_BOXES = 1_000_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -167,7 +175,11 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.Certificate
+    certificate : ~mechnum.certify.Certificate or ~mechnum.rods.CoCertificate
+        A certificate of a search around given points, or of the whole chart; a
+        :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
+        by :func:`mechnum.rods.certified.verify_corefined` on the rods and equations that ``mech``
+        implies, each rod's domain derived again.
     mech : ~mechnum.mechanisms.pfr3.Mechanism
     lambdas : array_like, shape (3,)
         The slider inputs (m).
@@ -178,13 +190,13 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
 
     Returns
     -------
-    ~mechnum.certify.Verified
+    ~mechnum.certify.Verified or ~mechnum.rods.CoVerified
 
     Raises
     ------
     ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
-        (:func:`mechnum.certify.verify`).
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.certified.verify_corefined`).
 
     Examples
     --------
@@ -196,13 +208,15 @@ def verify_certificate(certificate: certify.Certificate, mech: object, lambdas: 
     >>> v.count, v.scope, v.complete
     (1, 'existence', None)
     """
+    if isinstance(certificate, rods.CoCertificate):
+        return _verify_corefined(certificate, mech, lambdas, modes, scope)
     f, J, _, exclude = system(mech, lambdas, modes)
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
 
 def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1), *,
-                    max_boxes: int = MAX_BOXES,
-                    around: ArrayLike | None = None) -> certified.Certified:
+                    max_boxes: int = MAX_BOXES, around: ArrayLike | None = None,
+                    max_live: int = certified.MAX_LIVE) -> certified.Certified:
     """Equilibria of the 3PFR at slider inputs ``lambdas`` with the given modes, proven.
 
     Parameters
@@ -218,16 +232,21 @@ def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1
         Chart points to search around (boxes of half-width
         ``mechnum.rods.certified.AROUND`` times the chart's ranges) instead of the whole
         chart.
+    max_live : int, optional
+        Without ``around``: the most live triples of boxes after a round of the
+        co-refinement (:func:`mechnum.rods.corefine`); beyond it the search stops, not
+        complete.
 
     Returns
     -------
     mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart; ``solutions``: their midpoints as
         ``(psi_i, k_rel_i)`` (``forward``'s coordinates), sorted by ``psi1``;
-        ``stable``: False or None (see the module); ``scope``: ``"all"`` (the chart's whole
-        domain searched; ``complete``: the count is a theorem over it) or, with ``around``,
-        ``"existence"`` (each root proven, alone in its box, but others may lie elsewhere:
-        the count is a lower bound and ``complete`` is False; ``certificate()`` says so).
+        ``stable``: True, False or None (see the module); ``scope``: ``"all"`` (the chart's
+        whole domain searched by co-refinement, a :class:`~mechnum.rods.CertifiedAll`;
+        ``complete``: the count is a theorem over it) or, with ``around``, ``"existence"``
+        (each root proven, alone in its box, but others may lie elsewhere: the count is a
+        lower bound and ``complete`` is False; ``certificate()`` says so).
 
     Examples
     --------
@@ -241,14 +260,104 @@ def certify_forward(mech: object, lambdas: ArrayLike, modes: Sequence = (1, 1, 1
     (1, 'existence', False, [5.1834, -0.7267, 5.006, -0.9287, 2.6908, -0.0953])
     """
     modes = _modes(modes)
-    f, J, rods, exclude = system(mech, lambdas, modes)
-    boxes = chart() if around is None else certified.around_boxes(around, 3)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split, scope="all" if around is None else "existence")
+    f, J, _, exclude = system(mech, lambdas, modes)
+    if around is None:
+        result = rods.corefine(_chart_rods(mech, lambdas, modes), _assembly(mech),
+                               (f, J, exclude, exclude.split), max_live=max_live,
+                               max_boxes=max_boxes)
+        part = result.search
+    else:
+        part = certify.roots(f, J, certified.around_boxes(around, 3), max_boxes=max_boxes,
+                             exclude=exclude, split=exclude.split, scope="existence")
     z = part.x
     solutions = z.copy()
     if len(z):
         solutions[:, 1::2] = k_rel_from_t(z[:, 0::2], z[:, 1::2])
-    stable = [certified.verdict(_reduced(rods(certified.enclosed(root), True)))
-              for root in part.roots]
-    return certified.combine([part], solutions, stable, certified.around_note(around))
+    stable = certify_stability(mech, lambdas, part.roots, modes)
+    if around is not None:
+        return certified.combine([part], solutions, stable, certified.around_note(around))
+    return rods.certified_all(result, solutions, stable)
+
+
+def certify_stability(mech: Mechanism, lambdas: ArrayLike, roots: ArrayLike,
+              modes: Sequence = (1, 1, 1)) -> list:
+    """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
+    False (unstable) or None (a sign not proven).
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.pfr3.Mechanism
+    lambdas : array_like, shape (3,)
+        Slider inputs (m).
+    roots : array_like, shape (k, 6, 2)
+        Enclosures of equilibria in the chart (for example a verified certificate's
+        ``roots``), each on one branch of each rod.
+    modes : (int, int, int), optional
+
+    Returns
+    -------
+    list of (bool or None)
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.pfr3 import forward
+    >>> from mechnum.mechanisms.pfr3.study import TABLE8, TABLE8_LAMBDAS
+    >>> z = forward(TABLE8, TABLE8_LAMBDAS, rng=0).x[:2]
+    >>> certify_stability(TABLE8, TABLE8_LAMBDAS, np.stack((z - 1e-12, z + 1e-12), axis=-1))
+    [True, True]
+    """
+    modes = _modes(modes)
+    roots = _validate.array(roots, "roots", shape=(None, 6, 2))
+    placed = system(mech, lambdas, modes)[2]
+    return [rods.proven_stability(
+        [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                           1 if root[2 * i + 1].mean() > 0 else -1) for i in range(3)],
+        _reduced(placed(certified.enclosed(root), True))) for root in roots]
+
+
+def _chart_rods(mech, lambdas, modes=(1, 1, 1)):
+    """The three rods as the co-refinement searches them: each chart whole (no a-priori bound
+    of the load is derived for the platform)."""
+    check_type(mech, Mechanism)
+    origin = clamps(mech, _validate.array(lambdas, "lambdas", shape=(3,)))
+    return [certified.ChartRod(mech.EI, mech.L, m, origin[i], mech.clamp_angles[i])
+            for i, m in enumerate(_modes(modes))]
+
+
+def _assembly(mech):
+    """The tips as far apart as the platform's pins, spanning its triangle (not its mirror
+    image), the forces summing to the load, their moments about the centroid to its moment:
+    the co-refinement's tests."""
+    check_type(mech, Mechanism)
+    b = mech.vertices
+    u, v = b[1] - b[0], b[2] - b[0]
+    area = 0.5 * float(u[0] * v[1] - u[1] * v[0])
+    return certified.Assembly(tuple((i, j, float(np.hypot(*(b[i] - b[j]))))
+                               for i in range(3) for j in range(i + 1, 3)),
+                         mech.force, mech.moment, area, b)
+
+
+def certificate_inputs(mech: Mechanism, lambdas: ArrayLike,
+                       modes: Sequence = (1, 1, 1)) -> dict:
+    """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
+    fields, the slider inputs and the modes (JSON-ready)."""
+    check_type(mech, Mechanism)
+    return {"function": "mechnum.mechanisms.pfr3.certified.verify_certificate",
+            "origins": mech.origins.tolist(), "guide_angles": mech.guide_angles.tolist(),
+            "clamp_angles": mech.clamp_angles.tolist(), "a": mech.a,
+            "force": mech.force.tolist(), "moment": mech.moment, "L": mech.L, "EI": mech.EI,
+            "orientation": mech.orientation,
+            "lambdas": _validate.array(lambdas, "lambdas", shape=(3,)).tolist(),
+            "modes": _modes(modes), "domain": "the chart, |t| <= T_MAX",
+            "unknowns": ["psi1", "t1", "psi2", "t2", "psi3", "t3"]}
+
+
+def _verify_corefined(certificate, mech, lambdas, modes, scope):
+    """:func:`verify_certificate` of a co-refinement's certificate, on the rods and equations
+    that the caller's inputs imply (the chart's whole domain)."""
+    if scope not in (None, "all"):
+        raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
+                                       f"{scope!r}")
+    f, J, _, exclude = system(mech, lambdas, modes)
+    return certified.verify_corefined(certificate, _chart_rods(mech, lambdas, modes),
+                                      _assembly(mech), f, J, exclude)

@@ -5,8 +5,12 @@
 point, ``n1 + n2 = F``; dimensionless: positions over ``L``, forces over ``EI / L**2``) in the
 same chart ``(psi1, t1, psi2, t2)``, re-derived here from the
 :class:`~mechnum.mechanisms.rfr2.Mechanism`'s public fields and enclosed over boxes
-(:mod:`mechnum.rods.certified`), searched by :func:`~mechnum.certify.roots` over the
-chart's whole domain (four boxes, one per sign pattern of ``t1, t2``).
+(:mod:`mechnum.rods.certified`). The whole chart, both branches of each rod, is searched by
+co-refinement (:func:`mechnum.rods.corefine`: a tree of boxes per rod and the live pairs of
+boxes, then Krawczyk's search of their clusters), each rod's chart cut to the a-priori bound
+on its load (:func:`mechnum.rods.certified.pair_bound`: no equilibrium has a rod beyond it); its
+certificate (its inputs: :func:`certificate_inputs`) is re-checked against the caller's own
+inputs by :func:`verify_certificate`.
 
 **Beyond the chart.** A rod with ``q > Q_MAX`` has ``Lambda >= TAIL_LAMBDA`` (about 300) and its
 tip within ``eps L`` of ``L e`` (``e``: its force's direction; :mod:`mechnum.rods.certified`).
@@ -19,9 +23,10 @@ are nearer than that (as for the study's Table 7), else the result is not ``comp
 **Stability.** The index of an equilibrium is the sum of the rods' indices with their tips pinned
 and the index of the reduced Hessian ``K1 + K2`` (each ``K_i = d n_i / d tip_i`` along the
 rod's branch, :func:`mechnum.rods.certified.stiffness`), by Haynsworth's inertia additivity.
-``stable`` is False where :func:`~mechnum.certify.definite` proves ``K1 + K2`` over
-the root's enclosure to have a negative eigenvalue, None otherwise (the pinned-tip indices are
-not enclosed).
+Each rod's pinned index is proven in closed form over the root's enclosure
+(:func:`mechnum.rods.pinned_index`), and ``K1 + K2`` by :func:`~mechnum.certify.definite`:
+``stable`` is True (proven stable), False (proven unstable) or None where a sign is not
+proven (:func:`mechnum.rods.proven_stability`).
 """
 
 from __future__ import annotations
@@ -32,12 +37,13 @@ import numpy as np
 from flint import arb
 from numpy.typing import ArrayLike
 
-from mechnum import _validate, certify
+from mechnum import _validate, certify, rods
 from mechnum.mechanisms._assembly import check_type
 from mechnum.mechanisms.rfr2._model import Mechanism
-from mechnum.rods import certified, k_rel_from_t
+from mechnum.rods import T_MAX, certified, k_rel_from_t
 
-__all__ = ["chart", "system", "verify_certificate"]  # certify_forward is rfr2's
+# certify_forward is rfr2's
+__all__ = ["certificate_inputs", "certify_stability", "chart", "system", "verify_certificate"]
 
 MAX_BOXES = 400_000
 """Default bound on the boxes tested (``max_boxes``)."""
@@ -146,7 +152,11 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Parameters
     ----------
-    certificate : ~mechnum.certify.Certificate
+    certificate : ~mechnum.certify.Certificate or ~mechnum.rods.CoCertificate
+        A certificate of a search around given points, or of the whole chart; a
+        :class:`~mechnum.rods.CoCertificate` (the co-refinement's, scope ``"all"``) is re-checked
+        by :func:`mechnum.rods.certified.verify_corefined` on the rods and equations that ``mech``
+        implies, each rod's domain derived again.
     mech : ~mechnum.mechanisms.rfr2.Mechanism
     theta : array_like, shape (2,)
         The motor angles (rad).
@@ -157,13 +167,13 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
 
     Returns
     -------
-    ~mechnum.certify.Verified
+    ~mechnum.certify.Verified or ~mechnum.rods.CoVerified
 
     Raises
     ------
     ~mechnum.certify.CertificateError
         If the certificate does not prove what it says for these inputs
-        (:func:`mechnum.certify.verify`).
+        (:func:`mechnum.certify.verify`, :func:`mechnum.rods.certified.verify_corefined`).
 
     Examples
     --------
@@ -175,6 +185,8 @@ def verify_certificate(certificate: certify.Certificate, mech: Mechanism, theta:
     >>> v.count, v.scope, v.complete
     (1, 'existence', None)
     """
+    if isinstance(certificate, rods.CoCertificate):
+        return _verify_corefined(certificate, mech, theta, modes, scope)
     f, J, _, exclude = system(mech, theta, modes)
     return certify.verify(certificate, f, J, exclude, domain=chart(), scope=scope)
 
@@ -201,12 +213,14 @@ def certify_forward(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1),
 
     Returns
     -------
-    mechnum.rods.certified.Certified
+    mechnum.rods.CertifiedAll or mechnum.rods.certified.Certified
         ``roots``: enclosures in the chart ``(psi1, t1, psi2, t2)``; ``solutions``: their
         midpoints as ``(psi1, k_rel1, psi2, k_rel2)`` (the coordinates of
-        ``forward``'s ``solutions``), sorted by ``psi1``; ``stable``: False (proven
-        unstable) or None (see the module); ``complete``: the count is a theorem (the chart
-        searched whole, and the tail beyond it excluded).
+        ``forward``'s ``solutions``), sorted by ``psi1``; ``stable``: True (proven
+        stable), False (proven unstable) or None (see the module); ``complete``: the count is
+        a theorem (the chart searched whole, every rod beyond it excluded by the a-priori
+        bound). Without ``around``, a :class:`~mechnum.rods.CertifiedAll`, whose
+        ``certificate(certificate_inputs(...))`` :func:`verify_certificate` re-checks.
 
     Examples
     --------
@@ -218,19 +232,117 @@ def certify_forward(mech: Mechanism, theta: ArrayLike, modes: Sequence = (1, 1),
     (3, False, True)
     """
     modes = _modes(modes)
-    f, J, rods, exclude = system(mech, theta, modes)
-    boxes = chart() if around is None else certified.around_boxes(around, 2)
-    part = certify.roots(f, J, boxes, max_boxes=max_boxes, exclude=exclude,
-                         split=exclude.split, scope="all" if around is None else "existence")
+    f, J, _, exclude = system(mech, theta, modes)
+    if around is None:
+        result = rods.corefine(_chart_rods(mech, theta, modes), _assembly(mech),
+                               (f, J, exclude, exclude.split), max_boxes=max_boxes)
+        part = result.search
+    else:
+        part = certify.roots(f, J, certified.around_boxes(around, 2), max_boxes=max_boxes,
+                             exclude=exclude, split=exclude.split, scope="existence")
     k_rel = (k_rel_from_t(part.x[:, 0::2], part.x[:, 1::2]) if part.count
              else np.zeros((0, 2)))
     solutions = np.stack((part.x[:, 0], k_rel[:, 0], part.x[:, 2], k_rel[:, 1]), axis=-1)
-    stable = []
-    for root in part.roots:
-        r1, r2 = rods(certified.enclosed(root), True)
-        K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
-        stable.append(certified.verdict([[K1[i][j] + K2[i][j] for j in range(2)]
-                                         for i in range(2)]))
-    extra = certified.around_note(around) + ("" if tail_excluded(mech, modes) else (
+    stable = certify_stability(mech, theta, part.roots, modes)
+    if around is not None:
+        return certified.combine([part], solutions, stable, certified.around_note(around))
+    beyond = all(rod.t_max < T_MAX for rod in _chart_rods(mech, theta, modes)) or (
+        tail_excluded(mech, modes))
+    return rods.certified_all(result, solutions, stable, "" if beyond else (
         "; rods beyond the chart (q > Q_MAX) are not excluded"))
-    return certified.combine([part], solutions, stable, extra)
+
+
+def certify_stability(mech: Mechanism, theta: ArrayLike, roots: ArrayLike,
+              modes: Sequence = (1, 1)) -> list:
+    """The proven verdict of each equilibrium in its enclosure (see the module): True (stable),
+    False (unstable) or None (a sign not proven).
+
+    Parameters
+    ----------
+    mech : ~mechnum.mechanisms.rfr2.Mechanism
+    theta : array_like, shape (2,)
+        Motor angles (rad).
+    roots : array_like, shape (k, 4, 2)
+        Enclosures of equilibria in the chart (for example a verified certificate's
+        ``roots``), each on one branch of each rod.
+    modes : (int, int), optional
+
+    Returns
+    -------
+    list of (bool or None)
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2 import forward
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> z = forward(TABLE7, TABLE7_THETA, rng=0).x
+    >>> certify_stability(TABLE7, TABLE7_THETA, np.stack((z - 1e-9, z + 1e-9), axis=-1))
+    [True, True, True]
+    """
+    modes = _modes(modes)
+    roots = _validate.array(roots, "roots", shape=(None, 4, 2))
+    placed = system(mech, theta, modes)[2]
+    out = []
+    for root in roots:
+        r1, r2 = placed(certified.enclosed(root), True)
+        K1, K2 = certified.stiffness(r1), certified.stiffness(r2)
+        reduced = [[K1[i][j] + K2[i][j] for j in range(2)] for i in range(2)]
+        pinned = [rods.pinned_index(mech.EI, mech.L, root[2 * i:2 * i + 2], modes[i],
+                                    1 if root[2 * i + 1].mean() > 0 else -1)
+                  for i in range(2)]
+        out.append(rods.proven_stability(pinned, reduced))
+    return out
+
+
+def _chart_rods(mech, theta, modes=(1, 1)):
+    """The two rods as the co-refinement searches them: each chart up to the a-priori bound on
+    its load (:func:`mechnum.rods.certified.pair_bound`; the chart's whole range where that bound is
+    beyond it, for which :func:`tail_excluded` must then exclude the rest).
+
+    Examples
+    --------
+    >>> from mechnum.mechanisms.rfr2.study import TABLE7, TABLE7_THETA
+    >>> [round(rod.lam_max, 2) for rod in _chart_rods(TABLE7, TABLE7_THETA)]
+    [10.39, 10.39]
+    """
+    check_type(mech, Mechanism)
+    theta = _validate.array(theta, "theta", shape=(2,))
+    modes = _modes(modes)
+    gap = float(np.hypot(*(mech.origins[1] - mech.origins[0])))
+    bound = certified.pair_bound(modes, gap, float(np.hypot(*mech.force)), mech.EI, mech.L)
+    return [certified.ChartRod(mech.EI, mech.L, modes[i], mech.origins[i], theta[i],
+                          certified.chart_t_bound(bound[i]), bound[i]) for i in range(2)]
+
+
+def _assembly(mech):
+    """The tips at one point, the forces summing to the load: the co-refinement's tests."""
+    check_type(mech, Mechanism)
+    return certified.Assembly(((0, 1, 0.0),), mech.force)
+
+
+def certificate_inputs(mech: Mechanism, theta: ArrayLike,
+                       modes: Sequence = (1, 1)) -> dict:
+    """What a certificate of :func:`certify_forward` stores to be re-checked: the mechanism's
+    fields, the motor angles and the modes (JSON-ready)."""
+    check_type(mech, Mechanism)
+    return {"function": "mechnum.mechanisms.rfr2.certified.verify_certificate",
+            "origins": mech.origins.tolist(), "force": mech.force.tolist(), "L": mech.L,
+            "EI": mech.EI, "theta": _validate.array(theta, "theta", shape=(2,)).tolist(),
+            "modes": _modes(modes), "unknowns": ["psi1", "t1", "psi2", "t2"]}
+
+
+def _verify_corefined(certificate, mech, theta, modes, scope):
+    """:func:`verify_certificate` of a co-refinement's certificate: on the rods and the
+    equations that the caller's ``mech``, ``theta`` and ``modes`` imply, each rod's domain
+    derived again from the a-priori bound."""
+    if scope not in (None, "all"):
+        raise certify.CertificateError(f"the certificate's scope is 'all', the caller asks for "
+                                       f"{scope!r}")
+    chart_of = _chart_rods(mech, theta, modes)
+    f, J, _, exclude = system(mech, theta, modes)
+    verified = certified.verify_corefined(certificate, chart_of, _assembly(mech), f, J, exclude)
+    if verified.complete and not all(rod.t_max < T_MAX for rod in chart_of) and not (
+            tail_excluded(mech, modes)):
+        raise certify.CertificateError("rods beyond the chart are not excluded: the count is "
+                                       "not complete")
+    return verified
