@@ -29,16 +29,14 @@ def elliptic_tip(EI, L, psi, k_rel, mode):
     k = np.sign(k_rel) * k_min + (1 - k_min) * k_rel  # the study's (91)
     q = (1 - k_min) * (1 - abs(k_rel)) * (1 + abs(k))  # 1 - k^2
     kc = np.sqrt((1 - k_min) * abs(k_rel) * (abs(k) + k_min))
-    c = np.sign(k) * np.cos(psi / 2)  # |k| (sin phi1, cos phi1) = (c, kc)
-    width = (mode - 1) * np.pi + np.arctan2(kc, c)  # phi2-phi runs 0..width
-    dF, chord = (quad(f, 0, width, epsabs=1e-15, epsrel=1e-12)[0] for f in (
+    w = (mode - 1) * np.pi + np.arctan2(kc, np.cos(psi / 2) / np.sign(k))
+    dF, chord = (quad(f, 0, w, epsabs=1e-15, epsrel=1e-12)[0] for f in (
         lambda u: 1 / np.sqrt(q + k**2 * np.sin(u) ** 2),  # u = phi2 - phi
         lambda u: (2 * q - 1 + 2 * k**2 * np.sin(u) ** 2)
         / np.sqrt(q + k**2 * np.sin(u) ** 2)))  # 2 dE - dF
     side = -2 * np.sign(k) * kc  # 2 k (cos(phi2) - cos(phi1))
-    x = -(np.cos(psi) * chord + np.sin(psi) * side) * L / dF  # (45)
-    y = -(np.sin(psi) * chord - np.cos(psi) * side) * L / dF  # (46)
-    return np.array([x, y])
+    return -np.array([np.cos(psi) * chord + np.sin(psi) * side,  # (45) (46)
+                      np.sin(psi) * chord - np.cos(psi) * side]) * L / dF
 
 
 def pin_residual(tips, forces, origins, theta, load):

@@ -131,12 +131,11 @@ LSTSQ = Exercise(
         "$I - 2vv^{\\mathsf T}/v^{\\mathsf T}v$ zeroes the entries below the diagonal (choose the "
         "sign of $v_0$ that avoids cancellation: a column that is already nearly $e_1$ shows "
         "the difference), applied to $A$ and to $b$ alike; then solve "
-        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Unlike the chapter's "
-        "`householder_qr`, form neither $Q$ nor an $m \\times m$ reflection: one case is "
-        "$100\\,000 \\times 3$ (80 GB per $m \\times m$ matrix). Call none of numpy's or "
-        "scipy's `qr`, `lstsq`, `pinv` and `svd`: the check runs your function with them "
-        "unavailable. Try it on the chapter's narrow-range design, where the normal equations "
-        "lose digits."),
+        "$R x = (Q^{\\mathsf T} b)_{1..n}$ by back substitution. Unlike "
+        "`householder_qr`, form no $m \\times m$ matrix: one case is $100\\,000 \\times 3$. "
+        "The check runs it with numpy's and scipy's `qr`, `lstsq`, `pinv` and `svd` "
+        "unavailable. Try it on the chapter's narrow-range design, where the normal "
+        "equations lose digits."),
     starter=LSTSQ_STARTER, cases=_lstsq_cases, returns=Array(),
     forbidden=tuple(f"{module}.{name}" for module in ("numpy.linalg", "scipy.linalg")
                     for name in ("qr", "lstsq", "pinv", "svd")),

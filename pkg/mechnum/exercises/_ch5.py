@@ -98,10 +98,9 @@ ELLIPTIC = Exercise(
         "one clamped-pinned rod in its clamp's frame from the thesis's closed form: $k$ from "
         "$k_{rel}$ by (91), $\\phi_1$ by (41), $\\phi_2 = (\\text{mode} - \\tfrac12)\\pi$, "
         "$\\lambda L = F(\\phi_2, k) - F(\\phi_1, k)$, and the tip by (45) and (46), "
-        "accurate at small loads too, where Chapter 3's `printed_tip` is not: one case has "
-        "$k_{rel} = 10^{-14}$. So take $\\phi_2 - \\phi_1$ itself by `arctan2`, and "
-        "the integrals over $[\\phi_1, \\phi_2]$ directly (`scipy.integrate.quad`), never "
-        "as differences of integrals from 0. Compare with "
+        "accurate at small loads ($k_{rel} = 10^{-14}$), where Chapter 3's `printed_tip` is not: "
+        "take $\\phi_2 - \\phi_1$ by `arctan2` and integrate over $[\\phi_1, \\phi_2]$ "
+        "itself (`scipy.integrate.quad`). Compare with "
         "`rods.clamped_pinned(EI, L, psi, k_rel, mode).tip`."),
     starter=TIP_STARTER, cases=_tip_cases, returns=Array(),
     compare=lambda expected, got: close(expected, got, rtol=1e-9, atol=1e-12, what="the tip"),
