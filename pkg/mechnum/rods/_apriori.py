@@ -93,7 +93,7 @@ def reach(mode: int) -> float:
 
 def chart_t_bound(lam_max: float) -> float:
     """The largest ``|t|`` of a rod with ``Lambda <= lam_max`` (rounded up, at most
-    :data:`mechnum.rods.T_MAX`): ``q <= 2 log cosh(lam_max)``.
+    the chart's ``T_MAX``): ``q <= 2 log cosh(lam_max)``.
 
     Examples
     --------

@@ -66,12 +66,12 @@ class CoRefined(Result):
     search : mechnum.certify.Roots
         That search.
     rounds : tuple of dict
-        :attr:`Refinement.history <mechnum.rods._corefine.Refinement>`: per round the tuples
+        the refinement's history (``rods._corefine``): per round the tuples
         ``tested`` (in all) and ``live``, the rods' ``boxes``, ``evaluations``, ``seconds``,
         ``volume`` (the live tuples' share of the domain) and ``dropped`` (by reason).
     dims, resolved : tuple
         The axis of every cut, and the boxes settled after each round: what the certificate
-        needs to repeat the search (:mod:`mechnum.rods._cocertificate`).
+        needs to repeat the search (``rods._cocertificate``).
     grid : (int, int)
     probes : int
         Boxes tested by the probes.
@@ -251,7 +251,7 @@ def conclude(state, system, probes=0, max_boxes=certify.MAX_BOXES):
 class CertifiedAll(Certified):
     """A mechanism's :class:`~mechnum.rods.certified.Certified` found by co-refinement: its
     ``parts`` are the final Krawczyk search, ``complete`` covers the co-refinement too, and
-    :meth:`certificate` is the co-refinement's (:mod:`mechnum.rods._cocertificate`).
+    :meth:`certificate` is the co-refinement's (``rods._cocertificate``).
 
     Attributes
     ----------
